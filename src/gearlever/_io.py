@@ -1,0 +1,52 @@
+"""Atomic file output: write to a temporary file beside the target, then rename.
+
+No caller of gearlever is ever left with a half-written file: either the old
+file (or none) is there, or the complete new one.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from pathlib import Path
+
+
+@contextlib.contextmanager
+def atomic_path(target, suffix: str | None = None):
+    """Yield a temporary path in ``target``'s folder; rename it onto ``target`` on success.
+
+    The folder is created if missing.  If the body raises, the temporary file
+    is removed and ``target`` is left as it was.
+
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> with atomic_path(d / "x.txt") as tmp:
+    ...     _ = tmp.write_text("hi")
+    >>> (d / "x.txt").read_text()
+    'hi'
+    """
+    target = Path(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp_name = tempfile.mkstemp(
+        prefix=f".{target.name}.", suffix=suffix if suffix is not None else ".tmp" + target.suffix,
+        dir=target.parent,
+    )
+    os.close(fd)
+    tmp = Path(tmp_name)
+    try:
+        yield tmp
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+        raise
+
+
+def write_text_atomic(target, text: str) -> Path:
+    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``target`` atomically and return the path."""
+    target = Path(target)
+    with atomic_path(target) as tmp:
+        with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+    return target

@@ -1,0 +1,33 @@
+"""Shared figure helpers: new axes, deterministic atomic saving."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg", force=False)
+import matplotlib.pyplot as plt  # noqa: E402
+
+from gearlever._io import atomic_path  # noqa: E402
+
+#: PNG metadata left out so that re-running writes the same bytes.
+_PNG_METADATA = {"Software": None}
+
+
+def axes(ax=None, figsize=(7.0, 4.5)):
+    """Return ``ax``, or a new Axes on a new Figure when ``ax`` is None."""
+    if ax is None:
+        _, ax = plt.subplots(figsize=figsize, layout="constrained")
+    return ax
+
+
+def save(fig, path, dpi: int = 120) -> Path:
+    """Save ``fig`` to ``path`` (format from the suffix) atomically, close it, return the path."""
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower() or "png"
+    metadata = _PNG_METADATA if fmt == "png" else None
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=fmt, dpi=dpi, metadata=metadata)
+    plt.close(fig)
+    return path

@@ -1,0 +1,142 @@
+"""Closed-form vector contours and the kinematics of a point on a turning link.
+
+Pure numpy: every function takes arrays of angles (radians, any shape) and
+returns arrays of the same shape.  Derivatives are *analogues*: derivatives
+with respect to the generalized coordinate ``phi`` (the angle of the leading
+link), so that a time derivative is the analogue times ``omega`` (velocity)
+or times ``omega**2`` (acceleration, at constant ``omega``).
+
+Conventions
+-----------
+``x`` to the right, ``y`` up, angles counter-clockwise from ``+x``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from gearlever._validate import finite, finite_array, positive
+
+
+def double_slider(l, r, phi):
+    """Projections of the double-slider contour O-A-B and their analogues.
+
+    A link of length ``l`` at angle ``phi`` has its end B on the x axis and its
+    end A on a guide parallel to y, offset by ``r``.
+
+    Parameters
+    ----------
+    l : float
+        Link length (> 0).
+    r : float
+        Offset of the y-guide's origin.
+    phi : array_like
+        Link angle(s), radians.
+
+    Returns
+    -------
+    x_B, y_A, dx_B_dphi, dy_A_dphi, d2x_B_dphi2, d2y_A_dphi2 : ndarray
+        Positions and their first and second analogues, each shaped like ``phi``.
+
+    Notes
+    -----
+    Paper eq. 6 (contour 1) and eq. 25 (contour 2)::
+
+        x_B = l cos(phi),          y_A = l sin(phi) + r
+        dx_B/dphi = -l sin(phi),   dy_A/dphi = l cos(phi)          (eq. 7, 26)
+        d2x_B/dphi2 = -l cos(phi), d2y_A/dphi2 = -l sin(phi)
+
+    Examples
+    --------
+    >>> x, y, dx, dy, d2x, d2y = double_slider(2.0, 1.0, [0.0])
+    >>> float(x[0]), float(y[0]), float(dx[0]), float(dy[0])
+    (2.0, 1.0, -0.0, 2.0)
+    """
+    l = positive("l", l)
+    r = finite("r", r)
+    phi = finite_array("phi", phi)
+    c, s = np.cos(phi), np.sin(phi)
+    return l * c, l * s + r, -l * s, l * c, -l * c, -l * s
+
+
+def point_acceleration(l, theta, u, e):
+    """Acceleration analogues of the end of a link turning about its other end.
+
+    Parameters
+    ----------
+    l : float
+        Distance from the pivot to the point (> 0).
+    theta : array_like
+        Link angle, radians.
+    u, e : array_like
+        Velocity analogue ``dtheta/dphi`` and acceleration analogue
+        ``d2theta/dphi2`` of the link (broadcast against ``theta``).
+
+    Returns
+    -------
+    a_x, a_y : ndarray
+        ``d2x/dphi2`` and ``d2y/dphi2`` of the point (accelerations over
+        ``omega**2``, in the units of ``l``).
+
+    Notes
+    -----
+    Paper eq. 16 (points B, A) and eq. 35 (points D, E)::
+
+        a_x = -l cos(theta) u**2 - l sin(theta) e
+        a_y = -l sin(theta) u**2 + l cos(theta) e
+
+    Examples
+    --------
+    >>> ax, ay = point_acceleration(1.0, 0.0, 1.0, 0.0)   # centripetal only
+    >>> float(ax), float(ay)
+    (-1.0, 0.0)
+    """
+    l = positive("l", l)
+    theta = finite_array("theta", theta)
+    u = np.asarray(u, dtype=float)
+    e = np.asarray(e, dtype=float)
+    c, s = np.cos(theta), np.sin(theta)
+    u2 = u * u
+    return -l * (c * u2 + s * e), l * (c * e - s * u2)
+
+
+def recover_analogues(l, theta, a_x, a_y):
+    """Recover ``u**2`` and ``e`` of a link from both acceleration projections.
+
+    Parameters
+    ----------
+    l : float
+        Distance from the pivot to the point (> 0).
+    theta : array_like
+        Link angle, radians.
+    a_x, a_y : array_like
+        Acceleration analogues of the point (as from :func:`point_acceleration`).
+
+    Returns
+    -------
+    u_squared, e : ndarray
+        The squared velocity analogue and the acceleration analogue.
+
+    Notes
+    -----
+    Paper eq. 17 (and 36) solves only the x line of eq. 16 for ``e`` and
+    divides by ``sin(theta)``, which fails at 0 and 180 degrees.  Projecting
+    eq. 16 on the link's normal and on the link itself instead::
+
+        e    = ( cos(theta) a_y - sin(theta) a_x) / l
+        u**2 = -(cos(theta) a_x + sin(theta) a_y) / l
+
+    is the exact inverse, finite for every angle when ``l > 0``.
+
+    Examples
+    --------
+    >>> u2, e = recover_analogues(1.0, 0.0, *point_acceleration(1.0, 0.0, 2.0, 0.5))
+    >>> float(u2), float(e)
+    (4.0, 0.5)
+    """
+    l = positive("l", l)
+    theta = finite_array("theta", theta)
+    a_x = np.asarray(a_x, dtype=float)
+    a_y = np.asarray(a_y, dtype=float)
+    c, s = np.cos(theta), np.sin(theta)
+    return -(c * a_x + s * a_y) / l, (c * a_y - s * a_x) / l
