@@ -229,6 +229,9 @@ class NetworkAnalysis:
     redundant : labels of the constraints that follow from earlier ones (in order).
     dependencies : for each redundant label, ``{earlier label: factor}`` with
         row(redundant) = sum(factor * row(earlier)).
+    locked : members the constraints force to stand still (e.g. a carrier
+        between equal side gears turning opposite ways), ``{name: label of the
+        constraint at which that happens}``.
     """
 
     unknowns: int
@@ -236,6 +239,7 @@ class NetworkAnalysis:
     dof: int
     redundant: tuple[str, ...]
     dependencies: Mapping[str, Mapping[str, Fraction]]
+    locked: Mapping[str, str] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -375,19 +379,24 @@ class Network:
         return np.array([[float(x) for x in r] for r in m], dtype=float).reshape(len(m), len(self.names))
 
     def analyse(self) -> NetworkAnalysis:
-        """Unknowns, rank, dof and redundant constraints; raise if the network locks a member.
+        """Unknowns, rank, dof and redundant constraints; raise if the network is locked.
 
         Constraints are taken in order; one whose row is a combination of the
-        rows before it is redundant.  A member whose rotation the constraints
-        force to 0 (a locked train) makes the network inconsistent: the
-        ValueError names the constraint at which that happens.
+        rows before it is redundant.  The network is inconsistent (a locked
+        train) when the constraints force every member to stand still, or
+        force still a gear that meshes with another moving member: the
+        ValueError names the constraint at which that happens.  Other members
+        forced still are listed in ``locked``.
         """
         names = self.names
         n = len(names)
         basis: list[tuple[int, list[Fraction], dict[str, Fraction]]] = []
         redundant: list[str] = []
         deps: dict[str, dict[str, Fraction]] = {}
-        locked: set[int] = set()
+        locked: dict[int, str] = {}
+        # gears meshing with another moving member: if one of them is forced still the train is jammed
+        meshing = {m for c in self.constraints if isinstance(c, Mesh) and FRAME not in (c.p, c.q)
+                   for m in (c.p, c.q)}
         for c, row0 in zip(self.constraints, self.matrix()):
             row = list(row0)
             combo = {c.label: Fraction(1)}
@@ -417,16 +426,18 @@ class Network:
                 new_basis.append((bp, brow, bcombo))
             basis = new_basis + [(piv, row, combo)]
             now_locked = {bp for bp, brow, _ in basis if sum(1 for x in brow if x) == 1}
-            fresh = now_locked - locked
-            if fresh:
-                who = ", ".join(repr(names[j]) for j in sorted(fresh))
-                raise ValueError(f"network is inconsistent: constraint ({c.label}) locks gears {who} "
-                                 f"(forces them to stand still)" if len(fresh) > 1 else
-                                 f"network is inconsistent: constraint ({c.label}) locks gear {who} "
-                                 f"(forces it to stand still)")
+            fresh = now_locked - set(locked)
+            jammed = sorted(j for j in fresh if names[j] in meshing)
+            if jammed or (n and len(now_locked) == n):
+                who = sorted(fresh)
+                what = (f"gears {', '.join(repr(names[j]) for j in who)} (forces them to stand still)"
+                        if len(who) > 1 else f"gear {names[who[0]]!r} (forces it to stand still)")
+                raise ValueError(f"network is inconsistent: constraint ({c.label}) locks {what}")
+            locked.update({j: c.label for j in fresh})
         rank = len(basis)
         return NetworkAnalysis(unknowns=n, rank=rank, dof=n - rank, redundant=tuple(redundant),
-                               dependencies={k: dict(v) for k, v in deps.items()})
+                               dependencies={k: dict(v) for k, v in deps.items()},
+                               locked={names[j]: label for j, label in sorted(locked.items())})
 
     def _check_inputs(self, inputs, dof) -> tuple[str, ...]:
         if isinstance(inputs, str):
