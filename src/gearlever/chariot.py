@@ -452,7 +452,10 @@ def simulate(design: NuttallDesign, ds_left, ds_right, d1: float | None = None,
     Per step: wheel turns ``rot1 = ds_right/(pi d1)``, ``rot12 = ds_left/(pi d12)``;
     pointer ``rot7 = c1 rot1 + c12 rot12`` (Nuttall (l), from the solver);
     chassis ``dpsi = (ds_right - ds_left)/t``; pointer heading change
-    ``dpsi + 2 pi rot7``.  Headings are cumulative sums: one vectorised pass.
+    ``dpsi + 2 pi rot7 = ds_right (1/t + 2 c1/d1) + ds_left (2 c12/d12 - 1/t)``
+    (summed per step before accumulating, so that no rounding of the large
+    heading enters the drift).  Headings are cumulative sums, computed block
+    by block in cache; there is no Python loop over steps.
     """
     if not isinstance(design, NuttallDesign):
         raise ValueError(f"design must be a NuttallDesign, got {type(design).__name__}")
@@ -477,21 +480,24 @@ def simulate(design: NuttallDesign, ds_left, ds_right, d1: float | None = None,
     heading[0] = heading0
     drift = np.empty(n + 1)
     drift[0] = 0.0
-    ratio = k_left / k_right
+    # pointer's ground heading change per step = chassis dpsi + 2 pi rot7
+    #   = ds_right*(1/t + k_right) + ds_left*(k_left - 1/t)   (same sum, one pass fewer)
+    g_right = 1.0 / t + k_right
+    g_left = k_left - 1.0 / t
+    m = min(n, _BLOCK)
+    scratch_a, scratch_b, scratch_c = np.empty(m), np.empty(m), np.empty(m)
     for lo in range(0, n, _BLOCK):
         hi = min(n, lo + _BLOCK)
-        dpsi = heading[lo + 1:hi + 1]
+        dpsi, turn, tmp = scratch_a[:hi - lo], scratch_b[:hi - lo], scratch_c[:hi - lo]
         np.subtract(dr[lo:hi], dl[lo:hi], out=dpsi)
-        dpsi *= 1.0 / t                           # chassis heading change per step
-        turn = drift[lo + 1:hi + 1]
-        np.multiply(dl[lo:hi], ratio, out=turn)   # pointer relative to chassis, rad:
-        turn += dr[lo:hi]                         #   2 pi rot7 = k_right*ds_right + k_left*ds_left
-        turn *= k_right
-        turn += dpsi                              # pointer's ground heading change
-        dpsi[0] += heading[lo]                    # carry the running sums into the block
+        dpsi *= 1.0 / t                              # chassis heading change per step
+        np.multiply(dr[lo:hi], g_right, out=turn)
+        np.multiply(dl[lo:hi], g_left, out=tmp)
+        turn += tmp                                  # pointer's ground heading change per step
+        dpsi[0] += heading[lo]                       # carry the running sums into the block
         turn[0] += drift[lo]
-        np.cumsum(dpsi, out=dpsi)
-        np.cumsum(turn, out=turn)
+        np.cumsum(dpsi, out=heading[lo + 1:hi + 1])  # separate buffers: no overlap copy
+        np.cumsum(turn, out=drift[lo + 1:hi + 1])
     if not (math.isfinite(heading[-1]) and math.isfinite(drift[-1])):
         # a NaN or inf anywhere in the input propagates to the end of a cumulative sum
         V.finite_array("ds_left", dl)
