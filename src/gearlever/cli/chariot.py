@@ -114,7 +114,7 @@ def _simulate(args) -> int:
         dl, dr, h0 = waypoint_path(pts, track=d.track, step=args.step * d.track)
         run = simulate(d, dl, dr, d1=args.d1 and args.d1 * d.track, d12=args.d12 and args.d12 * d.track,
                        heading0=h0, start=pts[0])
-        path = f"way-points from {args.waypoints} ({len(pts)} points)"
+        path = f"path through the {len(pts)} way-points of {args.waypoints}"
     else:
         dl, dr = random_path(args.turns, seed=args.seed, steps_per_turn=args.steps_per_turn, track=d.track)
         run = simulate(d, dl, dr, d1=args.d1 and args.d1 * d.track, d12=args.d12 and args.d12 * d.track,
@@ -137,7 +137,7 @@ def _simulate(args) -> int:
         emit(to_json(result), args.out)
         return 0
     lines = [
-        f"Nuttall chariot on a {path}: {result['steps']} steps, distance {run.distance:.6g}, "
+        f"Nuttall chariot, {path}: {result['steps']} steps, distance {run.distance:.6g}, "
         f"chassis turning {turns:.6g} turns",
         f"wheels: d1 = {result['d1']:.12g} (design {d.d1:.12g}), d12 = {result['d12']:.12g} (design {d.d12:.12g})",
         f"pointer drift: max {run.max_drift:.3e} rad ({math.degrees(run.max_drift):.3e} deg), "
