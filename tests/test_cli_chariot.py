@@ -64,6 +64,8 @@ def test_simulate_waypoints_csv_and_whitespace(capsys, tmp_path, text):
 
 
 @pytest.mark.parametrize("argv", [
+    ["chariot"],
+    ["differential"],
     ["chariot", "nuttall", *TEETH[:-1], "0"],
     ["chariot", "nuttall", "--n2", "20"],
     ["chariot", "nuttall", *TEETH, "--track", "-1"],

@@ -243,3 +243,24 @@ def test_carrier_between_opposed_equal_side_gears_is_reported_locked_not_an_erro
     assert net.solve(["a"]).coefficients["c"] == (Fraction(0),)
     with pytest.raises(ValueError, match=r"constraints \(ab\), \(w\) force"):
         net.solve(["c"])
+
+
+def test_long_train_float_path_agrees_with_exact():
+    """31 members: alternating meshes, shafts and differentials on a common carrier k."""
+    rng = np.random.default_rng(0)
+    gears = [Gear("g0", 20), Gear("k", 30)]
+    cons = []
+    for k in range(1, 30):
+        gears.append(Gear(f"g{k}", int(rng.integers(8, 90))))
+        if k % 3 == 0:
+            cons.append(Differential(f"c{k}", f"g{k - 1}", f"g{k}", "k"))
+        elif k % 3 == 1:
+            cons.append(Mesh(f"c{k}", f"g{k - 1}", f"g{k}"))
+        else:
+            cons.append(SameShaft(f"c{k}", f"g{k - 1}", f"g{k}"))
+    net = Network(gears, cons)
+    a = net.analyse()
+    assert a.unknowns == 31 and a.dof == 2
+    exact = net.solve(["g0", "k"]).matrix(net.names)
+    scale = np.abs(exact).max()
+    assert np.allclose(net.solve_float(["g0", "k"]), exact, rtol=1e-9, atol=1e-10 * scale)

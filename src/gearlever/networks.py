@@ -278,6 +278,10 @@ class NetworkSolution:
         """Rotation of ``name`` for input rotations ``{input name: value}``.
 
         Exact if the values are ints or Fractions; numpy arrays broadcast.
+
+        >>> net = Network([Gear("p", 20), Gear("q", 40)], [Mesh("pq", "p", "q")])
+        >>> net.solve(["p"]).rotation("q", {"p": 3})
+        Fraction(-3, 2)
         """
         missing = [k for k in self.inputs if k not in inputs]
         extra = [k for k in inputs if k not in self.inputs]
@@ -387,6 +391,20 @@ class Network:
         force still a gear that meshes with another moving member: the
         ValueError names the constraint at which that happens.  Other members
         forced still are listed in ``locked``.
+
+        Examples
+        --------
+        >>> net = Network([Gear("a", 30), Gear("b", 20), Gear("c")],
+        ...               [Differential("w", "a", "b", "c"), Differential("w2", "a", "b", "c")])
+        >>> a = net.analyse()
+        >>> a.unknowns, a.rank, a.dof, a.redundant, a.dependencies["w2"]
+        (3, 1, 2, ('w2',), {'w': Fraction(1, 1)})
+
+        Notes
+        -----
+        Incremental Gauss-Jordan elimination over the rationals; each basis row
+        carries the combination of constraints it came from, so a row that
+        reduces to zero gives its dependency exactly.  Nuttall: (e) = (d) - (c).
         """
         names = self.names
         n = len(names)
@@ -460,6 +478,21 @@ class Network:
 
         Raises ValueError if the inputs are not independent (a constraint ties
         them together), naming the constraints involved.
+
+        Examples
+        --------
+        Willis for a differential (30 and 20 teeth) with the carrier held:
+
+        >>> net = Network([Gear("a", 30), Gear("b", 20), Gear("c")], [Differential("w", "a", "b", "c")])
+        >>> net.solve(["a", "c"]).relation("b")
+        'rot_b = -3/2*rot_a + 5/2*rot_c'
+
+        Notes
+        -----
+        Reduced row echelon form of the constraint matrix (exact), pivots taken
+        first among the non-input members: each of them is then
+        ``rot = -sum(R[row, input] * rot_input)``.  A pivot on an input column
+        is a relation among the inputs, reported with its constraints.
         """
         analysis = self.analyse()
         inputs = self._check_inputs(inputs, analysis.dof)
@@ -510,6 +543,18 @@ class Network:
         Rows follow :attr:`names`.  The rank is taken from the singular values
         with tolerance ``rtol`` (relative to the largest); dependent inputs or
         an undetermined member raise ValueError.
+
+        Examples
+        --------
+        >>> net = Network([Gear("p", 20), Gear("q", 40)], [Mesh("pq", "p", "q")])
+        >>> net.solve_float(["p"]).ravel().tolist()
+        [1.0, -0.5]
+
+        Notes
+        -----
+        Least squares ``A_o X = -A_i`` (numpy ``lstsq``) on the float constraint
+        matrix split into non-input and input columns; exact when ``A_o`` has
+        full column rank, which is checked first.
         """
         A = self.matrix_float()
         n = len(self.names)
