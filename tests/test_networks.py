@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from gearlever.networks import (FRAME, Differential, Gear, Mesh, Network, SameShaft,
-                                format_linear)
+                                format_linear, parse_network)
 
 NUTTALL_ROWS = {
     "a": lambda: Differential("a", "2", "5", "4"),
@@ -264,3 +264,30 @@ def test_long_train_float_path_agrees_with_exact():
     exact = net.solve(["g0", "k"]).matrix(net.names)
     scale = np.abs(exact).max()
     assert np.allclose(net.solve_float(["g0", "k"]), exact, rtol=1e-9, atol=1e-10 * scale)
+
+
+def test_parse_network_round_trip_of_nuttall_records():
+    text = "\n".join([
+        "# comment", "member,1,wheel", "member,2,gear,n2", "member,4,carrier", "member,5,gear,24",
+        "member,6,gear,18", "member,7,gear,36", "member,8,gear,20", "member,9,gear,25", "member,11,gear,40",
+        "member,12,wheel",
+        "constraint,a,differential,2,5,4", "constraint,b,differential,9,11,4",
+        "constraint,c,differential,6,8,frame", "constraint,d,mesh,7,8,,1", "constraint,e,mesh,7,6,,-1",
+        "constraint,f,shaft,1,2", "constraint,g,shaft,5,6", "constraint,h,shaft,8,9", "constraint,i,shaft,11,12",
+    ])
+    net = parse_network(text, teeth={"n2": 30})
+    assert net.matrix() == nuttall().matrix()
+
+
+@pytest.mark.parametrize("text, message", [
+    ("member,a,gear,0", r"network line 1: gear 'a': teeth must be a positive integer"),
+    ("member,a,gear,2.5", r"network line 1: gear 'a': tooth number '2.5'"),
+    ("member,a,gear,nx", r"gear 'a': tooth number 'nx' is neither"),
+    ("member,a,gear,10\nconstraint,k,belt,a,b", r"network line 2: constraint \(k\): kind must be"),
+    ("member,a,gear,10\nconstraint,k,mesh,a,b", r"constraint \(k\): unknown gear 'b'"),
+    ("member,a,gear,10\nmember,b,gear,10\nconstraint,k,mesh,a,b,,2", r"sign must be 1 or -1"),
+    ("gear,a,10", r"network line 1: record must start with 'member' or 'constraint'"),
+])
+def test_parse_network_errors_name_line_gear_or_constraint(text, message):
+    with pytest.raises(ValueError, match=message):
+        parse_network(text)

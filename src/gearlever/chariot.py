@@ -38,8 +38,7 @@ from fractions import Fraction
 import numpy as np
 
 from gearlever import _validate as V
-from gearlever.networks import (FRAME, Differential, Gear, Mesh, Network,
-                                NetworkSolution, SameShaft)
+from gearlever.networks import Network, NetworkSolution, parse_network
 
 #: The tooth numbers a Nuttall design is given by (source parts table).
 TEETH = ("n2", "n5", "n6", "n7", "n8", "n9", "n11")
@@ -77,17 +76,11 @@ class NuttallTeeth:
 
 
 @functools.lru_cache(maxsize=1)
-def _network_records() -> tuple[tuple[tuple[str, ...], ...], tuple[tuple[str, ...], ...]]:
-    """Members and constraints of the data file (read on first use only)."""
+def _network_text() -> str:
+    """The Nuttall data file (read on first use only)."""
     from gearlever.data import read_text
 
-    members, constraints = [], []
-    for line in read_text("nuttall_network.csv").splitlines():
-        if not line.strip() or line.startswith("#"):
-            continue
-        rec = line.split(",", 7)
-        (members if rec[0] == "member" else constraints).append(tuple(rec[1:]))
-    return tuple(members), tuple(constraints)
+    return read_text("nuttall_network.csv")
 
 
 def nuttall_network(teeth: NuttallTeeth) -> Network:
@@ -107,20 +100,7 @@ def nuttall_network(teeth: NuttallTeeth) -> Network:
     """
     if not isinstance(teeth, NuttallTeeth):
         raise ValueError(f"teeth must be NuttallTeeth, got {teeth!r}")
-    members, constraints = _network_records()
-    size = teeth.as_dict()
-    gears = [Gear(name, size[sym] if sym else None) for name, _kind, sym, *_ in members]
-    rows = []
-    for label, kind, first, second, third, sign, _desc in constraints:
-        if kind == "differential":
-            rows.append(Differential(label, first, second, FRAME if third == "frame" else third))
-        elif kind == "mesh":
-            rows.append(Mesh(label, first, second, int(sign)))
-        elif kind == "shaft":
-            rows.append(SameShaft(label, first, second))
-        else:  # pragma: no cover - the shipped data file has only these kinds
-            raise ValueError(f"constraint ({label}): unknown kind {kind!r} in nuttall_network.csv")
-    return Network(gears, rows)
+    return parse_network(_network_text(), teeth=teeth.as_dict())
 
 
 @dataclass(frozen=True)

@@ -578,3 +578,64 @@ class Network:
         if others:
             out[others, :] = X
         return out
+
+
+def parse_network(text: str, teeth: Mapping[str, int] | None = None) -> Network:
+    """Read a network from CSV records (the format of ``gearlever/data/nuttall_network.csv``).
+
+    One record per line, ``#`` lines are comments::
+
+        member,NAME,KIND,TEETH,,,,DESCRIPTION
+        constraint,LABEL,differential|mesh|shaft,FIRST,SECOND,CARRIER,SIGN,DESCRIPTION
+
+    ``TEETH`` is a positive integer, empty (no teeth), or a symbol looked up in
+    ``teeth`` (e.g. ``n2``).  A differential's carrier may be ``frame``; a
+    mesh's ``SIGN`` is 1 (default) or -1.  Errors name the line.
+
+    Examples
+    --------
+    >>> net = parse_network('''member,p,gear,20
+    ... member,q,gear,n
+    ... constraint,pq,mesh,p,q''', teeth={"n": 40})
+    >>> net.solve(["p"]).relation("q")
+    'rot_q = -1/2*rot_p'
+    """
+    teeth = dict(teeth or {})
+    gears, rows = [], []
+    for k, raw in enumerate(text.splitlines(), start=1):
+        if not raw.strip() or raw.lstrip().startswith("#"):
+            continue
+        rec = [x.strip() for x in raw.split(",", 7)]
+        rec += [""] * (8 - len(rec))
+        kind = rec[2].lower()
+        try:
+            if rec[0] == "member":
+                size = rec[3]
+                if not size:
+                    n = None
+                elif size.lstrip("+-").isdigit():
+                    n = int(size)
+                elif size in teeth:
+                    n = teeth[size]
+                else:
+                    raise ValueError(f"gear {rec[1]!r}: tooth number {size!r} is neither an integer "
+                                     f"nor a given symbol")
+                gears.append(Gear(rec[1], n))
+            elif rec[0] == "constraint":
+                if kind == "differential":
+                    rows.append(Differential(rec[1], rec[3], rec[4], rec[5]))
+                elif kind == "mesh":
+                    sign = rec[6] or "1"
+                    if sign not in ("1", "-1", "+1"):
+                        raise ValueError(f"constraint ({rec[1]}): sign must be 1 or -1, got {sign!r}")
+                    rows.append(Mesh(rec[1], rec[3], rec[4], int(sign)))
+                elif kind == "shaft":
+                    rows.append(SameShaft(rec[1], rec[3], rec[4]))
+                else:
+                    raise ValueError(f"constraint ({rec[1]}): kind must be differential, mesh or shaft, "
+                                     f"got {rec[2]!r}")
+            else:
+                raise ValueError(f"record must start with 'member' or 'constraint', got {rec[0]!r}")
+        except ValueError as exc:
+            raise ValueError(f"network line {k}: {exc}") from None
+    return Network(gears, rows)
