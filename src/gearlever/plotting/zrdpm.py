@@ -74,6 +74,7 @@ def plot_analogues(params1: zrdpm.ZrdpmContour | None = None, params2: zrdpm.Zrd
         ax.set_xlabel(rf"angle of leading link {lead}, $\varphi$ (deg)")
         ax.set_title(f"contour {p.contour}: ${ratio_name} = {p.ratio:g}$, $l/(r_A+r_B) = {p.lever_gain:g}$",
                      fontsize=10)
+        ax.set_ylabel("analogue u, e (-)")
         ax.legend(fontsize=8, loc="lower center", ncol=4)
     lo, hi = axs[0].get_ylim()
     axs[0].set_ylim(lo - 0.25 * (hi - lo), hi)
