@@ -200,6 +200,32 @@ def test_fast_path_gives_the_plain_results(block, contour):
             np.testing.assert_allclose(b, a, rtol=1e-12, atol=1e-12)
 
 
+@pytest.mark.parametrize("model", ["tables", "self-consistent"])
+def test_fast_path_writes_into_a_given_out_array(model):
+    phi = np.linspace(0, 7, 23)
+    p = zrdpm.ZrdpmContour(contour=1)
+    k = zrdpm.TablesConstants(1, 21.0, -2.24)
+    out = np.full((6, 23), np.nan)
+    if model == "tables":
+        fast, plain = zrdpm.tables_outputs(p, k, phi, block=5, out=out), zrdpm.tables_outputs(p, k, phi)
+    else:
+        fast, plain = zrdpm.analogues(p, phi, block=5, out=out), zrdpm.analogues(p, phi)
+    assert all(np.shares_memory(row, out) for row in fast)
+    for a, b in zip(fast, plain):
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("out", [np.empty((6, 4)), np.empty((6, 3), dtype=np.float32), np.empty((3, 6)).T, [0.0]])
+def test_fast_path_rejects_a_wrong_out_array(out):
+    with pytest.raises(ValueError, match="^out must"):
+        zrdpm.analogues(zrdpm.ZrdpmContour(), [0.0, 1.0, 2.0], block=2, out=out)
+
+
+def test_out_without_the_fast_path_is_an_error():
+    with pytest.raises(ValueError, match="^out must"):
+        zrdpm.analogues(zrdpm.ZrdpmContour(), [0.0], out=np.empty((6, 1)))
+
+
 def test_fast_path_handles_an_empty_array():
     kin = zrdpm.analogues(zrdpm.ZrdpmContour(), np.array([]), block=64)
     assert all(a.shape == (0,) for a in kin)

@@ -261,7 +261,7 @@ def lever_angle(params: ZrdpmContour, phi):
     return math.radians(params.lever_angle0_deg) + dtheta
 
 
-def analogues(params: ZrdpmContour, phi, *, block=None):
+def analogues(params: ZrdpmContour, phi, *, block=None, out=None):
     """All six outputs of a contour by the self-consistent model.
 
     Parameters
@@ -272,6 +272,10 @@ def analogues(params: ZrdpmContour, phi, *, block=None):
     block : int, optional
         If given, use the blocked in-place fast path with blocks of this many
         angles (same results to rounding; see :func:`tables_outputs`).
+    out : ndarray, optional
+        Fast path only: a C-contiguous float64 array of shape
+        ``(6, *phi.shape)`` to write the six outputs into (its rows are
+        returned).
 
     Returns
     -------
@@ -293,7 +297,9 @@ def analogues(params: ZrdpmContour, phi, *, block=None):
     if not isinstance(params, ZrdpmContour):
         raise ValueError(f"params must be a ZrdpmContour, got {type(params).__name__}")
     if block is not None:
-        return _fast(params, phi, None, block)
+        return _fast(params, phi, None, block, out)
+    if out is not None:
+        raise ValueError("out must be None unless block is given (the fast path)")
     dtheta, u_c, e_c = vector_loop.slider_lever(params.l, params.r_a, params.r_b, phi)
     theta = math.radians(params.lever_angle0_deg) + dtheta
     u_g, e_g = differential.driven_analogues(u_c, e_c, params.ratio, params.mesh)
@@ -372,7 +378,7 @@ def tables_point_accelerations(constants: TablesConstants, phi):
     return x_sign(constants.contour) * a_x, a_y
 
 
-def tables_outputs(params: ZrdpmContour, constants: TablesConstants, phi, *, block=None):
+def tables_outputs(params: ZrdpmContour, constants: TablesConstants, phi, *, block=None, out=None):
     """All six outputs of a contour as the paper computed them for its tables.
 
     The carrier's and the gear's analogues follow eqs. 9-14 (they vary with
@@ -387,9 +393,14 @@ def tables_outputs(params: ZrdpmContour, constants: TablesConstants, phi, *, blo
     phi : array_like
         Radians.
     block : int, optional
-        If given, compute in blocks of this many angles with one sine and one
-        cosine evaluation per angle and in-place operations (the fast path);
-        the results equal the plain path's to rounding.
+        If given, use the fast path: one sine and one cosine evaluation per
+        angle, then the six outputs as a 6 x 2 matrix product per block of
+        this many angles, written in place; the results equal the plain
+        path's to rounding.
+    out : ndarray, optional
+        Fast path only: a C-contiguous float64 array of shape
+        ``(6, *phi.shape)`` to write the six outputs into (saves the
+        allocation when called repeatedly).
 
     Returns
     -------
@@ -416,91 +427,109 @@ def tables_outputs(params: ZrdpmContour, constants: TablesConstants, phi, *, blo
             f"constants.contour must equal params.contour ({params.contour}), got {constants.contour}"
         )
     if block is not None:
-        return _fast(params, phi, constants, block)
+        return _fast(params, phi, constants, block, out)
+    if out is not None:
+        raise ValueError("out must be None unless block is given (the fast path)")
     _, u_c, e_c = vector_loop.slider_lever(params.l, params.r_a, params.r_b, phi)
     u_g, e_g = differential.driven_analogues(u_c, e_c, params.ratio, params.mesh)
     a_x, a_y = tables_point_accelerations(constants, phi)
     return ContourKinematics(u_c, u_g, e_c, e_g, a_x, a_y)
 
 
-def _fast(params: ZrdpmContour, phi, constants, block):
-    """Blocked, in-place evaluation of :func:`analogues` / :func:`tables_outputs`.
+def _check_out(out, shape):
+    want = (6, *shape)
+    if (not isinstance(out, np.ndarray) or out.dtype != np.float64 or out.shape != want
+            or not out.flags.c_contiguous or not out.flags.writeable):
+        got = f"{out.dtype} array of shape {out.shape}" if isinstance(out, np.ndarray) else type(out).__name__
+        raise ValueError(f"out must be a writeable C-contiguous float64 array of shape {want}, got {got}")
+    return out
 
-    One ``sin`` and one ``cos`` per angle (two more for the self-consistent
-    model's lever angle); every other step is an in-place ufunc on a block that
-    fits in cache; the six outputs are written once.
+
+def _fast(params: ZrdpmContour, phi, constants, block, out=None):
+    """Fast evaluation of :func:`analogues` / :func:`tables_outputs` (same results to rounding).
+
+    Tables model: ``sin`` and ``cos`` once per angle (into two of the output
+    rows, used as scratch), then, block by block (``block`` angles, cache-sized), the six outputs as
+    one small matrix product: every output is ``alpha sin + beta cos (+ gamma)``
+    with the 6 x 2 coefficients of eqs. 9, 11, 14 and 16.  Self-consistent
+    model: per block, in-place ufuncs, with a second sin/cos pair for the lever
+    angle.  The six outputs are rows of one ``(6, *phi.shape)`` array, which
+    may be given as ``out`` to reuse memory.
     """
     block = positive_int("block", block)
     phi = finite_array("phi", phi)
     shape = phi.shape
     flat = np.ascontiguousarray(phi).reshape(-1)
     n = flat.size
-    out = np.empty((6, n))
-    u_c, u_g, e_c, e_g, a_x, a_y = out
+    out = np.empty((6, *shape)) if out is None else _check_out(out, shape)
+    rows = out.reshape(6, n)
     c = params.lever_gain
     i = -params.ratio if params.mesh == "external" else params.ratio
-    one_minus_i = 1.0 - i
+    g = 1.0 - i
     sgn = params.x_sign
     bs = min(block, max(n, 1))
-    s = np.empty(bs)
-    co = np.empty(bs)
-    t1 = np.empty(bs)
-    t2 = np.empty(bs)
     if constants is not None:
         th0 = math.radians(constants.lever_angle0_deg)
         c0, s0 = math.cos(th0), math.sin(th0)
         L, E = constants.l_u2, constants.l_e
-        # cos(theta) = C c0 - S s0, sin(theta) = S c0 + C s0 (theta = phi + theta0)
-        ax_c = -sgn * (L * c0 + E * s0)
-        ax_s = -sgn * (E * c0 - L * s0)
-        ay_c = E * c0 - L * s0
-        ay_s = -(L * c0 + E * s0)
-    else:
-        th0 = math.radians(params.lever_angle0_deg)
-        ell = params.l
+        # columns: coefficient of sin(phi), of cos(phi); cos(theta) = C c0 - S s0, sin(theta) = S c0 + C s0
+        coef = np.array([
+            [c, c],                                   # u_c = c (S + C)             eq. 9
+            [g * c, g * c],                           # u_g = (1 - i) u_c + i       eq. 11
+            [-c, c],                                  # e_c = c (C - S)
+            [-g * c, g * c],                          # e_g = (1 - i) e_c           eq. 14
+            [-sgn * (E * c0 - L * s0), -sgn * (L * c0 + E * s0)],   # a_x         eq. 16
+            [-(L * c0 + E * s0), E * c0 - L * s0],                  # a_y
+        ])
+        # sin and cos go first into the rows of a_x and a_y (no extra scratch array);
+        # each block's pair is copied to a cache-sized buffer before the rows are overwritten
+        np.sin(flat, out=rows[4])
+        np.cos(flat, out=rows[5])
+        x = np.empty((2, bs))
+        for start in range(0, n, bs):
+            stop = min(start + bs, n)
+            xb = x[:, : stop - start]
+            np.copyto(xb, rows[4:6, start:stop])
+            np.matmul(coef, xb, out=rows[:, start:stop])
+            rows[1, start:stop] += i
+        return ContourKinematics(*out)
+    u_c, u_g, e_c, e_g, a_x, a_y = rows
+    th0 = math.radians(params.lever_angle0_deg)
+    ell = params.l
+    s, co, t1, t2 = (np.empty(bs) for _ in range(4))
     for start in range(0, n, bs):
         stop = min(start + bs, n)
         m = stop - start
-        p = flat[start:stop]
-        S, C = s[:m], co[:m]
-        np.sin(p, out=S)
-        np.cos(p, out=C)
+        S, C, T1, T2 = s[:m], co[:m], t1[:m], t2[:m]
+        np.sin(flat[start:stop], out=S)
+        np.cos(flat[start:stop], out=C)
         uc, ug, ec, eg, ax, ay = (u_c[start:stop], u_g[start:stop], e_c[start:stop],
                                   e_g[start:stop], a_x[start:stop], a_y[start:stop])
         np.add(S, C, out=uc)
         uc *= c
         np.subtract(C, S, out=ec)
         ec *= c
-        np.multiply(uc, one_minus_i, out=ug)
+        np.multiply(uc, g, out=ug)
         ug += i
-        np.multiply(ec, one_minus_i, out=eg)
-        if constants is not None:
-            np.multiply(C, ax_c, out=ax)
-            np.multiply(S, ax_s, out=t1[:m])
-            ax += t1[:m]
-            np.multiply(C, ay_c, out=ay)
-            np.multiply(S, ay_s, out=t1[:m])
-            ay += t1[:m]
-        else:
-            T1, T2 = t1[:m], t2[:m]
-            # theta = th0 + c (S - C + 1); reuse S, C for sin/cos(theta)
-            np.subtract(S, C, out=T1)
-            T1 += 1.0
-            T1 *= c
-            T1 += th0
-            np.cos(T1, out=C)
-            np.sin(T1, out=S)
-            np.multiply(uc, uc, out=T2)          # u**2
-            # a_x = -l (cos u2 + sin e), a_y = l (cos e - sin u2)
-            np.multiply(C, T2, out=ax)
-            np.multiply(S, ec, out=T1)
-            ax += T1
-            ax *= -ell * sgn
-            np.multiply(C, ec, out=ay)
-            np.multiply(S, T2, out=T1)
-            ay -= T1
-            ay *= ell
-    return ContourKinematics(*(row.reshape(shape) for row in out))
+        np.multiply(ec, g, out=eg)
+        # theta = th0 + c (S - C + 1); then S, C are reused for sin/cos(theta)
+        np.subtract(S, C, out=T1)
+        T1 += 1.0
+        T1 *= c
+        T1 += th0
+        np.cos(T1, out=C)
+        np.sin(T1, out=S)
+        np.multiply(uc, uc, out=T2)          # u**2
+        # eq. 16: a_x = -l (cos u2 + sin e), a_y = l (cos e - sin u2)
+        np.multiply(C, T2, out=ax)
+        np.multiply(S, ec, out=T1)
+        ax += T1
+        ax *= -ell * sgn
+        np.multiply(C, ec, out=ay)
+        np.multiply(S, T2, out=T1)
+        ay -= T1
+        ay *= ell
+    return ContourKinematics(*out)
 
 
 # --------------------------------------------------------------------------
