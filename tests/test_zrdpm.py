@@ -182,6 +182,15 @@ def test_recovery_is_finite_where_eq17_divides_by_zero(contour, lever_deg):
     assert e[0] == pytest.approx(kin.e_carrier[0], abs=1e-12)
 
 
+@pytest.mark.parametrize("lever_deg", [0.0, 180.0, 37.0])
+def test_gear_acceleration_from_points_is_eq14_with_the_recovered_lever_analogue(lever_deg):
+    p = zrdpm.ZrdpmContour(contour=2, lever_angle0_deg=lever_deg).with_ratio(1.7)
+    phi = np.array([0.0, 0.4, math.pi])
+    kin = zrdpm.analogues(p, phi)
+    e_gear = zrdpm.gear_acceleration_from_points(p, phi, kin.a_x, kin.a_y)
+    np.testing.assert_allclose(e_gear, kin.e_gear, atol=1e-12)
+
+
 # --- fast path -----------------------------------------------------------------------------
 
 

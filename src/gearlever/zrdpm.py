@@ -572,6 +572,39 @@ def recover_lever_analogues(params: ZrdpmContour, phi, a_x, a_y):
     return vector_loop.recover_analogues(params.l, theta, a_x, a_y)
 
 
+def gear_acceleration_from_points(params: ZrdpmContour, phi, a_x, a_y):
+    """Driven gear's acceleration analogue from the point accelerations (eq. 18 / 37, regular).
+
+    Parameters
+    ----------
+    params : ZrdpmContour
+    phi : array_like
+        Radians.
+    a_x, a_y : array_like
+        ``a_B, a_A`` (contour 1) or ``a_D, a_E`` (contour 2), cm.
+
+    Returns
+    -------
+    ndarray
+        ``e_8`` (contour 1) or ``e_7`` (contour 2).
+
+    Notes
+    -----
+    The paper substitutes eq. 17 into eq. 14 (eq. 18; eqs. 36-37 for gear 7).
+    Here the lever's ``e`` comes from :func:`recover_lever_analogues` (both
+    projections), so the result is finite where ``sin(phi_1) = 0``.
+
+    Examples
+    --------
+    >>> p = ZrdpmContour()
+    >>> k = analogues(p, [0.3])
+    >>> bool(np.allclose(gear_acceleration_from_points(p, [0.3], k.a_x, k.a_y), k.e_gear))
+    True
+    """
+    _, e = recover_lever_analogues(params, phi, a_x, a_y)
+    return differential.driven_analogues(0.0, e, params.ratio, params.mesh)[1]
+
+
 def recover_tables_constants(contour, phi, a_x, a_y, lever_angle0_deg=-90.0):
     """``l u**2`` and ``l e`` at every angle from a table's two columns.
 
