@@ -38,6 +38,20 @@ def test_zrdpm_range_table_and_csv(capsys):
     assert float(out[1].split(",")[1]) == pytest.approx(2 ** 0.5)
 
 
+def test_zrdpm_teeth_give_the_same_table_as_the_ratio(capsys):
+    assert main(["zrdpm", "--contour", "1", "--phi", "10", "200", "--teeth", "20", "40", "--format", "csv"]) == 0
+    by_teeth = capsys.readouterr().out
+    assert main(["zrdpm", "--contour", "1", "--phi", "10", "200", "--ratio", "0.5", "--format", "csv"]) == 0
+    assert capsys.readouterr().out == by_teeth
+
+
+def test_zrdpm_internal_mesh_changes_the_gear_only(capsys):
+    assert main(["zrdpm", "--contour", "1", "--phi", "30", "--mesh", "internal", "--format", "json"]) == 0
+    rec = json.loads(capsys.readouterr().out)[0]
+    # internal mesh: u_gear = (1 - k) u_carrier + k with k = 0.5
+    assert rec["u_gear"] == pytest.approx(0.5 * rec["u_carrier"] + 0.5)
+
+
 def test_zrdpm_writes_file_atomically(tmp_path, capsys):
     target = tmp_path / "out.json"
     assert main(["zrdpm", "--contour", "1", "--phi", "30", "--format", "json", "--out", str(target)]) == 0
@@ -60,6 +74,9 @@ def test_zrdpm_writes_file_atomically(tmp_path, capsys):
         (["zrdpm", "--contour", "1", "--start", "10", "--stop", "0"], "--stop"),
         (["zrdpm", "--contour", "1", "--step", "-5"], "--step"),
         (["zrdpm", "--contour", "1", "--phi", "1", "--start", "0"], "--phi"),
+        (["zrdpm", "--contour", "1", "--teeth", "-20", "40"], "--teeth"),
+        (["zrdpm", "--contour", "1", "--teeth", "0", "40"], "--teeth"),
+        (["zrdpm", "--contour", "1", "--teeth", "20", "40", "--ratio", "2"], "--ratio"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(capsys, argv, word, tmp_path):

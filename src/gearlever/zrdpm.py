@@ -307,12 +307,13 @@ def analogues(params: ZrdpmContour, phi, *, block=None, out=None):
     return ContourKinematics(u_c, u_g, e_c, e_g, params.x_sign * a_x, a_y)
 
 
-def contour1(phi, params: ZrdpmContour | None = None) -> dict:
+def contour1(params: ZrdpmContour | None, phi) -> dict:
     """Contour 1 (gears 9, 8; lever 1) by the self-consistent model, by paper names.
 
-    Returns a dict with ``u_1, u_8, e_1, e_8, a_B, a_A``.
+    ``params`` None means the default ``ZrdpmContour(contour=1)``.  Returns a
+    dict with ``u_1, u_8, e_1, e_8, a_B, a_A``, arrays shaped like ``phi``.
 
-    >>> sorted(contour1([0.0]))
+    >>> sorted(contour1(None, [0.0]))
     ['a_A', 'a_B', 'e_1', 'e_8', 'u_1', 'u_8']
     """
     params = ZrdpmContour(contour=1) if params is None else params
@@ -321,12 +322,13 @@ def contour1(phi, params: ZrdpmContour | None = None) -> dict:
     return analogues(params, phi).named(1)
 
 
-def contour2(phi, params: ZrdpmContour | None = None) -> dict:
+def contour2(params: ZrdpmContour | None, phi) -> dict:
     """Contour 2 (gears 6, 7; lever 2) by the self-consistent model, by paper names.
 
-    Returns a dict with ``u_2, u_7, e_2, e_7, a_D, a_E``.
+    ``params`` None means the default ``ZrdpmContour(contour=2)``.  Returns a
+    dict with ``u_2, u_7, e_2, e_7, a_D, a_E``, arrays shaped like ``phi``.
 
-    >>> sorted(contour2([0.0]))
+    >>> sorted(contour2(None, [0.0]))
     ['a_D', 'a_E', 'e_2', 'e_7', 'u_2', 'u_7']
     """
     params = ZrdpmContour(contour=2) if params is None else params

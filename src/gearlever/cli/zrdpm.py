@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from gearlever.cli._common import emit, finite_float, positive_float, to_json
+from gearlever.cli._common import emit, finite_float, positive_float, positive_int, to_json
 
 #: Keys of the JSON records and the CSV columns.
 KEYS = ("phi_deg", "u_carrier", "u_gear", "e_carrier", "e_gear")
@@ -22,8 +22,11 @@ def register(sub) -> None:
     p.add_argument("--start", type=finite_float, help="first angle, degrees (default 0)")
     p.add_argument("--stop", type=finite_float, help="last angle, degrees, inclusive (default 360)")
     p.add_argument("--step", type=positive_float, help="angle step, degrees (default 30)")
-    p.add_argument("--ratio", type=positive_float, default=0.5,
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--ratio", type=positive_float, default=None,
                    help="gear ratio r9/r8 (contour 1) or r6/r7 (contour 2), default 0.5")
+    g.add_argument("--teeth", type=positive_int, nargs=2, metavar=("Z_LEAD", "Z_DRIVEN"),
+                   help="tooth numbers of the leading and the driven gear (ratio Z_LEAD/Z_DRIVEN)")
     p.add_argument("--l", type=positive_float, default=10.0, help="contour link length, cm (default 10)")
     p.add_argument("--r-a", type=positive_float, default=None, help="slider radius rA, cm (default l/2)")
     p.add_argument("--r-b", type=positive_float, default=None, help="slider radius rB, cm (default l/2)")
@@ -71,7 +74,11 @@ def _run(args) -> int:
 
     phi_deg = _angles(args)
     kwargs = {"l": args.l, "r_a": args.r_a if args.r_a else args.l / 2, "r_b": args.r_b if args.r_b else args.l / 2}
-    params = zrdpm.ZrdpmContour(contour=args.contour, mesh=args.mesh, **kwargs).with_ratio(args.ratio)
+    if args.teeth is not None:
+        params = zrdpm.ZrdpmContour.from_teeth(args.contour, args.teeth[0], args.teeth[1], mesh=args.mesh, **kwargs)
+    else:
+        ratio = 0.5 if args.ratio is None else args.ratio
+        params = zrdpm.ZrdpmContour(contour=args.contour, mesh=args.mesh, **kwargs).with_ratio(ratio)
     kin = zrdpm.analogues(params, np.deg2rad(phi_deg))
     records = [
         dict(zip(KEYS, map(float, row)))

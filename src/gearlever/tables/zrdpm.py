@@ -97,7 +97,18 @@ def constants_frame(reps) -> pd.DataFrame:
 
 
 def mobility_frame() -> pd.DataFrame:
-    """The paper's three mobility cases: published W and q beside the computed ones."""
+    """The paper's three mobility cases: published W and q beside the computed ones.
+
+    Notes
+    -----
+    Paper eq. 1 (:func:`gearlever.structure.mobility`) on the cases of the data
+    file ``zrdpm_mobility.csv``.
+
+    Examples
+    --------
+    >>> mobility_frame()[["case", "w_computed", "q_computed"]].to_dict("list")["w_computed"]
+    [1, 2, 2]
+    """
     rows = []
     for case in structure.published_mobility_cases():
         w = structure.mobility(case["n"], case["p5"], case["p4"], case["q"])
@@ -109,7 +120,17 @@ def mobility_frame() -> pd.DataFrame:
 
 
 def analogue_frame(params: zrdpm.ZrdpmContour, phi_deg) -> pd.DataFrame:
-    """Self-consistent analogues of one contour over the given angles (degrees)."""
+    """Self-consistent analogues of one contour over the given angles (degrees).
+
+    Notes
+    -----
+    :func:`gearlever.zrdpm.analogues` (paper eqs. 9-16 / 28-35).
+
+    Examples
+    --------
+    >>> analogue_frame(zrdpm.ZrdpmContour(contour=1), [45.0])["u_1"].round(4).tolist()
+    [1.4142]
+    """
     phi_deg = np.asarray(phi_deg, dtype=float)
     kin = zrdpm.analogues(params, np.deg2rad(phi_deg))
     names = zrdpm.PAPER_NAMES[params.contour]
