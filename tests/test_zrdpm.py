@@ -121,11 +121,10 @@ def test_self_consistent_model_does_not_reproduce_the_tables(table):
 # --- the self-consistent model: every analogue is a derivative --------------------------------
 
 params_st = st.builds(
-    lambda c, l, ra, ratio, mesh, t0: zrdpm.ZrdpmContour(
-        contour=c, l=l, r_a=ra, r_b=l - ra if l - ra > 0.05 else 0.05, r_lead=ratio, r_driven=1.0,
-        mesh=mesh, lever_angle0_deg=t0),
-    st.sampled_from([1, 2]), st.floats(1.0, 30.0), st.floats(0.1, 0.9), st.floats(0.1, 5.0),
-    st.sampled_from(["external", "internal"]), st.floats(-180, 180),
+    lambda c, l, ra, rb, ratio, mesh, t0: zrdpm.ZrdpmContour(
+        contour=c, l=l, r_a=ra, r_b=rb, r_lead=ratio, r_driven=1.0, mesh=mesh, lever_angle0_deg=t0),
+    st.sampled_from([1, 2]), st.floats(1.0, 30.0), st.floats(0.5, 20.0), st.floats(0.5, 20.0),
+    st.floats(0.1, 5.0), st.sampled_from(["external", "internal"]), st.floats(-180, 180),
 )
 angles = st.lists(st.floats(-2 * math.pi, 2 * math.pi), min_size=1, max_size=12).map(np.array)
 

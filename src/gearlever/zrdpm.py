@@ -10,7 +10,7 @@ Two mirror-image contours, each a double-slider vector contour driving a lever
   and E (y); ``u_2, u_7, e_2, e_7`` and ``a_D, a_E`` (eqs. 21-39, Table II).
 
 Two models are provided, because the paper's own tables do not follow its
-section-2 formulas (see ``zrdpm-paper`` notes in the README):
+section-2 formulas (see the README's ZRDPM section):
 
 * the **self-consistent model** (:func:`analogues`): the lever's analogues
   vary with ``phi`` (eq. 9 and its derivative), the lever angle is their
