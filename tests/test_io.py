@@ -27,3 +27,10 @@ def test_temporary_keeps_the_target_suffix(tmp_path):
     with atomic_path(tmp_path / "fig.png") as tmp:
         assert tmp.suffix == ".png"
         tmp.write_bytes(b"x")
+
+
+def test_written_file_has_the_mode_of_a_plain_open(tmp_path):
+    plain = tmp_path / "plain.txt"
+    plain.write_text("x")
+    target = write_text_atomic(tmp_path / "atomic.txt", "x")
+    assert target.stat().st_mode & 0o777 == plain.stat().st_mode & 0o777
