@@ -384,9 +384,12 @@ class HookeJoint:
     phase_deg: float = 0.0
 
     def __post_init__(self):
-        _shaft_angle("shaft_angle", math.radians(_validate.finite("shaft_angle", self.shaft_angle_deg)))
-        if self.second_angle_deg is not None:
-            _shaft_angle("second_angle", math.radians(_validate.finite("second_angle", self.second_angle_deg)))
+        for name, value in (("shaft_angle", self.shaft_angle_deg), ("second_angle", self.second_angle_deg)):
+            if value is None and name == "second_angle":
+                continue
+            deg = _validate.finite(name, value)
+            if not 0.0 <= deg < 90.0:
+                raise ValueError(f"{name} must be at least 0 and below 90 degrees, got {value!r}")
         _validate.finite("phase", self.phase_deg)
 
     @property

@@ -40,6 +40,7 @@ __all__ = [
     "TOOTH_FORMS",
     "Approximant",
     "DesignResult",
+    "PREFERENCES",
     "PairCountBounds",
     "SearchResult",
     "TrainDesign",
@@ -506,12 +507,24 @@ class TrainDesign:
         }
 
 
-def _design_key(d: TrainDesign):
+#: Orders of preference of :func:`design_train`.
+PREFERENCES = ("teeth", "wear")
+
+
+def _design_key(d: TrainDesign, prefer: str = "teeth"):
+    if prefer == "wear":
+        return (max(d.gcds), sum(d.gcds), d.total_teeth, d.drivers, d.followers)
     return (d.total_teeth, max(d.gcds), sum(d.gcds), d.drivers, d.followers)
 
 
+def _check_prefer(prefer: str) -> str:
+    if prefer not in PREFERENCES:
+        raise ValueError(f"prefer must be one of {', '.join(PREFERENCES)}, got {prefer!r}")
+    return prefer
+
+
 def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 20000,
-                 keep: int = 10) -> list[TrainDesign]:
+                 keep: int = 10, prefer: str = "teeth") -> list[TrainDesign]:
     """Trains of exactly ``ratio`` with ``pairs`` pairs, teeth in [min_teeth, max_teeth].
 
     Parameters
@@ -524,12 +537,15 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
         How many multipliers lambda are tried at most (from the least).
     keep : int
         How many designs are returned.
+    prefer : {"teeth", "wear"}
+        "teeth": least total number of teeth first (Young's criterion), then
+        least gcd; "wear": least largest gcd of a pair first (the text's even
+        wear), then least total teeth.
 
     Returns
     -------
     list of TrainDesign
-        Least total number of teeth first (Young's criterion), then least
-        gcd; empty if none was found.
+        Best first; empty if none was found.
 
     Notes
     -----
@@ -547,6 +563,7 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
     frac = parse_ratio(ratio)
     k = _validate.positive_int("pairs", pairs)
     lo, hi = _teeth_range(min_teeth, max_teeth)
+    prefer = _check_prefer(prefer)
     b, c = frac.numerator, frac.denominator
     lam_min = max(1, -(-(lo**k) // min(b, c)))
     lam_max = hi**k // max(b, c)
@@ -569,7 +586,7 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
                             Fraction(math.prod(dr), math.prod(fo)), frac, lam,
                         ))
         lam += 1
-    found.sort(key=_design_key)
+    found.sort(key=lambda d: _design_key(d, prefer))
     return found[:keep]
 
 
@@ -616,7 +633,7 @@ class DesignResult:
 
 
 def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: str = "involute",
-                 keep: int = 5) -> DesignResult:
+                 keep: int = 5, prefer: str = "teeth") -> DesignResult:
     """Choose tooth numbers for a wanted ratio by the rules of the text.
 
     Parameters
@@ -634,6 +651,8 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
         Used only when ``min_teeth`` is None (12, 15, 24 teeth).
     keep : int
         Number of designs returned.
+    prefer : {"teeth", "wear"}
+        Order of the designs (:func:`exact_trains`).
 
     Returns
     -------
@@ -656,6 +675,8 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
     ('continued fraction', Fraction(304, 2107), (16, 19), (43, 49))
     """
     frac = parse_ratio(ratio)
+    prefer = _check_prefer(prefer)
+    keep = _validate.positive_int("keep", keep)
     if min_teeth is None:
         t = min_teeth_for_form(tooth_form)
     else:
@@ -665,7 +686,7 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
     bounds = pair_count_bounds(frac)
     ks = (_validate.positive_int("pairs", pairs),) if pairs is not None else bounds.candidates
     for k in ks:
-        designs = exact_trains(frac, k, lo, hi, keep=keep)
+        designs = exact_trains(frac, k, lo, hi, keep=keep, prefer=prefer)
         if designs:
             return DesignResult(frac, lo, hi, bounds, "exact", frac, tuple(designs), ())
     tried = []
@@ -676,7 +697,7 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
             if max(p, q) > hi**k:
                 tried.append((approx, k, False))
                 continue
-            designs = exact_trains(approx.fraction, k, lo, hi, keep=keep)
+            designs = exact_trains(approx.fraction, k, lo, hi, keep=keep, prefer=prefer)
             designs = [TrainDesign(d.drivers, d.followers, d.ratio, frac, d.multiplier) for d in designs]
             tried.append((approx, k, bool(designs)))
             if designs:
