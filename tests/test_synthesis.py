@@ -43,16 +43,18 @@ def _brute_force_k2(target: Fraction, lo: int, hi: int):
     return best, tuples
 
 
-def _brute_force_k3(target: Fraction, lo: int, hi: int):
+def _brute_force_ordered(target: Fraction, k: int, lo: int, hi: int):
+    """Least error and number of optimal ordered (d_1..d_k, f_1..f_k), over every tuple."""
     t = np.arange(lo, hi + 1, dtype=np.int64)
-    p = np.multiply.outer(np.multiply.outer(t, t), t).ravel()
+    p = t
+    for _ in range(k - 1):
+        p = np.multiply.outer(p, t)
+    p = p.ravel()  # products of every ordered k-tuple
     err = np.abs(p[:, None] / p[None, :] - float(target))
     near = np.argwhere(err <= err.min() * (1 + 1e-9) + 1e-15)
     exact = [(abs(Fraction(int(p[i]), int(p[j])) - target), i, j) for i, j in near]
     best = min(e for e, _, _ in exact)
-    n = len(t)
-    count = sum(1 for e, _, _ in exact if e == best)  # pairs of ordered triples
-    return best, count, n
+    return best, sum(1 for e, _, _ in exact if e == best)
 
 
 # ----------------------------------------------------------------- ratios and rules
@@ -255,10 +257,16 @@ def test_search_k2_agrees_with_brute_force(p, q, lo, width):
     assert listed == {(tuple(sorted(t[:2])), tuple(sorted(t[2:]))) for t in tuples}
 
 
-def test_search_k3_agrees_with_brute_force():
-    target = Fraction(1000, 6931)
-    best, count, _ = _brute_force_k3(target, 12, 24)  # 13**6 = 4.8 million ordered tuples
-    res = search_best(target, 3, 12, 24)
+@pytest.mark.parametrize(
+    "target, k, lo, hi",
+    [(Fraction(1000, 6931), 3, 12, 24),  # 13**6 = 4.8 million ordered tuples
+     (Fraction(355, 113), 3, 12, 24),
+     (Fraction(1000, 6931), 4, 12, 18),  # 7**8 = 5.8 million
+     (Fraction(7, 1), 4, 12, 18)],
+)
+def test_search_k3_k4_agree_with_brute_force(target, k, lo, hi):
+    best, count = _brute_force_ordered(target, k, lo, hi)
+    res = search_best(target, k, lo, hi)
     assert res.best_error == best
     assert res.n_ordered == count
 
