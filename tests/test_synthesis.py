@@ -308,3 +308,22 @@ def test_search_space_pre_check():
 def test_search_bad_input(args, kwargs, name):
     with pytest.raises(ValueError, match=f"^{name}"):
         search_best(*args, **kwargs)
+
+
+def test_approximants_stop_at_max_term():
+    fr = [a.fraction for a in approximants(SANDGREN, max_term=300)]
+    assert fr[-2:] == [Fraction(29, 201), Fraction(43, 298)]  # next, 72/499, exceeds 300
+    assert all(max(f.numerator, f.denominator) <= 300 for f in fr)
+
+
+def test_exact_trains_awkward_prime_gives_nothing():
+    assert exact_trains(SANDGREN, 2, 12, 60) == []  # 239 | 6931 and 239 > 60
+    assert exact_trains(Fraction(239, 2), 3, 12, 200) == []
+    assert exact_trains(Fraction(239, 2), 2, 12, 240)[0].ratio == Fraction(239, 2)
+
+
+def test_design_with_huge_partial_quotient():
+    # 123456789/987654321 = [0; 8, 13717421]: the long run of semiconvergents is cut at 144**2
+    res = design_train("123456789/987654321")
+    assert res.method == "continued fraction" and res.approximation == Fraction(1, 8)
+    assert res.designs[0].ratio == Fraction(1, 8)

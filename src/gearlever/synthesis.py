@@ -443,12 +443,15 @@ class Approximant:
     error: Fraction
 
 
-def approximants(ratio) -> list[Approximant]:
+def approximants(ratio, max_term: int | None = None) -> list[Approximant]:
     """Every convergent and semiconvergent of ``ratio``, in order of growing terms.
 
     Parameters
     ----------
     ratio : number, Fraction or "B/C"
+    max_term : int, optional
+        Stop at the first approximant whose numerator or denominator exceeds
+        this (numerators and denominators never decrease along the list).
 
     Returns
     -------
@@ -470,6 +473,8 @@ def approximants(ratio) -> list[Approximant]:
     ['3', '4', '7/2', '10/3']
     """
     x = parse_ratio(ratio)
+    if max_term is not None:
+        max_term = _validate.positive_int("max_term", max_term)
     terms = continued_fraction(x)
     p_prev2, q_prev2 = 0, 1
     p_prev, q_prev = 1, 0
@@ -478,6 +483,8 @@ def approximants(ratio) -> list[Approximant]:
         start = 1 if k > 0 else a
         for j in range(start, a + 1):
             p, q = p_prev2 + j * p_prev, q_prev2 + j * q_prev
+            if max_term is not None and max(p, q) > max_term:
+                return out
             if p == 0:
                 continue
             frac = Fraction(p, q)
@@ -562,7 +569,7 @@ def _check_prefer(prefer: str) -> str:
 
 
 def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 20000,
-                 keep: int = 10, prefer: str = "teeth") -> list[TrainDesign]:
+                 keep: int = 10, prefer: str = "teeth", max_hits: int = 50) -> list[TrainDesign]:
     """Trains of exactly ``ratio`` with ``pairs`` pairs, teeth in [min_teeth, max_teeth].
 
     Parameters
@@ -573,6 +580,9 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
     min_teeth, max_teeth : int
     max_multipliers : int
         How many multipliers lambda are tried at most (from the least).
+    max_hits : int
+        Stop after this many multipliers that give trains (larger lambda
+        means larger wheels).
     keep : int
         How many designs are returned.
     prefer : {"teeth", "wear"}
@@ -590,7 +600,9 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
     prod(drivers)/prod(followers) = B/C exactly if and only if
     prod(drivers) = lambda B and prod(followers) = lambda C for a whole
     lambda: this is the text's "factors, or multiples of them" (seed 004,
-    page marked (41)).  lambda runs from ceil(t**K / min(B, C)) up.
+    page marked (41)).  lambda runs from ceil(t**K / min(B, C)) up.  If B or
+    C has a prime factor above max_teeth, no lambda helps (the "awkward large
+    prime" of the text) and the list is empty at once.
 
     Examples
     --------
@@ -603,18 +615,21 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
     lo, hi = _teeth_range(min_teeth, max_teeth)
     prefer = _check_prefer(prefer)
     b, c = frac.numerator, frac.denominator
+    if _has_prime_factor_above(b, hi) or _has_prime_factor_above(c, hi):
+        return []  # no multiple of B or C splits into teeth <= max_teeth
     lam_min = max(1, -(-(lo**k) // min(b, c)))
     lam_max = hi**k // max(b, c)
     found: list[TrainDesign] = []
-    tried = 0
+    tried = hits = 0
     lam = lam_min
-    while lam <= lam_max and tried < max_multipliers:
+    while lam <= lam_max and tried < max_multipliers and hits < max_hits:
         tried += 1
         small, large = (c, b) if c <= b else (b, c)
         f_small = factorizations(lam * small, k, lo, hi)
         if f_small:
             f_large = factorizations(lam * large, k, lo, hi)
             if f_large:
+                hits += 1
                 f_b, f_c = (f_large, f_small) if c <= b else (f_small, f_large)
                 for dr in f_b:
                     for fo in f_c:
@@ -626,6 +641,16 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
         lam += 1
     found.sort(key=lambda d: _design_key(d, prefer))
     return found[:keep]
+
+
+def _has_prime_factor_above(n: int, bound: int) -> bool:
+    """True if ``n`` has a prime factor greater than ``bound`` (trial division by 2..bound)."""
+    d = 2
+    while d <= bound and d * d <= n:
+        while n % d == 0:
+            n //= d
+        d += 1
+    return n > bound
 
 
 @dataclass(frozen=True)
@@ -729,7 +754,9 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
             return DesignResult(frac, lo, hi, bounds, "exact", frac, tuple(designs), ())
     tried = []
     best = None
-    for approx in approximants(frac)[:-1]:
+    for approx in approximants(frac, max_term=hi ** max(ks)):
+        if approx.fraction == frac:
+            break
         p, q = approx.fraction.numerator, approx.fraction.denominator
         for k in ks:
             if max(p, q) > hi**k:
