@@ -17,6 +17,7 @@ from gearlever.synthesis import (
     exact_trains,
     factorizations,
     min_teeth_for_form,
+    neighbours,
     pair_count_bounds,
     parse_ratio,
     rules,
@@ -204,7 +205,7 @@ def test_design_sandgren_rules_reach_the_proven_optimum():
 
 
 def test_design_impossible_raises():
-    with pytest.raises(ValueError, match="^ratio"):
+    with pytest.raises(ValueError, match="^ratio .* use search_best"):
         design_train(1000, min_teeth=12, max_teeth=13, pairs=1)
 
 
@@ -327,3 +328,20 @@ def test_design_with_huge_partial_quotient():
     res = design_train("123456789/987654321")
     assert res.method == "continued fraction" and res.approximation == Fraction(1, 8)
     assert res.designs[0].ratio == Fraction(1, 8)
+
+
+def test_neighbours_of_whole_number_and_fraction():
+    assert [a.fraction for a in neighbours(9488, count=2)] == [
+        Fraction(9489), Fraction(18977, 2), Fraction(9487), Fraction(18975, 2)]
+    # 355/113 = [3; 7, 16], previous convergent 22/7: (22 + 355j)/(7 + 113j) and (355j - 22)/(113j - 7)
+    nb = neighbours("355/113", count=1)
+    assert [a.fraction for a in nb] == [Fraction(377, 120), Fraction(333, 106)]
+    assert all(abs(a.error) == Fraction(1, 113 * (7 + 113)) or abs(a.error) == Fraction(1, 113 * 106) for a in nb)
+
+
+def test_design_whole_number_with_awkward_prime_uses_neighbours():
+    res = design_train(593, tooth_form="epicycloidal")  # 593 is prime, > 72
+    assert res.method == "continued fraction" and res.tried[-1][0].kind == "neighbour"
+    d = res.designs[0]
+    assert d.ratio == res.approximation != 593 and all(12 <= x <= 72 for x in d.drivers + d.followers)
+    assert abs(d.ratio - 593) < Fraction(1, 20)

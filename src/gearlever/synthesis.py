@@ -53,6 +53,7 @@ __all__ = [
     "exact_trains",
     "factorizations",
     "min_teeth_for_form",
+    "neighbours",
     "pair_count_bounds",
     "parse_ratio",
     "rules",
@@ -355,8 +356,10 @@ def best_pairing(drivers, followers) -> tuple[tuple[int, int], ...]:
     Returns
     -------
     tuple of (driver, follower)
-        The pairing with the least largest gcd, then the least sum of gcds,
-        then the per-pair ratios closest to one another (K! pairings tried).
+        For K <= 6, the pairing with the least largest gcd, then the least
+        sum of gcds, then the per-pair ratios closest to one another (all K!
+        pairings tried).  For K > 6, an optimal assignment (scipy) for the
+        cost sum(gcd**3), which puts the largest gcd first.
 
     Notes
     -----
@@ -372,13 +375,21 @@ def best_pairing(drivers, followers) -> tuple[tuple[int, int], ...]:
     followers = tuple(int(f) for f in followers)
     if len(drivers) != len(followers):
         raise ValueError(f"followers must have as many entries as drivers ({len(drivers)}), got {len(followers)}")
+    k = len(drivers)
+    g = [[math.gcd(d, f) for f in followers] for d in drivers]
+    if k > 6:
+        from scipy.optimize import linear_sum_assignment
+
+        rows, cols = linear_sum_assignment(np.array(g, dtype=float) ** 3)
+        return tuple((drivers[r], followers[c]) for r, c in zip(rows, cols))
+    lg = [[math.log(d / f) for f in followers] for d in drivers]
     best_key, best = None, None
-    for perm in set(itertools.permutations(followers)):
-        gcds = [math.gcd(d, f) for d, f in zip(drivers, perm)]
-        logs = [math.log(d / f) for d, f in zip(drivers, perm)]
-        key = (max(gcds), sum(gcds), max(logs) - min(logs), perm)
+    for perm in itertools.permutations(range(k)):
+        gcds = [g[i][j] for i, j in enumerate(perm)]
+        logs = [lg[i][j] for i, j in enumerate(perm)]
+        key = (max(gcds), sum(gcds), max(logs) - min(logs), tuple(followers[j] for j in perm))
         if best_key is None or key < best_key:
-            best_key, best = key, perm
+            best_key, best = key, key[3]
     return tuple(zip(drivers, best))
 
 
@@ -494,6 +505,61 @@ def approximants(ratio, max_term: int | None = None) -> list[Approximant]:
     return out
 
 
+def neighbours(ratio, count: int = 64, max_term: int | None = None) -> list[Approximant]:
+    """Fractions next to ``ratio`` on both sides, continuing its continued fraction.
+
+    Parameters
+    ----------
+    ratio : number, Fraction or "B/C"
+        x = p_n / q_n, with previous convergent p_(n-1) / q_(n-1) (1/0 when x
+        is a whole number).
+    count : int
+        At most this many on each side.
+    max_term : int, optional
+        Leave out fractions whose numerator or denominator exceeds this.
+
+    Returns
+    -------
+    list of Approximant
+        kind "neighbour": (p_(n-1) + j p_n) / (q_(n-1) + j q_n) and
+        (j p_n - p_(n-1)) / (j q_n - q_(n-1)) for j = 1, 2, ...; ``index`` is
+        +1 or -1 for the side (above or below x in the order of the
+        expansion), ``multiple`` is j.
+
+    Notes
+    -----
+    These are the semiconvergents of the numbers just beside x, whose
+    expansions continue [a0; ..., a_n, M, ...] or [a0; ..., a_n - 1, 1, M, ...]
+    with M large; |x - neighbour| = 1 / (q_n (q_(n-1) + j q_n)) on the first
+    side.  They serve when x itself, or every approximant before it, holds a
+    prime too large for a wheel: e.g. a whole-number ratio N, whose only
+    convergent is N itself, gets (jN + 1)/j and (jN - 1)/j.
+
+    Examples
+    --------
+    >>> [str(a.fraction) for a in neighbours(9488, count=2)]
+    ['9489', '18977/2', '9487', '18975/2']
+    """
+    x = parse_ratio(ratio)
+    count = _validate.positive_int("count", count)
+    terms = continued_fraction(x)
+    p2, q2, p1, q1 = 0, 1, 1, 0
+    for a in terms:
+        p2, q2, p1, q1 = p1, q1, a * p1 + p2, a * q1 + q2
+    pn, qn, pm, qm = p1, q1, p2, q2  # x = pn/qn, previous convergent pm/qm
+    out = []
+    for side, make in ((1, lambda j: (pm + j * pn, qm + j * qn)), (-1, lambda j: (j * pn - pm, j * qn - qm))):
+        for j in range(1, count + 1):
+            p, q = make(j)
+            if p <= 0 or q <= 0:
+                continue
+            if max_term is not None and max(p, q) > max_term:
+                break
+            frac = Fraction(p, q)
+            out.append(Approximant(frac, "neighbour", side, j, frac - x))
+    return out
+
+
 # --------------------------------------------------------------------------- designs by the rules
 
 
@@ -569,7 +635,8 @@ def _check_prefer(prefer: str) -> str:
 
 
 def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 20000,
-                 keep: int = 10, prefer: str = "teeth", max_hits: int = 50) -> list[TrainDesign]:
+                 keep: int = 10, prefer: str = "teeth", max_hits: int = 20,
+                 per_side: int = 12) -> list[TrainDesign]:
     """Trains of exactly ``ratio`` with ``pairs`` pairs, teeth in [min_teeth, max_teeth].
 
     Parameters
@@ -583,6 +650,9 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
     max_hits : int
         Stop after this many multipliers that give trains (larger lambda
         means larger wheels).
+    per_side : int
+        For each such multiplier, the drivers' and the followers' tooth sets
+        with the fewest teeth that are combined (at most this many each).
     keep : int
         How many designs are returned.
     prefer : {"teeth", "wear"}
@@ -619,26 +689,31 @@ def exact_trains(ratio, pairs, min_teeth, max_teeth, max_multipliers: int = 2000
         return []  # no multiple of B or C splits into teeth <= max_teeth
     lam_min = max(1, -(-(lo**k) // min(b, c)))
     lam_max = hi**k // max(b, c)
-    found: list[TrainDesign] = []
+    raw: list[tuple[int, tuple[int, ...], tuple[int, ...], int]] = []
     tried = hits = 0
     lam = lam_min
+    small, large = (c, b) if c <= b else (b, c)
     while lam <= lam_max and tried < max_multipliers and hits < max_hits:
         tried += 1
-        small, large = (c, b) if c <= b else (b, c)
         f_small = factorizations(lam * small, k, lo, hi)
         if f_small:
             f_large = factorizations(lam * large, k, lo, hi)
             if f_large:
                 hits += 1
                 f_b, f_c = (f_large, f_small) if c <= b else (f_small, f_large)
-                for dr in f_b:
-                    for fo in f_c:
-                        paired = best_pairing(dr, fo)
-                        found.append(TrainDesign(
-                            tuple(p[0] for p in paired), tuple(p[1] for p in paired),
-                            Fraction(math.prod(dr), math.prod(fo)), frac, lam,
-                        ))
+                # the fewest teeth come from the most even factors: keep the best few per side
+                f_b = sorted(f_b, key=lambda t: (sum(t), t))[:per_side]
+                f_c = sorted(f_c, key=lambda t: (sum(t), t))[:per_side]
+                raw.extend((sum(dr) + sum(fo), dr, fo, lam) for dr in f_b for fo in f_c)
         lam += 1
+    if prefer == "teeth":  # pair only the leading candidates
+        raw.sort(key=lambda r: (r[0], r[1], r[2]))
+        raw = raw[: max(4 * keep, 50)]
+    found = []
+    for _, dr, fo, lam in raw:
+        paired = best_pairing(dr, fo)
+        found.append(TrainDesign(tuple(p[0] for p in paired), tuple(p[1] for p in paired),
+                                 Fraction(math.prod(dr), math.prod(fo)), frac, lam))
     found.sort(key=lambda d: _design_key(d, prefer))
     return found[:keep]
 
@@ -668,7 +743,8 @@ class DesignResult:
     designs : tuple of TrainDesign
         Best first.
     tried : tuple of (Approximant, pairs, factors) triples
-        Continued-fraction approximants tested (empty when exact).
+        Continued-fraction approximants tested, most accurate first, up to
+        the one used (empty when exact).
     """
 
     target: Fraction
@@ -727,8 +803,10 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
     and C into K factors (or multiples) within [t, T] for K between
     |log B - log C|/log 6 and |log B - log C|/log 3 (:func:`exact_trains`);
     if no K gives an exact train, take the convergents and semiconvergents
-    of B/C (:func:`approximants`), keep those that factor, and build the one
-    with the least error.  Drivers and followers are paired for the least
+    of B/C (:func:`approximants`), and the fractions just beside B/C that
+    continue its expansion (:func:`neighbours`), small enough to be built;
+    most accurate first, build the first one that factors (fewest pairs
+    first).  Drivers and followers are paired for the least
     gcd (:func:`best_pairing`).
 
     Examples
@@ -752,30 +830,26 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
         designs = exact_trains(frac, k, lo, hi, keep=keep, prefer=prefer)
         if designs:
             return DesignResult(frac, lo, hi, bounds, "exact", frac, tuple(designs), ())
+    candidates = [a for a in approximants(frac, max_term=hi ** max(ks)) if a.fraction != frac]
+    candidates += neighbours(frac, max_term=hi ** max(ks))
+    candidates.sort(key=lambda a: abs(a.error))  # most accurate first; stable for ties
     tried = []
-    best = None
-    for approx in approximants(frac, max_term=hi ** max(ks)):
-        if approx.fraction == frac:
-            break
+    for approx in candidates:
         p, q = approx.fraction.numerator, approx.fraction.denominator
         for k in ks:
             if max(p, q) > hi**k:
                 tried.append((approx, k, False))
                 continue
             designs = exact_trains(approx.fraction, k, lo, hi, keep=keep, prefer=prefer)
-            designs = [TrainDesign(d.drivers, d.followers, d.ratio, frac, d.multiplier) for d in designs]
             tried.append((approx, k, bool(designs)))
             if designs:
-                key = (abs(approx.error), k)
-                if best is None or key < best[0]:
-                    best = (key, approx.fraction, designs)
-                break
-    if best is None:
-        raise ValueError(
-            f"ratio {frac} cannot be built with {', '.join(map(str, ks))} pair(s) of teeth in [{lo}, {hi}]; "
-            "allow more pairs or a wider tooth range"
-        )
-    return DesignResult(frac, lo, hi, bounds, "continued fraction", best[1], tuple(best[2]), tuple(tried))
+                designs = tuple(TrainDesign(d.drivers, d.followers, d.ratio, frac, d.multiplier) for d in designs)
+                return DesignResult(frac, lo, hi, bounds, "continued fraction", approx.fraction, designs,
+                                    tuple(tried))
+    raise ValueError(
+        f"ratio {frac} cannot be built with {', '.join(map(str, ks))} pair(s) of teeth in [{lo}, {hi}]; "
+        "by factors or continued fractions; use search_best (gearlever train search) or a wider tooth range"
+    )
 
 
 # --------------------------------------------------------------------------- exact best search
