@@ -70,7 +70,8 @@ def test_parse_ratio(value, expected):
     assert parse_ratio(value) == expected
 
 
-@pytest.mark.parametrize("value", [0, -1, "-2/3", "nan", float("nan"), float("inf"), "1/0", "abc", True, None, "0/5"])
+@pytest.mark.parametrize("value", [0, -1, "-2/3", "nan", float("nan"), float("inf"), "1/0", "abc", True, None, "0/5",
+                                   "1e400", "1/1e400"])
 def test_parse_ratio_rejects(value):
     with pytest.raises(ValueError, match="^ratio must be"):
         parse_ratio(value)

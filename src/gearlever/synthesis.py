@@ -215,6 +215,12 @@ def parse_ratio(value, name: str = "ratio") -> Fraction:
         raise ValueError(bad) from None
     if frac <= 0:
         raise ValueError(bad)
+    try:
+        as_float = float(frac)
+    except OverflowError:
+        as_float = math.inf
+    if not 1e-300 < as_float < 1e300:
+        raise ValueError(f"{name} must be between 1e-300 and 1e300, got {value!r}")
     return frac
 
 
