@@ -405,6 +405,11 @@ def best_pairing(drivers, followers) -> tuple[tuple[int, int], ...]:
 def continued_fraction(ratio) -> list[int]:
     """Partial quotients [a0; a1, a2, ...] of a positive rational.
 
+    Notes
+    -----
+    Euclid's algorithm: a_k = floor(x_k), x_(k+1) = 1 / (x_k - a_k), until
+    the remainder is 0 (seed 004: "the method of continued fractions").
+
     Examples
     --------
     >>> continued_fraction("355/113")
@@ -444,9 +449,10 @@ class Approximant:
     Attributes
     ----------
     fraction : Fraction
-    kind : {"convergent", "semiconvergent"}
+    kind : {"convergent", "semiconvergent", "neighbour"}
     index : int
-        k of the partial quotient a_k it belongs to.
+        k of the partial quotient a_k it belongs to (for a neighbour, the
+        side +1 or -1, see :func:`neighbours`).
     multiple : int
         j in (p_(k-2) + j p_(k-1)) / (q_(k-2) + j q_(k-1)); a_k for a convergent.
     error : Fraction
@@ -863,6 +869,11 @@ def design_train(ratio, min_teeth=None, max_teeth=None, pairs=None, tooth_form: 
 
 def search_space_size(pairs, min_teeth, max_teeth) -> int:
     """Number of tooth multisets of one side: C(n + K - 1, K), n = max - min + 1.
+
+    Notes
+    -----
+    Multisets of K teeth out of n sizes (combinations with repetition); the
+    size checked by :func:`search_best` before it starts.
 
     Examples
     --------
