@@ -41,10 +41,12 @@ __all__ = [
     "DoubleFluctuation",
     "HookeJoint",
     "acceleration_ratio",
+    "d2psi_dphi2",
     "double_acceleration_ratio",
     "double_fluctuation",
     "double_output_angle",
     "double_velocity_ratio",
+    "dpsi_dphi",
     "output_angle",
     "ratio_extremes",
     "velocity_ratio",
@@ -419,3 +421,9 @@ class HookeJoint:
         phi = np.radians(_validate.finite_array("input_deg", input_deg))
         b1, b2, d = self._args()
         return double_acceleration_ratio(phi, b1, b2, d) if self.double else acceleration_ratio(phi, b1)
+
+
+#: Alias of :func:`velocity_ratio` named by what it is, dpsi/dphi.
+dpsi_dphi = velocity_ratio
+#: Alias of :func:`acceleration_ratio` named by what it is, d2psi/dphi2.
+d2psi_dphi2 = acceleration_ratio
