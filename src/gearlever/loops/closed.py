@@ -66,7 +66,7 @@ def slider_crank_system(crank, rod, offset=0.0) -> LoopSystem:
 
 
 def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False,
-                 singular_tol=1e-9) -> LoopSolution:
+                 singular_tol=1e-7) -> LoopSolution:
     """Slider-crank positions (closed form) and analogues (linear solves).
 
     Parameters
@@ -131,7 +131,7 @@ def inverted_slider_crank_system(ground, crank, offset=0.0) -> LoopSystem:
 
 
 def inverted_slider_crank(ground, crank, theta2, offset=0.0, branch="open", *, strict=False,
-                          singular_tol=1e-9) -> LoopSolution:
+                          singular_tol=1e-7) -> LoopSolution:
     """Inverted slider-crank positions (closed form) and analogues (linear solves).
 
     Returns

@@ -258,7 +258,7 @@ class LoopSystem:
             bad = ~(s[..., -1] > tol * s[..., 0])
         return bad | ~np.all(np.isfinite(J), axis=(-2, -1))
 
-    def analogues(self, phi, x, singular_tol: float = 1e-9):
+    def analogues(self, phi, x, singular_tol: float = 1e-7):
         """Velocity and acceleration analogues of the unknowns at known positions.
 
         Parameters
@@ -329,7 +329,7 @@ class LoopSystem:
         return x, conv
 
     def solve(self, phi, guess: Mapping[str, float], *, strict: bool = False,
-              max_step: float = 0.1, singular_tol: float = 1e-9) -> "LoopSolution":
+              max_step: float = 0.1, singular_tol: float = 1e-7) -> "LoopSolution":
         """Positions and analogues of the unknowns over an array of input values.
 
         Parameters

@@ -86,7 +86,7 @@ class FourBarResult:
 
 
 def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=False,
-            singular_tol=1e-9) -> FourBarResult:
+            singular_tol=1e-7) -> FourBarResult:
     """Coupler and rocker angles of a four-bar and their analogues, closed form.
 
     Parameters
