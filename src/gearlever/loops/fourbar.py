@@ -145,11 +145,11 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
         c3 = (dx * cg - dy * sg) / f
         s3 = (dy * cg + dx * sg) / f
         bx, by = a * c2 + b * c3 - d, a * s2 + b * s3
-        c4, s4 = bx / c, by / c
         theta3 = np.arctan2(s3, c3)
         theta4 = np.arctan2(by, bx)
-        # use the exact unit vectors of the angles for the analogues
-        c3, s3, c4, s4 = np.cos(theta3), np.sin(theta3), np.cos(theta4), np.sin(theta4)
+        # (c3, s3) is a unit vector by construction; normalize (c4, s4) against rounding
+        h4 = np.hypot(bx, by)
+        c4, s4 = bx / h4, by / h4
         S = s3 * c4 - c3 * s4  # sin(theta3 - theta4)
         dead = ~(np.abs(S) > singular_tol)
         valid = closed & ~dead
