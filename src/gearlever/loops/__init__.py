@@ -14,7 +14,7 @@ Pure numpy (no scipy, matplotlib or pandas at import).
 
 from gearlever.loops.closed import (
     double_slider, double_slider_system, inverted_slider_crank, inverted_slider_crank_system,
-    slider_crank, slider_crank_system,
+    slider_crank, slider_crank_system, zrdpm_contour, zrdpm_contour_system,
 )
 from gearlever.loops.engine import INPUT, Input, LoopSolution, LoopSystem, Unknown, Vector
 from gearlever.loops.fourbar import (
@@ -29,5 +29,6 @@ __all__ = [
     "limit_positions", "LimitPositions", "transmission_angle",
     "slider_crank", "slider_crank_system", "inverted_slider_crank",
     "inverted_slider_crank_system", "double_slider", "double_slider_system",
+    "zrdpm_contour", "zrdpm_contour_system",
     "PlanTerm", "velocity_plan", "acceleration_plan",
 ]

@@ -22,6 +22,7 @@ __all__ = [
     "slider_crank_system", "slider_crank",
     "inverted_slider_crank_system", "inverted_slider_crank",
     "double_slider_system", "double_slider",
+    "zrdpm_contour_system", "zrdpm_contour",
 ]
 
 _SIGN = {"open": 1.0, "crossed": -1.0}
@@ -216,3 +217,95 @@ def double_slider(l, r, phi) -> LoopSolution:
     d2x = np.stack([d2xb, d2ya], axis=-1)
     ok = np.ones(phi.shape, dtype=bool)
     return LoopSolution(system.unknowns, phi, x, dx, d2x, ok, ok.copy())
+
+
+def zrdpm_contour_system(l, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external",
+                         lever_angle0=-math.pi / 2) -> LoopSystem:
+    """A whole ZRDPM contour (paper section 2) as four vector loops.
+
+    Parameters
+    ----------
+    l, r : float
+        Contour link length (> 0) and y-guide offset (paper ``l1, r1``).
+    r_a, r_b : float, optional
+        Radii at which the sliders act on the lever (default ``l/2`` each).
+    ratio : float
+        Gear ratio ``r9/r8`` (> 0).
+    mesh : {"external", "internal"}
+    lever_angle0 : float
+        Lever angle at ``phi = 0``, radians.
+
+    Returns
+    -------
+    LoopSystem
+        Unknowns ``x_B, y_A`` (sliders), ``theta1`` (lever), ``w1``
+        (a zero slack), ``p_x, p_y`` (the lever's point at distance ``l``),
+        ``theta8`` (driven gear), ``w8`` (a zero slack).
+
+    Notes
+    -----
+    Loop 1: the double slider of eq. 5-6 (see :func:`double_slider_system`).
+    Loop 2: the sliders turn the lever, ``(rA + rB) theta1 = y_A - x_B + K``
+    (eq. 8 integrated; ``K`` puts the lever at ``lever_angle0`` for
+    ``phi = 0``), written as collinear vectors with a zero slack ``w1`` for
+    the second component.  Loop 3: the lever's point
+    ``l e^{i theta1} = p_x + i p_y``, whose second analogues are eq. 16.
+    Loop 4: Willis, ``theta8 = (1 - i) theta1 + i phi`` with ``i = -ratio``
+    (external) or ``+ratio`` (internal) (eqs. 3, 13).
+
+    Examples
+    --------
+    >>> zrdpm_contour_system(10.0).unknowns
+    ('x_B', 'y_A', 'theta1', 'w1', 'p_x', 'p_y', 'theta8', 'w8')
+    """
+    l = positive("l", l)
+    r = finite("r", r)
+    r_a = l / 2 if r_a is None else positive("r_a", r_a)
+    r_b = l / 2 if r_b is None else positive("r_b", r_b)
+    ratio = positive("ratio", ratio)
+    if mesh not in ("external", "internal"):
+        raise ValueError(f"mesh must be 'external' or 'internal', got {mesh!r}")
+    i = -ratio if mesh == "external" else ratio
+    th0 = finite("lever_angle0", lever_angle0)
+    K = (r_a + r_b) * th0 - r + l
+    return LoopSystem([
+        [Vector("B", "x_B", 0.0), Vector("r", r, math.pi / 2),
+         Vector("A", "y_A", math.pi / 2, -1), Vector("BA", l, Input(-1.0, 0.0), -1)],
+        [Vector("lever", Unknown("theta1", 0.0, r_a + r_b), 0.0), Vector("yA", "y_A", 0.0, -1),
+         Vector("xB", "x_B", 0.0), Vector("K", K, 0.0, -1), Vector("w1", "w1", math.pi / 2)],
+        [Vector("L1", l, "theta1"), Vector("px", "p_x", 0.0, -1), Vector("py", "p_y", math.pi / 2, -1)],
+        [Vector("gear8", "theta8", 0.0), Vector("carrier", Unknown("theta1", 0.0, 1.0 - i), 0.0, -1),
+         Vector("lead", Input(i, 0.0), 0.0, -1), Vector("w8", "w8", math.pi / 2)],
+    ])
+
+
+def zrdpm_contour(l, phi, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external",
+                  lever_angle0=-math.pi / 2, *, strict=False) -> LoopSolution:
+    """Solve :func:`zrdpm_contour_system` over ``phi`` with the batched Newton engine.
+
+    The seed at ``phi[0]`` is the sliders' position of eq. 6 with the lever at
+    ``lever_angle0``; everything else (the lever's analogues ``u_1, e_1``, the
+    point accelerations of eq. 16, the gear's ``u_8, e_8``) comes from the
+    engine.
+
+    Returns
+    -------
+    LoopSolution
+        ``sol.d1("theta1")`` is ``u_1``, ``sol.d2("theta1")`` is ``e_1``,
+        ``sol.d2("p_x")``, ``sol.d2("p_y")`` are eq. 16's point accelerations
+        (over ``omega9**2``), ``sol.d1("theta8")``, ``sol.d2("theta8")`` are
+        ``u_8, e_8``.
+
+    Examples
+    --------
+    >>> s = zrdpm_contour(10.0, [0.0, 0.5])
+    >>> np.allclose(s.d1("theta1"), np.sin([0.0, 0.5]) + np.cos([0.0, 0.5]))
+    True
+    """
+    system = zrdpm_contour_system(l, r, r_a, r_b, ratio, mesh, lever_angle0)
+    phi = finite_array("phi", phi)
+    p0 = float(phi.reshape(-1)[0]) if phi.size else 0.0
+    th = float(lever_angle0)
+    guess = {"x_B": l * math.cos(p0), "y_A": l * math.sin(p0) + r, "theta1": th, "w1": 0.0,
+             "p_x": l * math.cos(th), "p_y": l * math.sin(th), "theta8": th, "w8": 0.0}
+    return system.solve(phi, guess, strict=strict)

@@ -44,26 +44,32 @@ INPUT = Input()
 
 @dataclass(frozen=True)
 class Unknown:
-    """An unknown of the loop system, as a vector's length or angle: ``value + offset``."""
+    """An unknown of the loop system, as a vector's length or angle: ``scale * value + offset``.
+
+    A ``scale`` other than 1 lets a loop carry a linear transmission constraint
+    (a rack, a gear ratio, a lever arm), e.g. ``(rA + rB) * theta1``.
+    """
 
     name: str
     offset: float = 0.0
+    scale: float = 1.0
 
 
 def _spec(kind: str, value):
-    """Normalize a length/angle spec to ('fixed', v) | ('input', k, off) | ('unknown', name, off)."""
+    """Normalize a spec to ('fixed', v) | ('input', k, off) | ('unknown', name, off, scale)."""
     if isinstance(value, Input):
         return ("input", finite(f"{kind} k", value.k), finite(f"{kind} offset", value.offset))
     if isinstance(value, Unknown):
         if not value.name:
             raise ValueError(f"{kind} unknown must have a non-empty name")
-        return ("unknown", value.name, finite(f"{kind} offset", value.offset))
+        return ("unknown", value.name, finite(f"{kind} offset", value.offset),
+                finite(f"{kind} scale", value.scale))
     if isinstance(value, str):
         if value == "input":
             return ("input", 1.0, 0.0)
         if not value:
             raise ValueError(f"{kind} unknown must have a non-empty name")
-        return ("unknown", value, 0.0)
+        return ("unknown", value, 0.0, 1.0)
     return ("fixed", finite(kind, value))
 
 
@@ -159,7 +165,7 @@ class LoopSystem:
 
     def _compile(self, s):
         if s[0] == "unknown":
-            return ("unknown", self._index[s[1]], s[2])
+            return ("unknown", self._index[s[1]], s[2], s[3])
         return s
 
     # ------------------------------------------------------------------ basics
@@ -170,7 +176,7 @@ class LoopSystem:
             return np.full(phi.shape, spec[1])
         if kind == "input":
             return spec[1] * phi + spec[2]
-        return x[..., spec[1]] + spec[2]
+        return spec[3] * x[..., spec[1]] + spec[2]
 
     def _lengths_angles(self, phi, x):
         return [(self._value(ls, phi, x), self._value(as_, phi, x)) for _, _, ls, as_ in self._specs]
@@ -197,11 +203,11 @@ class LoopSystem:
         for (j, s, ls, as_), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
             c, sn = np.cos(A), np.sin(A)
             if ls[0] == "unknown":
-                J[..., 2 * j, ls[1]] += s * c
-                J[..., 2 * j + 1, ls[1]] += s * sn
+                J[..., 2 * j, ls[1]] += s * ls[3] * c
+                J[..., 2 * j + 1, ls[1]] += s * ls[3] * sn
             if as_[0] == "unknown":
-                J[..., 2 * j, as_[1]] += -s * L * sn
-                J[..., 2 * j + 1, as_[1]] += s * L * c
+                J[..., 2 * j, as_[1]] += -s * as_[3] * L * sn
+                J[..., 2 * j + 1, as_[1]] += s * as_[3] * L * c
         return J
 
     def _input_column(self, phi, x):
@@ -224,7 +230,7 @@ class LoopSystem:
             return np.zeros(shape)
         if kind == "input":
             return np.full(shape, spec[1])
-        return dx[..., spec[1]]
+        return spec[3] * dx[..., spec[1]]
 
     def vector_analogues(self, phi, x, dx, d2x):
         """Per vector: ``(L, A, L', A', L'', A'')`` arrays (analogues along the input)."""
@@ -233,8 +239,8 @@ class LoopSystem:
         zero = np.zeros(phi.shape)
         for (_, _, ls, as_), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
             Lp, Ap = self._rate(ls, phi.shape, dx), self._rate(as_, phi.shape, dx)
-            Lpp = d2x[..., ls[1]] if ls[0] == "unknown" else zero
-            App = d2x[..., as_[1]] if as_[0] == "unknown" else zero
+            Lpp = ls[3] * d2x[..., ls[1]] if ls[0] == "unknown" else zero
+            App = as_[3] * d2x[..., as_[1]] if as_[0] == "unknown" else zero
             out.append((L, A, Lp, Ap, Lpp, App))
         return out
 

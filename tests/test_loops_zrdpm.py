@@ -1,0 +1,57 @@
+"""The ZRDPM contour re-expressed as vector loops gives the closed forms' analogues.
+
+gearlever.loops.zrdpm_contour_system writes contour 1 (or 2) as four loops (the
+double slider, the sliders turning the lever, the lever's point, the Willis
+relation) and the batched Newton engine solves them; its analogues are compared
+with the closed forms of gearlever.vector_loop (paper eqs. 6-7, 16) and of
+gearlever.zrdpm (eqs. 9, 11, 14, 16) when that module is present.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from gearlever import vector_loop
+from gearlever.loops import double_slider, double_slider_system, zrdpm_contour
+
+PHI = np.linspace(0.0, 2 * np.pi, 145)
+
+
+def test_engine_double_slider_equals_vector_loop_closed_form():
+    system = double_slider_system(21.0, 3.0)
+    sol = system.solve(PHI, {"x_B": 20.0, "y_A": 2.0})  # Newton, not the closed form
+    ref = vector_loop.double_slider(21.0, 3.0, PHI)
+    assert sol.valid.all()
+    for k, name in enumerate(("x_B", "y_A")):
+        assert np.allclose(sol[name], ref[k], atol=1e-12)
+        assert np.allclose(sol.d1(name), ref[2 + k], atol=1e-12)  # eq. 7
+        assert np.allclose(sol.d2(name), ref[4 + k], atol=1e-12)
+    assert np.array_equal(double_slider(21.0, 3.0, PHI).x[..., 0], ref[0])
+
+
+@settings(max_examples=15, deadline=None)
+@given(l=st.floats(1.0, 30.0), r_a=st.floats(0.5, 20.0), r_b=st.floats(0.5, 20.0),
+       th0=st.floats(-3.0, 3.0), ratio=st.floats(0.2, 3.0), mesh=st.sampled_from(["external", "internal"]))
+def test_engine_contour_matches_eq_9_14_16_closed_forms(l, r_a, r_b, th0, ratio, mesh):
+    sol = zrdpm_contour(l, PHI, 1.5, r_a, r_b, ratio, mesh, th0)
+    assert sol.valid.all()
+    c = l / (r_a + r_b)
+    u = c * (np.sin(PHI) + np.cos(PHI))  # eq. 9 (general gain)
+    e = c * (np.cos(PHI) - np.sin(PHI))
+    assert np.allclose(sol.d1("theta1"), u, rtol=1e-10, atol=1e-12)
+    assert np.allclose(sol.d2("theta1"), e, rtol=1e-10, atol=1e-12)
+    ax, ay = vector_loop.point_acceleration(l, sol["theta1"], u, e)  # eq. 16
+    assert np.allclose(sol.d2("p_x"), ax, rtol=1e-10, atol=1e-10 * l)
+    assert np.allclose(sol.d2("p_y"), ay, rtol=1e-10, atol=1e-10 * l)
+    i = -ratio if mesh == "external" else ratio
+    assert np.allclose(sol.d1("theta8"), (1 - i) * u + i, rtol=1e-10, atol=1e-12)  # eq. 11
+    assert np.allclose(sol.d2("theta8"), (1 - i) * e, rtol=1e-10, atol=1e-12)  # eq. 14
+    # the recovery without eq. 17's division (both projections) returns the engine's e
+    u2, e_back = vector_loop.recover_analogues(l, sol["theta1"], sol.d2("p_x"), sol.d2("p_y"))
+    assert np.allclose(e_back, e, atol=1e-10) and np.allclose(u2, u * u, atol=1e-10)
