@@ -231,6 +231,16 @@ def test_newton_engine_follows_the_seeded_branch_and_masks_beyond_the_toggle():
             system.solve(th, {"theta3": r.theta3[0], "theta4": r.theta4[0]}, strict=True)
 
 
+@pytest.mark.parametrize("branch", ["open", "crossed"])
+def test_newton_engine_on_a_coarse_and_backward_input_keeps_the_branch(branch):
+    th = np.linspace(2 * np.pi, -2 * np.pi, 9)  # 90 deg apart, turning backwards twice
+    r = fourbar(9, 5, 8, 8, th, branch=branch)
+    sol = fourbar_system(9, 5, 8, 8).solve(th, {"theta3": r.theta3[0] + 0.1, "theta4": r.theta4[0] + 0.1})
+    assert sol.valid.all()
+    assert np.abs(wrap(sol["theta3"] - r.theta3)).max() < 1e-12
+    assert np.abs(wrap(sol["theta4"] - r.theta4)).max() < 1e-12
+
+
 def test_newton_engine_watt_six_bar_with_shared_unknown_matches_chained_closed_forms():
     # loop 1: four-bar O2-A-B-O4; loop 2: the rocker carries C at theta4 + 0.7 and
     # drives a second dyad C-D-O6 with O6 = O4 + (6, 0).

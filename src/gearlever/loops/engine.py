@@ -364,10 +364,11 @@ class LoopSystem:
         the next block of points is seeded with ``x0 + x0' h + x0'' h^2 / 2``
         (``h = phi - phi0``) and refined by batched Newton with the analytic
         Jacobian.  A point whose Newton result moves farther from its seed than
-        the predictor could explain (a jump to another branch) or that does
-        not converge is retried with smaller steps, and finally marked
-        invalid; points beyond it in the same direction are marked invalid
-        without retrying.
+        the predictor could explain, or where ``det J`` has changed sign (the
+        other branch: the sign is constant along a branch between dead
+        points), or that does not converge, is retried with smaller steps and
+        finally marked invalid; points beyond it in the same direction are
+        marked invalid without retrying.
 
         Examples
         --------
@@ -391,6 +392,7 @@ class LoopSystem:
         ok = np.zeros(N, dtype=bool)
 
         state = None  # (phi0, x0, d1, d2)
+        sgn0 = 0.0  # sign of det J on the seeded branch
         blocked = None  # input value beyond which continuation failed
         i = 0
         block = 16
@@ -403,6 +405,7 @@ class LoopSystem:
                     if not bad[0]:
                         ok[i] = True
                         state = (p[i], x1[0], d1[0], d2[0])
+                        sgn0 = self._det_sign(p[i:i + 1], x1)[0]
                 i += 1
                 continue
             phi0, x0, d10, d20 = state
@@ -414,7 +417,7 @@ class LoopSystem:
             within = np.abs(hs) <= max_step
             m = int(np.argmin(within)) if not within.all() else within.size
             if m == 0:
-                got = self._substep(phi0, x0, d10, d20, p[i], max_step, singular_tol)
+                got = self._substep(phi0, x0, d10, d20, p[i], max_step, singular_tol, sgn0)
                 if got is None:
                     blocked = p[i]
                 else:
@@ -431,7 +434,8 @@ class LoopSystem:
             trust = 0.1 * max_step * (1.0 + np.abs(d10).max())
             with np.errstate(invalid="ignore"):
                 near = np.max(np.abs(xs - pred), axis=-1) <= trust
-            good = conv & ~bad & near
+            # same branch: det J keeps its sign between dead points
+            good = conv & ~bad & near & (self._det_sign(p[idx], xs) == sgn0)
             k = int(np.argmin(good)) if not good.all() else m
             if k > 0:
                 X[i:i + k], ok[i:i + k] = xs[:k], True
@@ -441,7 +445,7 @@ class LoopSystem:
                 block = min(2 * block, 4096) if k == m else max(k, 1)
             else:
                 block = 1
-                got = self._substep(phi0, x0, d10, d20, p[i], max_step / 4, singular_tol)
+                got = self._substep(phi0, x0, d10, d20, p[i], max_step / 4, singular_tol, sgn0)
                 if got is None:
                     blocked = p[i]
                 else:
@@ -463,7 +467,11 @@ class LoopSystem:
             )
         return LoopSolution(self.unknowns, phi_in, Xr, dx, d2x, valid, closed)
 
-    def _substep(self, phi0, x0, d10, d20, target, step, singular_tol, min_step=1e-7):
+    def _det_sign(self, phi, x):
+        with np.errstate(invalid="ignore"):
+            return np.sign(np.linalg.det(np.nan_to_num(self.jacobian(phi, x), nan=0.0)))
+
+    def _substep(self, phi0, x0, d10, d20, target, step, singular_tol, sgn0, min_step=1e-7):
         """Walk from phi0 to target in steps of at most ``step``; None if it fails."""
         cur = (phi0, x0, d10, d20)
         while True:
@@ -478,7 +486,8 @@ class LoopSystem:
             if ok:
                 d1, d2, bad = self.analogues(pt, xs, singular_tol)
                 trust = 0.1 * abs(h) * (1.0 + np.abs(d1_c).max()) + 1e-12
-                ok = (not bad[0]) and np.max(np.abs(xs[0] - pred[0])) <= trust
+                ok = ((not bad[0]) and np.max(np.abs(xs[0] - pred[0])) <= trust
+                      and self._det_sign(pt, xs)[0] == sgn0)
             if ok:
                 cur = (pt[0] if pt[0] != target and abs(target - pt[0]) > 1e-15 else target, xs[0], d1[0], d2[0])
                 step = min(step * 2, 0.1)
