@@ -184,7 +184,24 @@ class LoopSystem:
     def residual(self, phi, x) -> np.ndarray:
         """Loop-closure residual, shape ``phi.shape + (2 m,)``.
 
-        ``x`` has shape ``phi.shape + (n,)`` with unknowns in :attr:`unknowns` order.
+        Parameters
+        ----------
+        phi : array_like
+            Input values, any shape.
+        x : array_like
+            Unknowns, shape ``phi.shape + (n,)``, in :attr:`unknowns` order.
+
+        Notes
+        -----
+        Rows ``2j, 2j+1``: real and imaginary part of ``sum_k s_k L_k e^{i A_k}``
+        over the vectors of loop ``j`` (Norton, eq. 4.5, any number of vectors).
+
+        Examples
+        --------
+        >>> s = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1),
+        ...                  Vector("y", "y", math.pi / 2, -1)]])
+        >>> s.residual([0.0], [[2.0, 0.0]]).tolist()
+        [[0.0, 0.0]]
         """
         phi = np.asarray(phi, dtype=float)
         x = np.asarray(x, dtype=float)
@@ -195,7 +212,21 @@ class LoopSystem:
         return F
 
     def jacobian(self, phi, x) -> np.ndarray:
-        """Analytic Jacobian dF/dx, shape ``phi.shape + (2 m, n)``."""
+        """Analytic Jacobian dF/dx, shape ``phi.shape + (2 m, n)``.
+
+        Notes
+        -----
+        For an unknown length ``L = scale x + offset``: column ``s scale e^{iA}``;
+        for an unknown angle: ``s scale L i e^{iA}`` (real and imaginary rows),
+        summed over every vector the unknown appears in.
+
+        Examples
+        --------
+        >>> s = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1),
+        ...                  Vector("y", "y", math.pi / 2, -1)]])
+        >>> np.array_equal(s.jacobian([0.0], [[2.0, 0.0]]), [[[-1.0, 0.0], [0.0, -1.0]]])
+        True
+        """
         phi = np.asarray(phi, dtype=float)
         x = np.asarray(x, dtype=float)
         n = len(self.unknowns)
@@ -233,8 +264,23 @@ class LoopSystem:
         return spec[3] * dx[..., spec[1]]
 
     def vector_analogues(self, phi, x, dx, d2x):
-        """Per vector: ``(L, A, L', A', L'', A'')`` arrays (analogues along the input)."""
+        """Per vector: ``(L, A, L', A', L'', A'')`` arrays (analogues along the input).
+
+        Notes
+        -----
+        ``L' = scale x_j'`` for an unknown, ``k`` for the input, 0 if fixed;
+        second analogues likewise (the input's is 0).  Used by the plans.
+
+        Examples
+        --------
+        >>> s = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1),
+        ...                  Vector("y", "y", math.pi / 2, -1)]])
+        >>> L, A, Lp, Ap, Lpp, App = s.vector_analogues(0.0, [2.0, 0.0], [0.0, 2.0], [-2.0, 0.0])[0]
+        >>> float(L), float(Ap), float(App)
+        (2.0, 1.0, 0.0)
+        """
         phi = np.asarray(phi, dtype=float)
+        x, dx, d2x = (np.asarray(v, dtype=float) for v in (x, dx, d2x))
         out = []
         zero = np.zeros(phi.shape)
         for (_, _, ls, as_), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
@@ -257,7 +303,7 @@ class LoopSystem:
         return c_
 
     # --------------------------------------------------------------- analogues
-    def singular(self, J, tol: float) -> np.ndarray:
+    def _singular(self, J, tol: float) -> np.ndarray:
         """True where ``J`` is singular: smallest/largest singular value below ``tol``."""
         with np.errstate(invalid="ignore"):
             s = np.linalg.svd(np.nan_to_num(J, nan=0.0), compute_uv=False)
@@ -300,7 +346,7 @@ class LoopSystem:
         x = np.asarray(x, dtype=float)
         n = len(self.unknowns)
         J = self.jacobian(phi, x)
-        bad = self.singular(J, singular_tol) | ~np.all(np.isfinite(x), axis=-1)
+        bad = self._singular(J, singular_tol) | ~np.all(np.isfinite(x), axis=-1)
         Jg = np.where(bad[..., None, None], np.eye(n), J)
         xs = np.where(bad[..., None], 0.0, x)
         b = self._input_column(phi, xs)
@@ -321,7 +367,7 @@ class LoopSystem:
         for _ in range(max_iter):
             F = self.residual(phi, x)
             J = self.jacobian(phi, x)
-            bad = self.singular(J, 1e-14) | ~np.all(np.isfinite(F), axis=-1)
+            bad = self._singular(J, 1e-14) | ~np.all(np.isfinite(F), axis=-1)
             Jg = np.where(bad[..., None, None], np.eye(n), J)
             dx = np.linalg.solve(Jg, -np.where(bad[..., None], 0.0, F)[..., None])[..., 0]
             x = np.where(bad[..., None], np.nan, x + dx)
@@ -513,6 +559,14 @@ class LoopSolution:
         The loop closes and the Jacobian is regular (analogues finite).
     closed : ndarray of bool
         The loop closes (positions finite; analogues may be NaN at a dead point).
+
+    Examples
+    --------
+    >>> s = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1),
+    ...                  Vector("y", "y", math.pi / 2, -1)]])
+    >>> sol = s.solve([0.0], {"x": 1.9, "y": 0.1})
+    >>> float(sol["x"][0]), float(sol.d1("y")[0]), float(sol.d2("x")[0])
+    (2.0, 2.0, -2.0)
     """
 
     names: tuple
