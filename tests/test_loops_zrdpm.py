@@ -44,14 +44,15 @@ def test_engine_contour_matches_eq_9_14_16_closed_forms(l, r_a, r_b, th0, ratio,
     c = l / (r_a + r_b)
     u = c * (np.sin(PHI) + np.cos(PHI))  # eq. 9 (general gain)
     e = c * (np.cos(PHI) - np.sin(PHI))
-    assert np.allclose(sol.d1("theta1"), u, rtol=1e-10, atol=1e-12)
-    assert np.allclose(sol.d2("theta1"), e, rtol=1e-10, atol=1e-12)
+    tol = 1e-11 * (1 + c)  # rounding grows with the lever's gain c
+    assert np.allclose(sol.d1("theta1"), u, rtol=1e-10, atol=tol)
+    assert np.allclose(sol.d2("theta1"), e, rtol=1e-10, atol=tol)
     ax, ay = vector_loop.point_acceleration(l, sol["theta1"], u, e)  # eq. 16
-    assert np.allclose(sol.d2("p_x"), ax, rtol=1e-10, atol=1e-10 * l)
-    assert np.allclose(sol.d2("p_y"), ay, rtol=1e-10, atol=1e-10 * l)
+    assert np.allclose(sol.d2("p_x"), ax, rtol=1e-10, atol=tol * l * (1 + c))
+    assert np.allclose(sol.d2("p_y"), ay, rtol=1e-10, atol=tol * l * (1 + c))
     i = -ratio if mesh == "external" else ratio
-    assert np.allclose(sol.d1("theta8"), (1 - i) * u + i, rtol=1e-10, atol=1e-12)  # eq. 11
-    assert np.allclose(sol.d2("theta8"), (1 - i) * e, rtol=1e-10, atol=1e-12)  # eq. 14
+    assert np.allclose(sol.d1("theta8"), (1 - i) * u + i, rtol=1e-10, atol=tol * (1 + ratio))  # eq. 11
+    assert np.allclose(sol.d2("theta8"), (1 - i) * e, rtol=1e-10, atol=tol * (1 + ratio))  # eq. 14
     # the recovery without eq. 17's division (both projections) returns the engine's e
     u2, e_back = vector_loop.recover_analogues(l, sol["theta1"], sol.d2("p_x"), sol.d2("p_y"))
-    assert np.allclose(e_back, e, atol=1e-10) and np.allclose(u2, u * u, atol=1e-10)
+    assert np.allclose(e_back, e, atol=10 * tol * (1 + c)) and np.allclose(u2, u * u, atol=10 * tol * (1 + c))

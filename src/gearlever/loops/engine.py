@@ -224,7 +224,7 @@ class LoopSystem:
         --------
         >>> s = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1),
         ...                  Vector("y", "y", math.pi / 2, -1)]])
-        >>> np.array_equal(s.jacobian([0.0], [[2.0, 0.0]]), [[[-1.0, 0.0], [0.0, -1.0]]])
+        >>> np.allclose(s.jacobian([0.0], [[2.0, 0.0]]), [[[-1.0, 0.0], [0.0, -1.0]]], atol=1e-15)
         True
         """
         phi = np.asarray(phi, dtype=float)
