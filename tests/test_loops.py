@@ -45,6 +45,20 @@ def test_fourbar_crank_rocker_closes_and_is_valid_over_a_turn():
     assert closure(9, 5, 8, 8, r).max() < 1e-12
 
 
+def test_fourbar_parameter_object_delegates_and_validates():
+    from gearlever.loops import FourBar
+
+    fb = FourBar(9, 5, 8, 8, branch="crossed")
+    r = fb.solve(TURN)
+    assert np.array_equal(r.theta4, fourbar(9, 5, 8, 8, TURN, branch="crossed").theta4, equal_nan=True)
+    assert fb.grashof().kind == "crank-rocker" and fb.system().unknowns == ("theta3", "theta4")
+    assert fb.limit_positions().theta4_extremes.size == 2
+    with pytest.raises(ValueError, match="branch"):
+        FourBar(9, 5, 8, 8, branch="x")
+    with pytest.raises(ValueError, match="rocker"):
+        FourBar(9, 5, 8, -8)
+
+
 def test_fourbar_keeps_shape_of_input():
     th = np.linspace(0, 1, 12).reshape(3, 4)
     r = fourbar(9, 5, 8, 8, th)

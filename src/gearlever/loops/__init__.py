@@ -18,14 +18,14 @@ from gearlever.loops.closed import (
 )
 from gearlever.loops.engine import INPUT, Input, LoopSolution, LoopSystem, Unknown, Vector
 from gearlever.loops.fourbar import (
-    FourBarResult, GrashofClass, LimitPositions, fourbar, fourbar_system, grashof,
+    FourBar, FourBarResult, GrashofClass, LimitPositions, fourbar, fourbar_system, grashof,
     limit_positions, transmission_angle,
 )
 from gearlever.loops.plan import PlanTerm, acceleration_plan, velocity_plan
 
 __all__ = [
     "INPUT", "Input", "Unknown", "Vector", "LoopSystem", "LoopSolution",
-    "fourbar", "fourbar_system", "FourBarResult", "grashof", "GrashofClass",
+    "fourbar", "fourbar_system", "FourBar", "FourBarResult", "grashof", "GrashofClass",
     "limit_positions", "LimitPositions", "transmission_angle",
     "slider_crank", "slider_crank_system", "inverted_slider_crank",
     "inverted_slider_crank_system", "double_slider", "double_slider_system",

@@ -24,7 +24,7 @@ from gearlever._validate import finite_array, positive
 from gearlever.loops.engine import INPUT, LoopSystem, Vector
 
 __all__ = [
-    "FourBarResult", "fourbar", "fourbar_system", "GrashofClass", "grashof",
+    "FourBar", "FourBarResult", "fourbar", "fourbar_system", "GrashofClass", "grashof",
     "LimitPositions", "limit_positions", "transmission_angle",
 ]
 
@@ -344,3 +344,58 @@ def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:
     cm = (b * b + c * c - f2) / (2 * b * c)
     with np.errstate(invalid="ignore"):
         return np.where(np.abs(cm) <= 1.0 + 1e-13, np.arccos(np.clip(cm, -1.0, 1.0)), np.nan)
+
+
+@dataclass(frozen=True)
+class FourBar:
+    """A four-bar linkage as a frozen parameter object over the functions of this module.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : float
+        Link lengths (> 0, the longest shorter than the sum of the others).
+    branch : {"open", "crossed"}
+
+    Examples
+    --------
+    >>> fb = FourBar(9, 5, 8, 8)
+    >>> fb.grashof().kind, bool(fb.solve([0.0]).valid[0])
+    ('crank-rocker', True)
+    """
+
+    ground: float
+    crank: float
+    coupler: float
+    rocker: float
+    branch: str = "open"
+
+    def __post_init__(self):
+        d, a, b, c = _lengths(self.ground, self.crank, self.coupler, self.rocker)
+        _branch(self.branch)
+        for name, v in zip(("ground", "crank", "coupler", "rocker"), (d, a, b, c)):
+            object.__setattr__(self, name, v)
+
+    @property
+    def links(self) -> tuple:
+        """``(ground, crank, coupler, rocker)``."""
+        return (self.ground, self.crank, self.coupler, self.rocker)
+
+    def solve(self, theta2, *, strict=False) -> FourBarResult:
+        """:func:`fourbar` on this linkage and branch."""
+        return fourbar(*self.links, theta2, branch=self.branch, strict=strict)
+
+    def system(self) -> LoopSystem:
+        """:func:`fourbar_system` of this linkage."""
+        return fourbar_system(*self.links)
+
+    def grashof(self) -> GrashofClass:
+        """:func:`grashof` of this linkage."""
+        return grashof(*self.links)
+
+    def limit_positions(self) -> LimitPositions:
+        """:func:`limit_positions` on this branch."""
+        return limit_positions(*self.links, branch=self.branch)
+
+    def transmission_angle(self, theta2) -> np.ndarray:
+        """:func:`transmission_angle` of this linkage."""
+        return transmission_angle(*self.links, theta2)
