@@ -306,7 +306,7 @@ def test_loop_system_rejects_bad_definitions():
 
 
 # ----------------------------------------------------------- slider families
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=20, deadline=None)
 @given(a=st.floats(0.5, 3.0), b=st.floats(0.5, 6.0), e=st.floats(-1.0, 1.0),
        branch=st.sampled_from(["open", "crossed"]))
 def test_slider_crank_closed_form_matches_newton_and_finite_differences(a, b, e, branch):
