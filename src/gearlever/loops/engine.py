@@ -304,10 +304,14 @@ class LoopSystem:
 
     # --------------------------------------------------------------- analogues
     def _singular(self, J, tol: float) -> np.ndarray:
-        """True where ``J`` is singular: smallest/largest singular value below ``tol``."""
+        """True where ``J`` is singular: Hadamard ratio ``|det J| / prod(column norms)`` below ``tol``.
+
+        The ratio is 1 for orthogonal columns and 0 for dependent ones; for the
+        four-bar it is ``|sin(theta3 - theta4)|``, the closed form's criterion.
+        """
+        Jf = np.nan_to_num(J, nan=0.0)
         with np.errstate(invalid="ignore"):
-            s = np.linalg.svd(np.nan_to_num(J, nan=0.0), compute_uv=False)
-            bad = ~(s[..., -1] > tol * s[..., 0])
+            bad = ~(np.abs(np.linalg.det(Jf)) > tol * np.prod(np.linalg.norm(Jf, axis=-2), axis=-1))
         return bad | ~np.all(np.isfinite(J), axis=(-2, -1))
 
     def analogues(self, phi, x, singular_tol: float = 1e-7):
@@ -320,7 +324,7 @@ class LoopSystem:
         x : array_like
             Unknowns, shape ``phi.shape + (n,)`` (NaN rows allowed).
         singular_tol : float
-            Relative singular-value threshold for a dead point.
+            Hadamard-ratio threshold for a dead point (see ``_singular``).
 
         Returns
         -------
@@ -398,7 +402,7 @@ class LoopSystem:
             Largest input step taken by the predictor; larger gaps are
             sub-stepped.
         singular_tol : float
-            Relative singular-value threshold for a dead point.
+            Hadamard-ratio threshold for a dead point (see ``_singular``).
 
         Returns
         -------
