@@ -162,24 +162,53 @@ class LoopSystem:
         self.vectors = tuple(v for _, v, _, _ in specs)
         fixed = [abs(ls[1]) for _, _, ls, _ in specs if ls[0] == "fixed"]
         self.scale = max(fixed) if fixed else 1.0
+        self._tables()
 
     def _compile(self, s):
         if s[0] == "unknown":
             return ("unknown", self._index[s[1]], s[2], s[3])
         return s
 
-    # ------------------------------------------------------------------ basics
-    @staticmethod
-    def _value(spec, phi, x):
-        kind = spec[0]
-        if kind == "fixed":
-            return np.full(phi.shape, spec[1])
-        if kind == "input":
-            return spec[1] * phi + spec[2]
-        return spec[3] * x[..., spec[1]] + spec[2]
+    def _tables(self):
+        """Per-vector coefficient arrays: value = c + k * phi + scale * x[idx]."""
+        V, m, n = len(self._specs), len(self.loops), len(self.unknowns)
+        inc = np.zeros((V, m))
+        coef = {w: (np.zeros(V), np.zeros(V), np.zeros(V), np.zeros(V, dtype=int)) for w in "LA"}
+        W = {w: np.zeros((V, m, n)) for w in "LA"}
+        for v, (j, sign, ls, as_) in enumerate(self._specs):
+            inc[v, j] = sign
+            for w, spec in (("L", ls), ("A", as_)):
+                c, k, sc, idx = coef[w]
+                if spec[0] == "fixed":
+                    c[v] = spec[1]
+                elif spec[0] == "input":
+                    k[v], c[v] = spec[1], spec[2]
+                else:
+                    idx[v], c[v], sc[v] = spec[1], spec[2], spec[3]
+                    W[w][v, j, spec[1]] = sign * spec[3]
+        self._inc, self._coef, self._W = inc, coef, W
 
-    def _lengths_angles(self, phi, x):
-        return [(self._value(ls, phi, x), self._value(as_, phi, x)) for _, _, ls, as_ in self._specs]
+    # ------------------------------------------------------------------ basics
+    def _values(self, w, phi, x):
+        c, k, sc, idx = self._coef[w]
+        return c + k * phi[..., None] + sc * x[..., idx]
+
+    def _rates(self, w, dx, d2x=None):
+        c, k, sc, idx = self._coef[w]
+        first = k + sc * dx[..., idx]
+        return first if d2x is None else (first, sc * d2x[..., idx])
+
+    @staticmethod
+    def _split(zc):
+        """Complex loop sums (..., m) -> real rows (..., 2m): re, im interleaved."""
+        out = np.empty(zc.shape[:-1] + (2 * zc.shape[-1],))
+        out[..., 0::2] = zc.real
+        out[..., 1::2] = zc.imag
+        return out
+
+    def _LAE(self, phi, x):
+        L, A = self._values("L", phi, x), self._values("A", phi, x)
+        return L, A, np.cos(A) + 1j * np.sin(A)
 
     def residual(self, phi, x) -> np.ndarray:
         """Loop-closure residual, shape ``phi.shape + (2 m,)``.
@@ -200,16 +229,13 @@ class LoopSystem:
         --------
         >>> s = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1),
         ...                  Vector("y", "y", math.pi / 2, -1)]])
-        >>> s.residual([0.0], [[2.0, 0.0]]).tolist()
-        [[0.0, 0.0]]
+        >>> np.allclose(s.residual([0.0], [[2.0, 0.0]]), 0.0, atol=1e-15)
+        True
         """
         phi = np.asarray(phi, dtype=float)
         x = np.asarray(x, dtype=float)
-        F = np.zeros(phi.shape + (2 * len(self.loops),))
-        for (j, s, _, _), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
-            F[..., 2 * j] += s * L * np.cos(A)
-            F[..., 2 * j + 1] += s * L * np.sin(A)
-        return F
+        L, _, E = self._LAE(phi, x)
+        return self._split((L * E) @ self._inc)
 
     def jacobian(self, phi, x) -> np.ndarray:
         """Analytic Jacobian dF/dx, shape ``phi.shape + (2 m, n)``.
@@ -229,39 +255,19 @@ class LoopSystem:
         """
         phi = np.asarray(phi, dtype=float)
         x = np.asarray(x, dtype=float)
-        n = len(self.unknowns)
-        J = np.zeros(phi.shape + (n, n))
-        for (j, s, ls, as_), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
-            c, sn = np.cos(A), np.sin(A)
-            if ls[0] == "unknown":
-                J[..., 2 * j, ls[1]] += s * ls[3] * c
-                J[..., 2 * j + 1, ls[1]] += s * ls[3] * sn
-            if as_[0] == "unknown":
-                J[..., 2 * j, as_[1]] += -s * as_[3] * L * sn
-                J[..., 2 * j + 1, as_[1]] += s * as_[3] * L * c
+        L, _, E = self._LAE(phi, x)
+        Jc = np.tensordot(E, self._W["L"], axes=([-1], [0])) + \
+            np.tensordot(1j * L * E, self._W["A"], axes=([-1], [0]))
+        J = np.empty(Jc.shape[:-2] + (2 * Jc.shape[-2], Jc.shape[-1]))
+        J[..., 0::2, :] = Jc.real
+        J[..., 1::2, :] = Jc.imag
         return J
 
     def _input_column(self, phi, x):
         """dF/dphi at fixed unknowns."""
-        b = np.zeros(phi.shape + (2 * len(self.loops),))
-        for (j, s, ls, as_), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
-            c, sn = np.cos(A), np.sin(A)
-            if ls[0] == "input":
-                b[..., 2 * j] += s * ls[1] * c
-                b[..., 2 * j + 1] += s * ls[1] * sn
-            if as_[0] == "input":
-                b[..., 2 * j] += -s * L * as_[1] * sn
-                b[..., 2 * j + 1] += s * L * as_[1] * c
-        return b
-
-    @staticmethod
-    def _rate(spec, shape, dx):
-        kind = spec[0]
-        if kind == "fixed":
-            return np.zeros(shape)
-        if kind == "input":
-            return np.full(shape, spec[1])
-        return spec[3] * dx[..., spec[1]]
+        L, _, E = self._LAE(phi, x)
+        kL, kA = self._coef["L"][1], self._coef["A"][1]
+        return self._split(((kL + 1j * L * kA) * E) @ self._inc)
 
     def vector_analogues(self, phi, x, dx, d2x):
         """Per vector: ``(L, A, L', A', L'', A'')`` arrays (analogues along the input).
@@ -276,31 +282,20 @@ class LoopSystem:
         >>> s = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1),
         ...                  Vector("y", "y", math.pi / 2, -1)]])
         >>> L, A, Lp, Ap, Lpp, App = s.vector_analogues(0.0, [2.0, 0.0], [0.0, 2.0], [-2.0, 0.0])[0]
-        >>> float(L), float(Ap), float(App)
+        >>> float(L), float(Ap), float(App) + 0.0
         (2.0, 1.0, 0.0)
         """
         phi = np.asarray(phi, dtype=float)
         x, dx, d2x = (np.asarray(v, dtype=float) for v in (x, dx, d2x))
-        out = []
-        zero = np.zeros(phi.shape)
-        for (_, _, ls, as_), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
-            Lp, Ap = self._rate(ls, phi.shape, dx), self._rate(as_, phi.shape, dx)
-            Lpp = ls[3] * d2x[..., ls[1]] if ls[0] == "unknown" else zero
-            App = as_[3] * d2x[..., as_[1]] if as_[0] == "unknown" else zero
-            out.append((L, A, Lp, Ap, Lpp, App))
-        return out
+        L, A = self._values("L", phi, x), self._values("A", phi, x)
+        (Lp, Lpp), (Ap, App) = self._rates("L", dx, d2x), self._rates("A", dx, d2x)
+        return [tuple(arr[..., v] for arr in (L, A, Lp, Ap, Lpp, App)) for v in range(len(self._specs))]
 
     def _quadratic_column(self, phi, x, dx):
         """Velocity-product terms of the acceleration equation (everything but J x'')."""
-        c_ = np.zeros(phi.shape + (2 * len(self.loops),))
-        for (j, s, ls, as_), (L, A) in zip(self._specs, self._lengths_angles(phi, x)):
-            Lp, Ap = self._rate(ls, phi.shape, dx), self._rate(as_, phi.shape, dx)
-            c, sn = np.cos(A), np.sin(A)
-            re = -L * Ap * Ap
-            im = 2.0 * Lp * Ap
-            c_[..., 2 * j] += s * (re * c - im * sn)
-            c_[..., 2 * j + 1] += s * (re * sn + im * c)
-        return c_
+        L, _, E = self._LAE(phi, x)
+        Lp, Ap = self._rates("L", dx), self._rates("A", dx)
+        return self._split(((-L * Ap * Ap + 2j * Lp * Ap) * E) @ self._inc)
 
     # --------------------------------------------------------------- analogues
     def _singular(self, J, tol: float) -> np.ndarray:
