@@ -9,11 +9,7 @@ gearlever.zrdpm (eqs. 9, 11, 14, 16) when that module is present.
 
 from __future__ import annotations
 
-import importlib.util
-import math
-
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 

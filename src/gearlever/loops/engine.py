@@ -19,7 +19,7 @@ Pure numpy; imports neither matplotlib nor pandas (nor scipy).
 
 from __future__ import annotations
 
-import math
+import math  # noqa: F401  (used by the doctests)
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 

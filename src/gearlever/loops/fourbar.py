@@ -292,7 +292,7 @@ def limit_positions(ground, crank, coupler, rocker, branch="open") -> LimitPosit
     (0, [80.4059, 160.8119])
     """
     d, a, b, c = _lengths(ground, crank, coupler, rocker)
-    sigma = _branch(branch)
+    _branch(branch)
     lims = []
     for bc in (b + c, abs(b - c)):
         cos2 = (a * a + d * d - bc * bc) / (2 * a * d)
