@@ -10,6 +10,7 @@ gearlever.zrdpm (eqs. 9, 11, 14, 16) when that module is present.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -52,3 +53,23 @@ def test_engine_contour_matches_eq_9_14_16_closed_forms(l, r_a, r_b, th0, ratio,
     # the recovery without eq. 17's division (both projections) returns the engine's e
     u2, e_back = vector_loop.recover_analogues(l, sol["theta1"], sol.d2("p_x"), sol.d2("p_y"))
     assert np.allclose(e_back, e, atol=10 * tol * (1 + c)) and np.allclose(u2, u * u, atol=10 * tol * (1 + c))
+
+
+@pytest.mark.parametrize("contour", [1, 2])
+@pytest.mark.parametrize("kw", [{}, {"l": 21.0, "r": 2.0, "r_a": 4.0, "r_b": 9.0, "r_lead": 3.0,
+                                     "r_driven": 2.0, "mesh": "internal", "lever_angle0_deg": 20.0}])
+def test_engine_contour_matches_gearlever_zrdpm(contour, kw):
+    zrdpm = pytest.importorskip("gearlever.zrdpm")
+    params = zrdpm.ZrdpmContour(contour=contour, **kw)
+    ref = zrdpm.analogues(params, PHI)
+    sol = zrdpm_contour(params.l, PHI, params.r, params.r_a, params.r_b, params.ratio, params.mesh,
+                        np.radians(params.lever_angle0_deg))
+    assert sol.valid.all()
+    tol = 1e-11 * (1 + params.lever_gain)
+    assert np.allclose(sol.d1("theta1"), ref.u_carrier, rtol=1e-10, atol=tol)
+    assert np.allclose(sol.d2("theta1"), ref.e_carrier, rtol=1e-10, atol=tol)
+    assert np.allclose(sol.d1("theta8"), ref.u_gear, rtol=1e-10, atol=tol)
+    assert np.allclose(sol.d2("theta8"), ref.e_gear, rtol=1e-10, atol=tol)
+    # point accelerations: eq. 16 / 35, x axis as the contour is tabulated (x_sign)
+    assert np.allclose(params.x_sign * sol.d2("p_x"), ref.a_x, rtol=1e-10, atol=tol * params.l)
+    assert np.allclose(sol.d2("p_y"), ref.a_y, rtol=1e-10, atol=tol * params.l)
