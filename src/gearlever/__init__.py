@@ -7,3 +7,5 @@ top of them and are imported only when asked for.
 """
 
 __version__ = "0.1.0"
+
+from gearlever.loops import fourbar  # noqa: E402  (numpy-only)

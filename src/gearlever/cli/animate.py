@@ -1,0 +1,30 @@
+"""``gearlever animate``: a GIF of a linkage over one input turn."""
+
+from __future__ import annotations
+
+from gearlever.cli._common import positive_float, positive_int
+
+
+def register(sub) -> None:
+    p = sub.add_parser("animate", help="write a GIF of a four-bar over one crank turn",
+                       description="Animate a four-bar (matplotlib's Pillow writer).")
+    p.add_argument("--fourbar", nargs=4, type=positive_float, required=True,
+                   metavar=("GROUND", "CRANK", "COUPLER", "ROCKER"), help="link lengths")
+    p.add_argument("--out", required=True, help="output GIF file (.gif)")
+    p.add_argument("--frames", type=positive_int, default=36, help="frames per turn (default 36)")
+    p.add_argument("--fps", type=positive_int, default=12, help="frames per second (default 12)")
+    p.add_argument("--branch", choices=("open", "crossed"), default="open", help="assembly branch")
+    p.set_defaults(func=_run)
+
+
+def _run(args) -> int:
+    if not str(args.out).lower().endswith(".gif"):
+        raise ValueError(f"out must be a .gif file name, got {args.out!r}")
+    from gearlever.loops import grashof
+
+    grashof(*args.fourbar)  # checks that the linkage assembles before any drawing
+    from gearlever.plotting.animation import animate_fourbar
+
+    path = animate_fourbar(*args.fourbar, args.out, frames=args.frames, branch=args.branch, fps=args.fps)
+    print(f"wrote {path}")
+    return 0
