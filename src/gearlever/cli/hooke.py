@@ -33,7 +33,9 @@ def _run(args) -> int:
     ratio = joint.velocity_ratio(phi)
     acc = joint.acceleration_ratio(phi)
     records = [
-        {"input_deg": float(a), "output_deg": float(b), "ratio": float(c), "acceleration_ratio": float(d)}
+        # "+ 0.0" turns a negative zero into 0.0 so that no "-0.000" is printed
+        {"input_deg": float(a) + 0.0, "output_deg": float(b) + 0.0, "ratio": float(c) + 0.0,
+         "acceleration_ratio": float(d) + 0.0}
         for a, b, c, d in zip(phi, out, ratio, acc)
     ]
     if args.format == "json":
