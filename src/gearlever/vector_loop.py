@@ -140,3 +140,53 @@ def recover_analogues(l, theta, a_x, a_y):
     a_y = np.asarray(a_y, dtype=float)
     c, s = np.cos(theta), np.sin(theta)
     return -(c * a_x + s * a_y) / l, (c * a_y - s * a_x) / l
+
+
+def slider_lever(l, r_a, r_b, phi):
+    """Turn and analogues of a lever driven by the two sliders of the double-slider contour.
+
+    The slider A (speed ``dy_A/dphi``) and the slider B (``dx_B/dphi``) push a
+    lever on opposite sides at radii ``r_a`` and ``r_b`` from its pivot.
+
+    Parameters
+    ----------
+    l : float
+        Contour link length (> 0).
+    r_a, r_b : float
+        Radii at which the sliders act on the lever (> 0).
+    phi : array_like
+        Angle(s) of the leading link, radians.
+
+    Returns
+    -------
+    dtheta, dtheta_dphi, d2theta_dphi2 : ndarray
+        The lever's turn since ``phi = 0``, its velocity analogue and its
+        acceleration analogue, each shaped like ``phi``.
+
+    Notes
+    -----
+    Paper eq. 8 (``omega_1 = (V_A - V_B)/(r_A + r_B)``) with eq. 7 gives eq. 9
+    for ``l = r_A + r_B``; in general, with ``c = l/(r_A + r_B)``::
+
+        dtheta/dphi   = c (sin(phi) + cos(phi))
+        d2theta/dphi2 = c (cos(phi) - sin(phi))
+        theta - theta(0) = c (sin(phi) - cos(phi) + 1)
+
+    The paper's eqs. 10-11 print ``sin - cos``; eq. 9 and the mirror
+    eqs. 28-30 print ``sin + cos``, which is what eqs. 7-8 give.  Contour 2's
+    eq. 27 takes ``|V_E - V_D|``; the signed difference is used here, as in
+    eq. 28.
+
+    Examples
+    --------
+    >>> d, u, e = slider_lever(2.0, 1.0, 1.0, [0.0])
+    >>> float(d[0]), float(u[0]), float(e[0])
+    (0.0, 1.0, 1.0)
+    """
+    l = positive("l", l)
+    r_a = positive("r_a", r_a)
+    r_b = positive("r_b", r_b)
+    phi = finite_array("phi", phi)
+    c = l / (r_a + r_b)
+    s, co = np.sin(phi), np.cos(phi)
+    return c * (s - co + 1.0), c * (s + co), c * (co - s)
