@@ -307,6 +307,14 @@ def analogues(params: ZrdpmContour, phi, *, block=None, out=None):
     return ContourKinematics(u_c, u_g, e_c, e_g, params.x_sign * a_x, a_y)
 
 
+def _named_contour(contour: int, params: ZrdpmContour | None, phi) -> dict:
+    """The self-consistent model of ``contour`` (default parameters when None), by paper names."""
+    params = ZrdpmContour(contour=contour) if params is None else params
+    if params.contour != contour:
+        raise ValueError(f"params.contour must be {contour} for contour{contour}, got {params.contour}")
+    return analogues(params, phi).named(contour)
+
+
 def contour1(params: ZrdpmContour | None, phi) -> dict:
     """Contour 1 (gears 9, 8; lever 1) by the self-consistent model, by paper names.
 
@@ -316,10 +324,7 @@ def contour1(params: ZrdpmContour | None, phi) -> dict:
     >>> sorted(contour1(None, [0.0]))
     ['a_A', 'a_B', 'e_1', 'e_8', 'u_1', 'u_8']
     """
-    params = ZrdpmContour(contour=1) if params is None else params
-    if params.contour != 1:
-        raise ValueError(f"params.contour must be 1 for contour1, got {params.contour}")
-    return analogues(params, phi).named(1)
+    return _named_contour(1, params, phi)
 
 
 def contour2(params: ZrdpmContour | None, phi) -> dict:
@@ -331,10 +336,7 @@ def contour2(params: ZrdpmContour | None, phi) -> dict:
     >>> sorted(contour2(None, [0.0]))
     ['a_D', 'a_E', 'e_2', 'e_7', 'u_2', 'u_7']
     """
-    params = ZrdpmContour(contour=2) if params is None else params
-    if params.contour != 2:
-        raise ValueError(f"params.contour must be 2 for contour2, got {params.contour}")
-    return analogues(params, phi).named(2)
+    return _named_contour(2, params, phi)
 
 
 # --------------------------------------------------------------------------
