@@ -1,28 +1,33 @@
 # Two commands do everything on a machine with Python 3.11 and make:
 #   make reproduce   create .venv if missing, install, regenerate tables/ and figures/
-#   make test        create .venv if missing, install with the test extra, run pytest
+#   make test        create .venv if missing, install with the test extra, run lint and pytest
+# Tested versions of every dependency are pinned in constraints.txt.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
+PIP    := $(BIN)/python -m pip install --quiet -c constraints.txt
 
-.PHONY: reproduce test bench clean-venv
+.PHONY: reproduce test lint bench clean-venv
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
 
-$(VENV)/.installed: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e .
+$(VENV)/.installed: pyproject.toml constraints.txt | $(BIN)/python
+	$(PIP) -e .
 	touch $@
 
-$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e '.[test]'
+$(VENV)/.installed-test: pyproject.toml constraints.txt | $(BIN)/python
+	$(PIP) -e '.[test]'
 	touch $@ $(VENV)/.installed
 
 reproduce: $(VENV)/.installed
 	MPLBACKEND=Agg $(BIN)/gearlever reproduce --tables tables --figures figures
 
-test: $(VENV)/.installed-test
+lint: $(VENV)/.installed-test
+	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff format --check src tests benchmarks
+
+test: lint
 	MPLBACKEND=Agg $(BIN)/python -m pytest src tests
 
 bench: $(VENV)/.installed

@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 
-from gearlever.chariot import NuttallTeeth, design_nuttall, random_path, simulate
+from gearlever.gears.chariot import NuttallTeeth, design_nuttall, random_path, simulate
 
 STEPS = 10**6
 REPEATS = 15
@@ -38,10 +38,13 @@ def main() -> None:
         t_sim = min(t_sim, best(lambda: simulate(design, ds_left, ds_right), 1))
         t_floor = min(t_floor, best(lambda: np.cumsum(ds_left), 1))
     ratio = t_floor / t_sim
-    print(f"chariot simulate: {STEPS} steps in {t_sim * 1e3:.2f} ms = {STEPS / t_sim:.3e} steps/s "
-          f"(chassis {run.turns:.0f} turns, max pointer drift {run.max_drift:.1e} rad)")
-    print(f"numpy floor: one np.cumsum over {STEPS} floats in {t_floor * 1e3:.2f} ms = "
-          f"{STEPS / t_floor:.3e} elements/s")
+    print(
+        f"chariot simulate: {STEPS} steps in {t_sim * 1e3:.2f} ms = {STEPS / t_sim:.3e} steps/s "
+        f"(chassis {run.turns:.0f} turns, max pointer drift {run.max_drift:.1e} rad)"
+    )
+    print(
+        f"numpy floor: one np.cumsum over {STEPS} floats in {t_floor * 1e3:.2f} ms = {STEPS / t_floor:.3e} elements/s"
+    )
     print(f"ratio floor/simulate = {ratio:.2f} (target >= 0.2): {'ok' if ratio >= 0.2 else 'BELOW TARGET'}")
 
 

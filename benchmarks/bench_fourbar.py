@@ -52,8 +52,15 @@ def run_mechanism(theta2):
 
     r0 = fourbar(*LINKS, theta2[:1])
     guess = (np.array([r0.theta3[0], r0.theta4[0]]), np.array([1.0, 1.0]), np.array([1.0, 1.0]))
-    m = mechanism.Mechanism(vectors=(a, b, c, d), origin=O, loops=loops, pos=theta2,
-                            vel=np.full(theta2.size, OMEGA), acc=np.zeros(theta2.size), guess=guess)
+    m = mechanism.Mechanism(
+        vectors=(a, b, c, d),
+        origin=O,
+        loops=loops,
+        pos=theta2,
+        vel=np.full(theta2.size, OMEGA),
+        acc=np.zeros(theta2.size),
+        guess=guess,
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # fsolve's "not making good progress"
         m.iterate()
@@ -79,26 +86,28 @@ def main() -> None:
         "alpha3 (rad/s^2)": np.abs(coupler.acc.alphas - OMEGA**2 * r.d2theta3_dphi2).max(),
         "alpha4 (rad/s^2)": np.abs(rocker.acc.alphas - OMEGA**2 * r.d2theta4_dphi2).max(),
     }
-    newton_dev = max(np.abs(wrap(sol["theta4"] - r.theta4)).max(),
-                     np.abs(sol.d2("theta4") - r.d2theta4_dphi2).max())
+    newton_dev = max(np.abs(wrap(sol["theta4"] - r.theta4)).max(), np.abs(sol.d2("theta4") - r.d2theta4_dphi2).max())
 
     big = np.linspace(0.0, 2 * np.pi, 1_000_000, endpoint=False)
     t_big, _ = timed(lambda: fourbar(*LINKS, big), 5)
 
-    print(f"four-bar {'/'.join(f'{v:g}' for v in LINKS)} (ground/crank/coupler/rocker), "
-          f"{N} points, position + velocity + acceleration")
+    print(
+        f"four-bar {'/'.join(f'{v:g}' for v in LINKS)} (ground/crank/coupler/rocker), "
+        f"{N} points, position + velocity + acceleration"
+    )
     from importlib.metadata import version
 
     print(f"  mechanism {version('mechanism')} (fsolve per step, 1 run): {t_mech:10.4f} s")
     print(f"  gearlever.fourbar (closed form, median of 200): {t_gl * 1e3:10.4f} ms")
     print(f"  ratio mechanism / gearlever.fourbar: {t_mech / t_gl:10.0f} x   (target >= 3000)")
-    print(f"  gearlever LoopSystem.solve (general batched Newton, median of 3): {t_newton * 1e3:8.2f} ms "
-          f"(ratio {t_mech / t_newton:.0f} x; max deviation from closed form {newton_dev:.1e})")
+    print(
+        f"  gearlever LoopSystem.solve (general batched Newton, median of 3): {t_newton * 1e3:8.2f} ms "
+        f"(ratio {t_mech / t_newton:.0f} x; max deviation from closed form {newton_dev:.1e})"
+    )
     print("  agreement with mechanism (max |difference| over the turn):")
     for k, v in dev.items():
         print(f"    {k:18s} {v:.2e}")
-    print(f"  gearlever.fourbar at 10^6 points (median of 5): {t_big:.4f} s "
-          f"({t_big / 1e6 * 1e9:.0f} ns per point)")
+    print(f"  gearlever.fourbar at 10^6 points (median of 5): {t_big:.4f} s ({t_big / 1e6 * 1e9:.0f} ns per point)")
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from gearlever.synthesis import search_best
+from gearlever.trains.synthesis import search_best
 
 TARGET = Fraction(1000, 6931)
 LO, HI = 12, 60
@@ -42,22 +42,28 @@ def brute_force_k2():
 
 def main() -> None:
     print(f"exact search, teeth {LO}-{HI}, target 1/6.931 = {float(TARGET):.12f}, every optimum listed")
-    print(f"{'K':>2} {'best (s)':>9} {'first (s)':>9} {'target (s)':>10} {'products':>9} "
-          f"{'abs error':>12} {'sets':>5} {'ordered':>8}")
+    print(
+        f"{'K':>2} {'best (s)':>9} {'first (s)':>9} {'target (s)':>10} {'products':>9} "
+        f"{'abs error':>12} {'sets':>5} {'ordered':>8}"
+    )
     k2_time = None
     for k in (2, 3, 4, 5):
         repeats = 5 if k < 5 else 3
-        t_best, t_first, res = best_time(lambda: search_best(TARGET, k, LO, HI), repeats)
+        t_best, t_first, res = best_time(lambda k=k: search_best(TARGET, k, LO, HI), repeats)
         if k == 2:
             k2_time = t_best
         ok = "ok" if t_best < TARGETS_S[k] else "SLOW"
-        print(f"{k:>2} {t_best:9.4f} {t_first:9.4f} {TARGETS_S[k]:>8.2f} {ok:>2} {res.n_products:>7} "
-              f"{float(res.best_error):12.4e} {res.n_solutions:>5} {res.n_ordered:>8}")
+        print(
+            f"{k:>2} {t_best:9.4f} {t_first:9.4f} {TARGETS_S[k]:>8.2f} {ok:>2} {res.n_products:>7} "
+            f"{float(res.best_error):12.4e} {res.n_solutions:>5} {res.n_ordered:>8}"
+        )
         for s in res.solutions:
             print(f"      drivers {s.drivers}  followers {s.followers}  ratio {s.ratio}")
     t_bf, _, (bf_best, bf_tuples) = best_time(brute_force_k2, 3)
-    print(f"K=2 brute force over {(HI - LO + 1) ** 4:,} ordered tuples: {t_bf:.4f} s, "
-          f"{len(bf_tuples)} optimal tuples, error {float(bf_best):.4e}")
+    print(
+        f"K=2 brute force over {(HI - LO + 1) ** 4:,} ordered tuples: {t_bf:.4f} s, "
+        f"{len(bf_tuples)} optimal tuples, error {float(bf_best):.4e}"
+    )
     print(f"K=2 brute force / exact search time ratio: {t_bf / k2_time:.0f}")
 
 

@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from gearlever import zrdpm
+from gearlever.zrdpm import model as zrdpm
 
 N = 1_000_000
 REPEATS = 15
@@ -46,8 +46,10 @@ def main() -> None:
         "self-consistent, plain numpy": lambda: zrdpm.analogues(params, phi),
     }
     # the fast path must give the plain results
-    for fast, plain in ((zrdpm.tables_outputs(params, consts, phi, block=BLOCK), zrdpm.tables_outputs(params, consts, phi)),
-                        (zrdpm.analogues(params, phi, block=BLOCK), zrdpm.analogues(params, phi))):
+    for fast, plain in (
+        (zrdpm.tables_outputs(params, consts, phi, block=BLOCK), zrdpm.tables_outputs(params, consts, phi)),
+        (zrdpm.analogues(params, phi, block=BLOCK), zrdpm.analogues(params, phi)),
+    ):
         for a, b in zip(fast, plain):
             np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-12)
 
@@ -60,7 +62,10 @@ def main() -> None:
 
     floor = best["floor: np.sin + np.cos"]
     floor_out = best["floor, into given arrays"]
-    print(f"ZRDPM contour 1 (u_1, u_8, e_1, e_8, a_B, a_A), {N:.0e} angles, best of {REPEATS} interleaved runs, block {BLOCK}")
+    print(
+        f"ZRDPM contour 1 (u_1, u_8, e_1, e_8, a_B, a_A), {N:.0e} angles, "
+        f"best of {REPEATS} interleaved runs, block {BLOCK}"
+    )
     for name, t in best.items():
         print(f"  {name:30s} {t * 1e3:8.2f} ms  {N / t / 1e6:7.2f} M angles/s  ratio to floor {floor / t:5.2f}")
     fresh = floor / best["tables model, fast"]

@@ -12,9 +12,7 @@ SRC = pathlib.Path(gearlever.__file__).parent
 
 def _modules_importing(pattern):
     rx = re.compile(pattern, re.MULTILINE)
-    return sorted(
-        str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if rx.search(p.read_text(encoding="utf-8"))
-    )
+    return sorted(str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if rx.search(p.read_text(encoding="utf-8")))
 
 
 def test_import_gearlever_loads_neither_matplotlib_pandas_nor_scipy():

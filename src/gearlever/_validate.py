@@ -12,6 +12,8 @@ import numbers
 
 import numpy as np
 
+from gearlever.errors import GearleverError
+
 
 def _is_real_number(value) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
@@ -24,7 +26,7 @@ def finite(name: str, value) -> float:
     2.0
     """
     if not _is_real_number(value) or not math.isfinite(float(value)):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
+        raise GearleverError(f"{name} must be a finite number, got {value!r}")
     return float(value)
 
 
@@ -35,14 +37,14 @@ def positive(name: str, value) -> float:
     21.0
     """
     if not _is_real_number(value) or not math.isfinite(float(value)) or float(value) <= 0:
-        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+        raise GearleverError(f"{name} must be a positive finite number, got {value!r}")
     return float(value)
 
 
 def nonnegative(name: str, value) -> float:
     """Return ``value`` as a float, or raise if it is not finite and >= 0."""
     if not _is_real_number(value) or not math.isfinite(float(value)) or float(value) < 0:
-        raise ValueError(f"{name} must be a non-negative finite number, got {value!r}")
+        raise GearleverError(f"{name} must be a non-negative finite number, got {value!r}")
     return float(value)
 
 
@@ -56,9 +58,9 @@ def positive_int(name: str, value) -> int:
         if isinstance(value, numbers.Real) and float(value).is_integer() and not isinstance(value, bool):
             value = int(value)
         else:
-            raise ValueError(f"{name} must be a positive integer, got {value!r}")
+            raise GearleverError(f"{name} must be a positive integer, got {value!r}")
     if value < 1:
-        raise ValueError(f"{name} must be a positive integer, got {value!r}")
+        raise GearleverError(f"{name} must be a positive integer, got {value!r}")
     return int(value)
 
 
@@ -68,9 +70,9 @@ def nonnegative_int(name: str, value) -> int:
         if isinstance(value, numbers.Real) and float(value).is_integer() and not isinstance(value, bool):
             value = int(value)
         else:
-            raise ValueError(f"{name} must be a non-negative integer, got {value!r}")
+            raise GearleverError(f"{name} must be a non-negative integer, got {value!r}")
     if value < 0:
-        raise ValueError(f"{name} must be a non-negative integer, got {value!r}")
+        raise GearleverError(f"{name} must be a non-negative integer, got {value!r}")
     return int(value)
 
 
@@ -83,9 +85,9 @@ def finite_array(name: str, values) -> np.ndarray:
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of finite numbers") from None
+        raise GearleverError(f"{name} must be an array of finite numbers") from None
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be an array of finite numbers (found NaN or inf)")
+        raise GearleverError(f"{name} must be an array of finite numbers (found NaN or inf)")
     return arr
 
 
@@ -93,5 +95,5 @@ def nonempty_array(name: str, values) -> np.ndarray:
     """Like :func:`finite_array`, and the array must hold at least one value."""
     arr = finite_array(name, values)
     if arr.size == 0:
-        raise ValueError(f"{name} must hold at least one value, got an empty array")
+        raise GearleverError(f"{name} must hold at least one value, got an empty array")
     return arr

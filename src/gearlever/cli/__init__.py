@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import pkgutil
 import sys
 
@@ -51,6 +52,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     """Run the CLI; return the exit status (0 ok, 2 bad input)."""
+    # The command line writes files and never opens windows: it, not the library,
+    # chooses a non-interactive matplotlib backend (the user's MPLBACKEND wins).
+    os.environ.setdefault("MPLBACKEND", "Agg")
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
@@ -59,7 +63,10 @@ def main(argv=None) -> int:
         print(str(exc).replace("\n", " "), file=sys.stderr)
         return 2
     except ValueError as exc:
-        print(f"gearlever: error: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}", file=sys.stderr)
+        print(
+            f"gearlever: error: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}",
+            file=sys.stderr,
+        )
         return 2
     except BrokenPipeError:
         return 0

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 
+from gearlever import _io
 from gearlever._io import write_text_atomic
 
 
@@ -59,5 +59,5 @@ def emit(text: str, out: str | None = None) -> None:
 
 
 def to_json(obj) -> str:
-    """Serialize ``obj`` with sorted keys and a trailing-newline-free layout."""
-    return json.dumps(obj, indent=2, sort_keys=False, allow_nan=True)
+    """Strict JSON (NaN and infinities as null), keys in the order given; see :func:`gearlever._io.to_json`."""
+    return _io.to_json(obj, indent=2)

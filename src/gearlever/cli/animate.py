@@ -3,13 +3,23 @@
 from __future__ import annotations
 
 from gearlever.cli._common import positive_float, positive_int
+from gearlever.errors import GearleverError
 
 
 def register(sub) -> None:
-    p = sub.add_parser("animate", help="write a GIF of a four-bar over one crank turn",
-                       description="Animate a four-bar (matplotlib's Pillow writer).")
-    p.add_argument("--fourbar", nargs=4, type=positive_float, required=True,
-                   metavar=("GROUND", "CRANK", "COUPLER", "ROCKER"), help="link lengths")
+    p = sub.add_parser(
+        "animate",
+        help="write a GIF of a four-bar over one crank turn",
+        description="Animate a four-bar (matplotlib's Pillow writer).",
+    )
+    p.add_argument(
+        "--fourbar",
+        nargs=4,
+        type=positive_float,
+        required=True,
+        metavar=("GROUND", "CRANK", "COUPLER", "ROCKER"),
+        help="link lengths",
+    )
     p.add_argument("--out", required=True, help="output GIF file (.gif)")
     p.add_argument("--frames", type=positive_int, default=36, help="frames per turn (default 36)")
     p.add_argument("--fps", type=positive_int, default=12, help="frames per second (default 12)")
@@ -19,7 +29,7 @@ def register(sub) -> None:
 
 def _run(args) -> int:
     if not str(args.out).lower().endswith(".gif"):
-        raise ValueError(f"out must be a .gif file name, got {args.out!r}")
+        raise GearleverError(f"out must be a .gif file name, got {args.out!r}")
     from gearlever.loops import grashof
 
     grashof(*args.fourbar)  # checks that the linkage assembles before any drawing

@@ -8,6 +8,7 @@
 from __future__ import annotations
 
 from gearlever.cli._common import emit, finite_float, positive_float, positive_int, to_json
+from gearlever.errors import GearleverError
 
 
 def register(sub) -> None:
@@ -17,27 +18,54 @@ def register(sub) -> None:
     c = cmds.add_parser("car", help="ring and pinion, carrier, wheel speeds, torques and power")
     c.add_argument("--pinion-teeth", type=positive_int, required=True, metavar="Z1")
     c.add_argument("--ring-teeth", type=positive_int, required=True, metavar="Z2")
-    c.add_argument("--pinion-speed", type=finite_float, required=True, metavar="W",
-                   help="pinion speed w1 (any unit; the outputs use it)")
-    c.add_argument("--pinion-torque", type=finite_float, required=True, metavar="G",
-                   help="pinion torque G1 (any unit; the outputs use it)")
-    c.add_argument("--turn-radius", type=finite_float, default=None, metavar="R",
-                   help="radius of the axle mid-point's turn, > 0 turning left, < 0 right (needs --track)")
+    c.add_argument(
+        "--pinion-speed",
+        type=finite_float,
+        required=True,
+        metavar="W",
+        help="pinion speed w1 (any unit; the outputs use it)",
+    )
+    c.add_argument(
+        "--pinion-torque",
+        type=finite_float,
+        required=True,
+        metavar="G",
+        help="pinion torque G1 (any unit; the outputs use it)",
+    )
+    c.add_argument(
+        "--turn-radius",
+        type=finite_float,
+        default=None,
+        metavar="R",
+        help="radius of the axle mid-point's turn, > 0 turning left, < 0 right (needs --track)",
+    )
     c.add_argument("--track", type=positive_float, default=None, metavar="T", help="track width, units of R")
-    c.add_argument("--left-speed", type=finite_float, default=None, metavar="W4",
-                   help="left wheel speed (0: left wheel held)")
+    c.add_argument(
+        "--left-speed",
+        type=finite_float,
+        default=None,
+        metavar="W4",
+        help="left wheel speed (0: left wheel held)",
+    )
     c.add_argument("--format", choices=("table", "json"), default="table")
     c.add_argument("--out", default=None, metavar="FILE", help="write to FILE instead of stdout")
     c.set_defaults(func=_car)
 
 
 def _car(args) -> int:
-    from gearlever.car import car_differential
+    from gearlever.gears.car import car_differential
 
     if (args.turn_radius is None) != (args.track is None):
-        raise ValueError("--turn-radius and --track must be given together")
-    state = car_differential(args.pinion_teeth, args.ring_teeth, args.pinion_speed, args.pinion_torque,
-                             left_speed=args.left_speed, turn_radius=args.turn_radius, track=args.track)
+        raise GearleverError("--turn-radius and --track must be given together")
+    state = car_differential(
+        args.pinion_teeth,
+        args.ring_teeth,
+        args.pinion_speed,
+        args.pinion_torque,
+        left_speed=args.left_speed,
+        turn_radius=args.turn_radius,
+        track=args.track,
+    )
     result = state.as_dict()
     if args.format == "json":
         emit(to_json(result), args.out)

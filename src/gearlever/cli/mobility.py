@@ -22,7 +22,7 @@ def register(sub) -> None:
 
 
 def _run(args) -> int:
-    from gearlever import structure
+    from gearlever.mechanism import structure
 
     if args.q is not None:
         emit(f"W = {structure.mobility(args.n, args.p5, args.p4, args.q)}")

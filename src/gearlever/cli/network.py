@@ -1,6 +1,6 @@
 """``gearlever network FILE --inputs A,B [--teeth n2=30,...] [--format table|json]``.
 
-Solve a gear network given as CSV records (see :func:`gearlever.networks.parse_network`):
+Solve a gear network given as CSV records (see :func:`gearlever.gears.networks.parse_network`):
 counts, redundant constraints, and every member's rotation as an exact linear
 function of the inputs.  An inconsistent network, an unknown gear or a bad
 tooth number ends with exit 2 and one line naming it.
@@ -11,15 +11,24 @@ from __future__ import annotations
 from pathlib import Path
 
 from gearlever.cli._common import emit, to_json
+from gearlever.errors import GearleverError
 
 
 def register(sub) -> None:
     p = sub.add_parser("network", help="solve a gear network given as data (exact fractions)")
     p.add_argument("file", metavar="FILE", help="network records: member/constraint lines (CSV)")
-    p.add_argument("--inputs", default=None, metavar="A,B",
-                   help="input members, comma separated (default: counts and redundancy only)")
-    p.add_argument("--teeth", default="", metavar="SYM=N,...",
-                   help="values of tooth-number symbols used in FILE, e.g. n2=30,n5=24")
+    p.add_argument(
+        "--inputs",
+        default=None,
+        metavar="A,B",
+        help="input members, comma separated (default: counts and redundancy only)",
+    )
+    p.add_argument(
+        "--teeth",
+        default="",
+        metavar="SYM=N,...",
+        help="values of tooth-number symbols used in FILE, e.g. n2=30,n5=24",
+    )
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--out", default=None, metavar="FILE", help="write to FILE instead of stdout")
     p.set_defaults(func=_run)
@@ -30,11 +39,11 @@ def _teeth(text: str) -> dict[str, int]:
     for item in filter(None, (x.strip() for x in text.split(","))):
         name, sep, value = item.partition("=")
         if not sep or not name.strip():
-            raise ValueError(f"--teeth must be SYMBOL=INTEGER pairs, got {item!r}")
+            raise GearleverError(f"--teeth must be SYMBOL=INTEGER pairs, got {item!r}")
         try:
             out[name.strip()] = int(value)
         except ValueError:
-            raise ValueError(f"--teeth {name.strip()} must be an integer, got {value.strip()!r}") from None
+            raise GearleverError(f"--teeth {name.strip()} must be an integer, got {value.strip()!r}") from None
     return out
 
 
@@ -43,27 +52,36 @@ def _frac(f) -> str:
 
 
 def _run(args) -> int:
-    from gearlever.networks import format_linear, parse_network
+    from gearlever.gears.networks import format_linear, parse_network
 
     try:
         text = Path(args.file).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         reason = getattr(exc, "strerror", None) or type(exc).__name__
-        raise ValueError(f"network file {args.file!r} cannot be read: {reason}") from None
+        raise GearleverError(f"network file {args.file!r} cannot be read: {reason}") from None
     net = parse_network(text, teeth=_teeth(args.teeth))
     a = net.analyse()
     result = {
-        "unknowns": a.unknowns, "rank": a.rank, "dof": a.dof, "redundant": list(a.redundant),
+        "unknowns": a.unknowns,
+        "rank": a.rank,
+        "dof": a.dof,
+        "redundant": list(a.redundant),
         "dependencies": {k: {j: _frac(v) for j, v in dep.items()} for k, dep in a.dependencies.items()},
         "locked": dict(a.locked),
     }
-    lines = [f"unknown rotations {a.unknowns}, rank {a.rank}, degrees of freedom {a.dof}",
-             "redundant constraints: " + (", ".join(
-                 f"({k}) = " + format_linear({f"({j})": v for j, v in dep.items()}).replace("rot_", "")
-                 for k, dep in a.dependencies.items()) or "none")]
+    lines = [
+        f"unknown rotations {a.unknowns}, rank {a.rank}, degrees of freedom {a.dof}",
+        "redundant constraints: "
+        + (
+            ", ".join(
+                f"({k}) = " + format_linear({f"({j})": v for j, v in dep.items()}).replace("rot_", "")
+                for k, dep in a.dependencies.items()
+            )
+            or "none"
+        ),
+    ]
     if a.locked:
-        lines.append("members forced to stand still: "
-                     + ", ".join(f"{m} (by ({c}))" for m, c in a.locked.items()))
+        lines.append("members forced to stand still: " + ", ".join(f"{m} (by ({c}))" for m, c in a.locked.items()))
     if args.inputs:
         inputs = [x.strip() for x in args.inputs.split(",") if x.strip()]
         sol = net.solve(inputs)

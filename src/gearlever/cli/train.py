@@ -25,14 +25,22 @@ def register(sub) -> None:
     d = tsub.add_parser("design", help="tooth numbers for a wanted ratio by the classic rules")
     d.add_argument("--ratio", required=True, help="wanted ratio: a number or B/C (decimals allowed, e.g. 1/6.931)")
     g = d.add_mutually_exclusive_group()
-    g.add_argument("--tooth-form", choices=("involute", "epicycloidal", "smooth"), default="involute",
-                   help="sets the least tooth number: 24, 12, 15 (default involute)")
+    g.add_argument(
+        "--tooth-form",
+        choices=("involute", "epicycloidal", "smooth"),
+        default="involute",
+        help="sets the least tooth number: 24, 12, 15 (default involute)",
+    )
     g.add_argument("--min-teeth", type=positive_int, help="least tooth number t")
     d.add_argument("--max-teeth", type=positive_int, help="largest tooth number (default 6t)")
     d.add_argument("--pairs", type=positive_int, help="number of pairs (default: the text's bounds)")
     d.add_argument("--keep", type=positive_int, default=5, help="designs listed (default 5)")
-    d.add_argument("--prefer", choices=("teeth", "wear"), default="teeth",
-                   help="order designs by least total teeth (Young) or least gcd per pair (even wear)")
+    d.add_argument(
+        "--prefer",
+        choices=("teeth", "wear"),
+        default="teeth",
+        help="order designs by least total teeth (Young) or least gcd per pair (even wear)",
+    )
     d.add_argument("--format", choices=("table", "json"), default="table")
     d.add_argument("--out", help="write to this file instead of stdout")
     d.set_defaults(func=_design)
@@ -44,8 +52,12 @@ def register(sub) -> None:
     s.add_argument("--max-teeth", type=positive_int, required=True)
     s.add_argument("--metric", choices=("absolute", "relative"), default="absolute")
     s.add_argument("--all", action="store_true", help=f"list every optimal train (default: the first {DEFAULT_LISTED})")
-    s.add_argument("--max-space", type=positive_int, default=None,
-                   help="refuse searches with more tooth multisets per side than this")
+    s.add_argument(
+        "--max-space",
+        type=positive_int,
+        default=None,
+        help="refuse searches with more tooth multisets per side than this",
+    )
     s.add_argument("--format", choices=("table", "json"), default="table")
     s.add_argument("--out", help="write to this file instead of stdout")
     s.set_defaults(func=_search)
@@ -77,15 +89,24 @@ def _ratio(args) -> int:
 def _design_lines(d) -> str:
     pairs = ", ".join(f"{a}:{b} (gcd {g})" for a, b, g in zip(d.drivers, d.followers, d.gcds))
     shared = ", ".join(map(str, d.shared_divisor_pairs)) or "none"
-    return (f"  drivers {list(d.drivers)} followers {list(d.followers)}  ratio {d.ratio} = {float(d.ratio):.12g}"
-            f"  error {d.error:+.3e}  total teeth {d.total_teeth}\n    pairs {pairs}; sharing a divisor: {shared}")
+    return (
+        f"  drivers {list(d.drivers)} followers {list(d.followers)}  ratio {d.ratio} = {float(d.ratio):.12g}"
+        f"  error {d.error:+.3e}  total teeth {d.total_teeth}\n    pairs {pairs}; sharing a divisor: {shared}"
+    )
 
 
 def _design(args) -> int:
-    from gearlever.synthesis import design_train
+    from gearlever.trains.synthesis import design_train
 
-    res = design_train(args.ratio, min_teeth=args.min_teeth, max_teeth=args.max_teeth, pairs=args.pairs,
-                       tooth_form=args.tooth_form, keep=args.keep, prefer=args.prefer)
+    res = design_train(
+        args.ratio,
+        min_teeth=args.min_teeth,
+        max_teeth=args.max_teeth,
+        pairs=args.pairs,
+        tooth_form=args.tooth_form,
+        keep=args.keep,
+        prefer=args.prefer,
+    )
     if args.format == "json":
         emit(to_json(res.as_dict()), args.out)
         return 0
@@ -103,11 +124,17 @@ def _design(args) -> int:
 
 
 def _search(args) -> int:
-    from gearlever.synthesis import DEFAULT_MAX_SPACE, search_best
+    from gearlever.trains.synthesis import DEFAULT_MAX_SPACE, search_best
 
-    res = search_best(args.ratio, args.pairs, args.min_teeth, args.max_teeth, metric=args.metric,
-                      max_space=args.max_space or DEFAULT_MAX_SPACE,
-                      limit=None if args.all else DEFAULT_LISTED)
+    res = search_best(
+        args.ratio,
+        args.pairs,
+        args.min_teeth,
+        args.max_teeth,
+        metric=args.metric,
+        max_space=args.max_space or DEFAULT_MAX_SPACE,
+        limit=None if args.all else DEFAULT_LISTED,
+    )
     if args.format == "json":
         emit(to_json(res.as_dict()), args.out)
         return 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from gearlever.cli._common import emit, finite_float, positive_float, positive_int, to_json
+from gearlever.errors import GearleverError
 
 #: Keys of the JSON records and the CSV columns.
 KEYS = ("phi_deg", "u_carrier", "u_gear", "e_carrier", "e_gear")
@@ -23,10 +24,19 @@ def register(sub) -> None:
     p.add_argument("--stop", type=finite_float, help="last angle, degrees, inclusive (default 360)")
     p.add_argument("--step", type=positive_float, help="angle step, degrees (default 30)")
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--ratio", type=positive_float, default=None,
-                   help="gear ratio r9/r8 (contour 1) or r6/r7 (contour 2), default 0.5")
-    g.add_argument("--teeth", type=positive_int, nargs=2, metavar=("Z_LEAD", "Z_DRIVEN"),
-                   help="tooth numbers of the leading and the driven gear (ratio Z_LEAD/Z_DRIVEN)")
+    g.add_argument(
+        "--ratio",
+        type=positive_float,
+        default=None,
+        help="gear ratio r9/r8 (contour 1) or r6/r7 (contour 2), default 0.5",
+    )
+    g.add_argument(
+        "--teeth",
+        type=positive_int,
+        nargs=2,
+        metavar=("Z_LEAD", "Z_DRIVEN"),
+        help="tooth numbers of the leading and the driven gear (ratio Z_LEAD/Z_DRIVEN)",
+    )
     p.add_argument("--l", type=positive_float, default=10.0, help="contour link length, cm (default 10)")
     p.add_argument("--r-a", type=positive_float, default=None, help="slider radius rA, cm (default l/2)")
     p.add_argument("--r-b", type=positive_float, default=None, help="slider radius rB, cm (default l/2)")
@@ -41,16 +51,16 @@ def _angles(args):
 
     if args.phi is not None:
         if any(v is not None for v in (args.start, args.stop, args.step)):
-            raise ValueError("--phi must not be combined with --start/--stop/--step")
+            raise GearleverError("--phi must not be combined with --start/--stop/--step")
         return np.asarray(args.phi, dtype=float)
     start = 0.0 if args.start is None else args.start
     stop = 360.0 if args.stop is None else args.stop
     step = 30.0 if args.step is None else args.step
     if stop < start:
-        raise ValueError(f"--stop must be >= --start (the angle range is empty), got {start} to {stop}")
+        raise GearleverError(f"--stop must be >= --start (the angle range is empty), got {start} to {stop}")
     n = int(np.floor((stop - start) / step + 1e-9)) + 1
     if n > 10_000_000:
-        raise ValueError(f"--step must give at most 10^7 angles, got {n}")
+        raise GearleverError(f"--step must give at most 10^7 angles, got {n}")
     return start + step * np.arange(n)
 
 
@@ -70,10 +80,14 @@ def _format(records, names, fmt) -> str:
 def _run(args) -> int:
     import numpy as np
 
-    from gearlever import zrdpm
+    from gearlever.zrdpm import model as zrdpm
 
     phi_deg = _angles(args)
-    kwargs = {"l": args.l, "r_a": args.r_a if args.r_a else args.l / 2, "r_b": args.r_b if args.r_b else args.l / 2}
+    kwargs = {
+        "l": args.l,
+        "r_a": args.r_a if args.r_a else args.l / 2,
+        "r_b": args.r_b if args.r_b else args.l / 2,
+    }
     if args.teeth is not None:
         params = zrdpm.ZrdpmContour.from_teeth(args.contour, args.teeth[0], args.teeth[1], mesh=args.mesh, **kwargs)
     else:
@@ -81,8 +95,7 @@ def _run(args) -> int:
         params = zrdpm.ZrdpmContour(contour=args.contour, mesh=args.mesh, **kwargs).with_ratio(ratio)
     kin = zrdpm.analogues(params, np.deg2rad(phi_deg))
     records = [
-        dict(zip(KEYS, map(float, row)))
-        for row in zip(phi_deg, kin.u_carrier, kin.u_gear, kin.e_carrier, kin.e_gear)
+        dict(zip(KEYS, map(float, row))) for row in zip(phi_deg, kin.u_carrier, kin.u_gear, kin.e_carrier, kin.e_gear)
     ]
     emit(_format(records, params.names[:4], args.format), args.out)
     return 0

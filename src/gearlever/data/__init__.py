@@ -1,13 +1,34 @@
 """Published reference data, each file with its source, page and units in a header.
 
 Files are read on demand with :mod:`importlib.resources`, never at import time.
+Every data file is a CSV whose leading ``#`` lines name its source; the one
+reader :func:`read_records` skips them and returns the rows as dicts.
+
+Imports only the standard library.
 """
 
 from __future__ import annotations
 
+import csv
+import io
 from importlib import resources
+
+__all__ = ["read_records", "read_text"]
 
 
 def read_text(name: str) -> str:
     """Return the text of the data file ``name`` shipped in this package."""
     return resources.files(__name__).joinpath(name).read_text(encoding="utf-8")
+
+
+def read_records(name: str) -> list[dict[str, str]]:
+    """Rows of the data file ``name`` as dicts keyed by its header, ``#`` lines skipped.
+
+    Examples
+    --------
+    >>> rows = read_records("zrdpm_mobility.csv")
+    >>> sorted(rows[0])[:3]
+    ['case', 'n', 'p4']
+    """
+    lines = [ln for ln in read_text(name).splitlines() if ln and not ln.startswith("#")]
+    return list(csv.DictReader(io.StringIO("\n".join(lines))))

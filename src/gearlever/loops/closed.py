@@ -15,14 +15,19 @@ import math
 import numpy as np
 
 from gearlever._validate import finite, finite_array, positive
+from gearlever.errors import GearleverError
+from gearlever.loops import vector_loop
 from gearlever.loops.engine import INPUT, Input, LoopSolution, LoopSystem, Unknown, Vector
-from gearlever import vector_loop
 
 __all__ = [
-    "slider_crank_system", "slider_crank",
-    "inverted_slider_crank_system", "inverted_slider_crank",
-    "double_slider_system", "double_slider",
-    "zrdpm_contour_system", "zrdpm_contour",
+    "slider_crank_system",
+    "slider_crank",
+    "inverted_slider_crank_system",
+    "inverted_slider_crank",
+    "double_slider_system",
+    "double_slider",
+    "zrdpm_contour_system",
+    "zrdpm_contour",
 ]
 
 _SIGN = {"open": 1.0, "crossed": -1.0}
@@ -32,7 +37,7 @@ def _sigma(branch):
     try:
         return _SIGN[branch]
     except (KeyError, TypeError):
-        raise ValueError(f"branch must be 'open' or 'crossed', got {branch!r}") from None
+        raise GearleverError(f"branch must be 'open' or 'crossed', got {branch!r}") from None
 
 
 def _finish(system, phi, x, closed, strict, singular_tol, what):
@@ -41,7 +46,7 @@ def _finish(system, phi, x, closed, strict, singular_tol, what):
     valid = closed & ~bad
     if strict and not valid.all():
         first = phi.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
-        raise ValueError(
+        raise GearleverError(
             f"theta2: the {what} cannot close or is at a dead point at {first!r} "
             f"({int((~valid).sum())} of {valid.size} points)"
         )
@@ -62,12 +67,19 @@ def slider_crank_system(crank, rod, offset=0.0) -> LoopSystem:
     """
     a, b = positive("crank", crank), positive("rod", rod)
     e = finite("offset", offset)
-    return LoopSystem([[Vector("A", a, INPUT), Vector("BA", b, "theta3"),
-                        Vector("e", e, math.pi / 2, -1), Vector("B", "x_B", 0.0, -1)]])
+    return LoopSystem(
+        [
+            [
+                Vector("A", a, INPUT),
+                Vector("BA", b, "theta3"),
+                Vector("e", e, math.pi / 2, -1),
+                Vector("B", "x_B", 0.0, -1),
+            ]
+        ]
+    )
 
 
-def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False,
-                 singular_tol=1e-7) -> LoopSolution:
+def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7) -> LoopSolution:
     """Slider-crank positions (closed form) and analogues (linear solves).
 
     Parameters
@@ -108,8 +120,7 @@ def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False,
     c3 = sigma * np.sqrt(1.0 - s3c * s3c)
     theta3 = np.arctan2(s3c, c3)
     xb = a * np.cos(th2) + b * c3
-    return _finish(system, th2, np.stack([theta3, xb], axis=-1), closed, strict, singular_tol,
-                   "slider-crank")
+    return _finish(system, th2, np.stack([theta3, xb], axis=-1), closed, strict, singular_tol, "slider-crank")
 
 
 def inverted_slider_crank_system(ground, crank, offset=0.0) -> LoopSystem:
@@ -126,13 +137,21 @@ def inverted_slider_crank_system(ground, crank, offset=0.0) -> LoopSystem:
     """
     d, a = positive("ground", ground), positive("crank", crank)
     e = finite("offset", offset)
-    return LoopSystem([[Vector("A", a, INPUT), Vector("O4", d, 0.0, -1),
-                        Vector("AO4", "b", "theta4", -1),
-                        Vector("e", e, Unknown("theta4", math.pi / 2), -1)]])
+    return LoopSystem(
+        [
+            [
+                Vector("A", a, INPUT),
+                Vector("O4", d, 0.0, -1),
+                Vector("AO4", "b", "theta4", -1),
+                Vector("e", e, Unknown("theta4", math.pi / 2), -1),
+            ]
+        ]
+    )
 
 
-def inverted_slider_crank(ground, crank, theta2, offset=0.0, branch="open", *, strict=False,
-                          singular_tol=1e-7) -> LoopSolution:
+def inverted_slider_crank(
+    ground, crank, theta2, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7
+) -> LoopSolution:
     """Inverted slider-crank positions (closed form) and analogues (linear solves).
 
     Returns
@@ -163,8 +182,7 @@ def inverted_slider_crank(ground, crank, theta2, offset=0.0, branch="open", *, s
     b = sigma * np.sqrt(np.where(closed, q, 0.0))
     theta4 = np.arctan2(py, px) - np.arctan2(e, b)
     theta4 = np.arctan2(np.sin(theta4), np.cos(theta4))
-    return _finish(system, th2, np.stack([b, theta4], axis=-1), closed, strict, singular_tol,
-                   "inverted slider-crank")
+    return _finish(system, th2, np.stack([b, theta4], axis=-1), closed, strict, singular_tol, "inverted slider-crank")
 
 
 def double_slider_system(l, r) -> LoopSystem:
@@ -186,12 +204,20 @@ def double_slider_system(l, r) -> LoopSystem:
     """
     l = positive("l", l)
     r = finite("r", r)
-    return LoopSystem([[Vector("B", "x_B", 0.0), Vector("r", r, math.pi / 2),
-                        Vector("A", "y_A", math.pi / 2, -1), Vector("BA", l, Input(-1.0, 0.0), -1)]])
+    return LoopSystem(
+        [
+            [
+                Vector("B", "x_B", 0.0),
+                Vector("r", r, math.pi / 2),
+                Vector("A", "y_A", math.pi / 2, -1),
+                Vector("BA", l, Input(-1.0, 0.0), -1),
+            ]
+        ]
+    )
 
 
 def double_slider(l, r, phi) -> LoopSolution:
-    """Double-slider contour in closed form (:func:`gearlever.vector_loop.double_slider`).
+    """Double-slider contour in closed form (:func:`gearlever.loops.vector_loop.double_slider`).
 
     Returns
     -------
@@ -201,7 +227,7 @@ def double_slider(l, r, phi) -> LoopSolution:
     Notes
     -----
     Paper eqs. 6-7 (contour 1) and 25-26 (contour 2), via
-    :func:`gearlever.vector_loop.double_slider`.
+    :func:`gearlever.loops.vector_loop.double_slider`.
 
     Examples
     --------
@@ -219,8 +245,9 @@ def double_slider(l, r, phi) -> LoopSolution:
     return LoopSolution(system.unknowns, phi, x, dx, d2x, ok, ok.copy())
 
 
-def zrdpm_contour_system(l, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external",
-                         lever_angle0=-math.pi / 2) -> LoopSystem:
+def zrdpm_contour_system(
+    l, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external", lever_angle0=-math.pi / 2
+) -> LoopSystem:
     """A whole ZRDPM contour (paper section 2) as four vector loops.
 
     Parameters
@@ -264,23 +291,39 @@ def zrdpm_contour_system(l, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external
     r_b = l / 2 if r_b is None else positive("r_b", r_b)
     ratio = positive("ratio", ratio)
     if mesh not in ("external", "internal"):
-        raise ValueError(f"mesh must be 'external' or 'internal', got {mesh!r}")
+        raise GearleverError(f"mesh must be 'external' or 'internal', got {mesh!r}")
     i = -ratio if mesh == "external" else ratio
     th0 = finite("lever_angle0", lever_angle0)
     K = (r_a + r_b) * th0 - r + l
-    return LoopSystem([
-        [Vector("B", "x_B", 0.0), Vector("r", r, math.pi / 2),
-         Vector("A", "y_A", math.pi / 2, -1), Vector("BA", l, Input(-1.0, 0.0), -1)],
-        [Vector("lever", Unknown("theta1", 0.0, r_a + r_b), 0.0), Vector("yA", "y_A", 0.0, -1),
-         Vector("xB", "x_B", 0.0), Vector("K", K, 0.0, -1), Vector("w1", "w1", math.pi / 2)],
-        [Vector("L1", l, "theta1"), Vector("px", "p_x", 0.0, -1), Vector("py", "p_y", math.pi / 2, -1)],
-        [Vector("gear8", "theta8", 0.0), Vector("carrier", Unknown("theta1", 0.0, 1.0 - i), 0.0, -1),
-         Vector("lead", Input(i, 0.0), 0.0, -1), Vector("w8", "w8", math.pi / 2)],
-    ])
+    return LoopSystem(
+        [
+            [
+                Vector("B", "x_B", 0.0),
+                Vector("r", r, math.pi / 2),
+                Vector("A", "y_A", math.pi / 2, -1),
+                Vector("BA", l, Input(-1.0, 0.0), -1),
+            ],
+            [
+                Vector("lever", Unknown("theta1", 0.0, r_a + r_b), 0.0),
+                Vector("yA", "y_A", 0.0, -1),
+                Vector("xB", "x_B", 0.0),
+                Vector("K", K, 0.0, -1),
+                Vector("w1", "w1", math.pi / 2),
+            ],
+            [Vector("L1", l, "theta1"), Vector("px", "p_x", 0.0, -1), Vector("py", "p_y", math.pi / 2, -1)],
+            [
+                Vector("gear8", "theta8", 0.0),
+                Vector("carrier", Unknown("theta1", 0.0, 1.0 - i), 0.0, -1),
+                Vector("lead", Input(i, 0.0), 0.0, -1),
+                Vector("w8", "w8", math.pi / 2),
+            ],
+        ]
+    )
 
 
-def zrdpm_contour(l, phi, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external",
-                  lever_angle0=-math.pi / 2, *, strict=False) -> LoopSolution:
+def zrdpm_contour(
+    l, phi, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external", lever_angle0=-math.pi / 2, *, strict=False
+) -> LoopSolution:
     """Solve :func:`zrdpm_contour_system` over ``phi`` with the batched Newton engine.
 
     The seed at ``phi[0]`` is the sliders' position of eq. 6 with the lever at
@@ -306,6 +349,14 @@ def zrdpm_contour(l, phi, r=0.0, r_a=None, r_b=None, ratio=0.5, mesh="external",
     phi = finite_array("phi", phi)
     p0 = float(phi.reshape(-1)[0]) if phi.size else 0.0
     th = float(lever_angle0)
-    guess = {"x_B": l * math.cos(p0), "y_A": l * math.sin(p0) + r, "theta1": th, "w1": 0.0,
-             "p_x": l * math.cos(th), "p_y": l * math.sin(th), "theta8": th, "w8": 0.0}
+    guess = {
+        "x_B": l * math.cos(p0),
+        "y_A": l * math.sin(p0) + r,
+        "theta1": th,
+        "w1": 0.0,
+        "p_x": l * math.cos(th),
+        "p_y": l * math.sin(th),
+        "theta8": th,
+        "w8": 0.0,
+    }
     return system.solve(phi, guess, strict=strict)

@@ -20,12 +20,13 @@ Pure numpy; imports neither matplotlib nor pandas (nor scipy).
 from __future__ import annotations
 
 import math  # noqa: F401  (used by the doctests)
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Mapping, Sequence
 
 import numpy as np
 
 from gearlever._validate import finite, finite_array
+from gearlever.errors import GearleverError
 
 __all__ = ["Input", "Unknown", "Vector", "LoopSystem", "LoopSolution", "INPUT"]
 
@@ -61,14 +62,18 @@ def _spec(kind: str, value):
         return ("input", finite(f"{kind} k", value.k), finite(f"{kind} offset", value.offset))
     if isinstance(value, Unknown):
         if not value.name:
-            raise ValueError(f"{kind} unknown must have a non-empty name")
-        return ("unknown", value.name, finite(f"{kind} offset", value.offset),
-                finite(f"{kind} scale", value.scale))
+            raise GearleverError(f"{kind} unknown must have a non-empty name")
+        return (
+            "unknown",
+            value.name,
+            finite(f"{kind} offset", value.offset),
+            finite(f"{kind} scale", value.scale),
+        )
     if isinstance(value, str):
         if value == "input":
             return ("input", 1.0, 0.0)
         if not value:
-            raise ValueError(f"{kind} unknown must have a non-empty name")
+            raise GearleverError(f"{kind} unknown must have a non-empty name")
         return ("unknown", value, 0.0, 1.0)
     return ("fixed", finite(kind, value))
 
@@ -95,7 +100,7 @@ class Vector:
 
     def __post_init__(self):
         if self.sign not in (1, -1):
-            raise ValueError(f"sign must be +1 or -1, got {self.sign!r}")
+            raise GearleverError(f"sign must be +1 or -1, got {self.sign!r}")
         _spec("length", self.length)
         _spec("angle", self.angle)
 
@@ -137,28 +142,26 @@ class LoopSystem:
     def __init__(self, loops: Sequence[Sequence[Vector]]):
         loops = [list(loop) for loop in loops]
         if not loops or any(len(loop) == 0 for loop in loops):
-            raise ValueError("loops must be a non-empty list of non-empty vector lists")
+            raise GearleverError("loops must be a non-empty list of non-empty vector lists")
         names: list[str] = []
         specs = []
         for j, loop in enumerate(loops):
             for v in loop:
                 if not isinstance(v, Vector):
-                    raise ValueError(f"loops must hold Vector objects, got {type(v).__name__}")
+                    raise GearleverError(f"loops must hold Vector objects, got {type(v).__name__}")
                 ls, as_ = _spec("length", v.length), _spec("angle", v.angle)
                 for s in (ls, as_):
                     if s[0] == "unknown" and s[1] not in names:
                         names.append(s[1])
                 specs.append((j, v, ls, as_))
         if len(names) != 2 * len(loops):
-            raise ValueError(
+            raise GearleverError(
                 f"loops must have exactly 2 unknowns per loop ({2 * len(loops)}), got {len(names)}: {names}"
             )
         self.loops = tuple(tuple(loop) for loop in loops)
         self.unknowns = tuple(names)
         self._index = {n: i for i, n in enumerate(names)}
-        self._specs = [
-            (j, v.sign, self._compile(ls), self._compile(as_)) for j, v, ls, as_ in specs
-        ]
+        self._specs = [(j, v.sign, self._compile(ls), self._compile(as_)) for j, v, ls, as_ in specs]
         self.vectors = tuple(v for _, v, _, _ in specs)
         fixed = [abs(ls[1]) for _, _, ls, _ in specs if ls[0] == "fixed"]
         self.scale = max(fixed) if fixed else 1.0
@@ -256,8 +259,7 @@ class LoopSystem:
         phi = np.asarray(phi, dtype=float)
         x = np.asarray(x, dtype=float)
         L, _, E = self._LAE(phi, x)
-        Jc = np.tensordot(E, self._W["L"], axes=([-1], [0])) + \
-            np.tensordot(1j * L * E, self._W["A"], axes=([-1], [0]))
+        Jc = np.tensordot(E, self._W["L"], axes=([-1], [0])) + np.tensordot(1j * L * E, self._W["A"], axes=([-1], [0]))
         J = np.empty(Jc.shape[:-2] + (2 * Jc.shape[-2], Jc.shape[-1]))
         J[..., 0::2, :] = Jc.real
         J[..., 1::2, :] = Jc.imag
@@ -379,8 +381,15 @@ class LoopSystem:
         conv &= np.all(np.isfinite(x), axis=-1)
         return x, conv
 
-    def solve(self, phi, guess: Mapping[str, float], *, strict: bool = False,
-              max_step: float = 0.1, singular_tol: float = 1e-7) -> "LoopSolution":
+    def solve(
+        self,
+        phi,
+        guess: Mapping[str, float],
+        *,
+        strict: bool = False,
+        max_step: float = 0.1,
+        singular_tol: float = 1e-7,
+    ) -> LoopSolution:
         """Positions and analogues of the unknowns over an array of input values.
 
         Parameters
@@ -425,10 +434,10 @@ class LoopSystem:
         """
         phi_in = finite_array("phi", phi)
         if phi_in.size == 0:
-            raise ValueError("phi must hold at least one value, got an empty array")
+            raise GearleverError("phi must hold at least one value, got an empty array")
         missing = [n for n in self.unknowns if n not in guess]
         if missing:
-            raise ValueError(f"guess must give every unknown, missing {missing}")
+            raise GearleverError(f"guess must give every unknown, missing {missing}")
         seed = np.array([finite(f"guess[{n!r}]", guess[n]) for n in self.unknowns])
         max_step = float(max_step)
         p = phi_in.reshape(-1)
@@ -443,14 +452,14 @@ class LoopSystem:
         block = 16
         while i < N:
             if state is None:
-                x1, c1 = self._newton(p[i:i + 1], seed[None, :])
+                x1, c1 = self._newton(p[i : i + 1], seed[None, :])
                 if c1[0]:
-                    d1, d2, bad = self.analogues(p[i:i + 1], x1, singular_tol)
+                    d1, d2, bad = self.analogues(p[i : i + 1], x1, singular_tol)
                     X[i] = x1[0]
                     if not bad[0]:
                         ok[i] = True
                         state = (p[i], x1[0], d1[0], d2[0])
-                        sgn0 = self._det_sign(p[i:i + 1], x1)[0]
+                        sgn0 = self._det_sign(p[i : i + 1], x1)[0]
                 i += 1
                 continue
             phi0, x0, d10, d20 = state
@@ -458,7 +467,7 @@ class LoopSystem:
                 i += 1
                 continue
             # largest prefix within max_step of phi0
-            hs = p[i:i + block] - phi0
+            hs = p[i : i + block] - phi0
             within = np.abs(hs) <= max_step
             m = int(np.argmin(within)) if not within.all() else within.size
             if m == 0:
@@ -483,7 +492,7 @@ class LoopSystem:
             good = conv & ~bad & near & (self._det_sign(p[idx], xs) == sgn0)
             k = int(np.argmin(good)) if not good.all() else m
             if k > 0:
-                X[i:i + k], ok[i:i + k] = xs[:k], True
+                X[i : i + k], ok[i : i + k] = xs[:k], True
                 state = (p[i + k - 1], xs[k - 1], d1[k - 1], d2[k - 1])
                 blocked = None
                 i += k
@@ -506,7 +515,7 @@ class LoopSystem:
         Xr = np.where(closed[..., None], Xr, np.nan)
         if strict and not valid.all():
             first = int(np.flatnonzero(~valid.reshape(-1))[0])
-            raise ValueError(
+            raise GearleverError(
                 f"phi: the loop does not close or is at a dead point at phi = {p[first]!r} "
                 f"({int((~valid).sum())} of {valid.size} points)"
             )
@@ -531,10 +540,14 @@ class LoopSystem:
             if ok:
                 d1, d2, bad = self.analogues(pt, xs, singular_tol)
                 trust = 0.1 * abs(h) * (1.0 + np.abs(d1_c).max()) + 1e-12
-                ok = ((not bad[0]) and np.max(np.abs(xs[0] - pred[0])) <= trust
-                      and self._det_sign(pt, xs)[0] == sgn0)
+                ok = (not bad[0]) and np.max(np.abs(xs[0] - pred[0])) <= trust and self._det_sign(pt, xs)[0] == sgn0
             if ok:
-                cur = (pt[0] if pt[0] != target and abs(target - pt[0]) > 1e-15 else target, xs[0], d1[0], d2[0])
+                cur = (
+                    pt[0] if pt[0] != target and abs(target - pt[0]) > 1e-15 else target,
+                    xs[0],
+                    d1[0],
+                    d2[0],
+                )
                 step = min(step * 2, 0.1)
             else:
                 step /= 2
@@ -580,7 +593,7 @@ class LoopSolution:
         try:
             return self.names.index(name)
         except ValueError:
-            raise ValueError(f"name must be one of {self.names}, got {name!r}") from None
+            raise GearleverError(f"name must be one of {self.names}, got {name!r}") from None
 
     def __getitem__(self, name) -> np.ndarray:
         """Position array of unknown ``name``."""

@@ -21,11 +21,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearlever._validate import finite_array, positive
+from gearlever.errors import GearleverError
 from gearlever.loops.engine import INPUT, LoopSystem, Vector
 
 __all__ = [
-    "FourBar", "FourBarResult", "fourbar", "fourbar_system", "GrashofClass", "grashof",
-    "LimitPositions", "limit_positions", "transmission_angle",
+    "FourBar",
+    "FourBarResult",
+    "fourbar",
+    "fourbar_system",
+    "GrashofClass",
+    "grashof",
+    "LimitPositions",
+    "limit_positions",
+    "transmission_angle",
 ]
 
 _BRANCH = {"open": 1.0, "crossed": -1.0}
@@ -35,7 +43,7 @@ def _branch(branch) -> float:
     try:
         return _BRANCH[branch]
     except (KeyError, TypeError):
-        raise ValueError(f"branch must be 'open' or 'crossed', got {branch!r}") from None
+        raise GearleverError(f"branch must be 'open' or 'crossed', got {branch!r}") from None
 
 
 def _lengths(ground, crank, coupler, rocker):
@@ -46,7 +54,7 @@ def _lengths(ground, crank, coupler, rocker):
     links = {"ground": d, "crank": a, "coupler": b, "rocker": c}
     name, longest = max(links.items(), key=lambda kv: kv[1])
     if longest >= sum(links.values()) - longest:
-        raise ValueError(
+        raise GearleverError(
             f"{name} must be shorter than the sum of the other three links "
             f"({sum(links.values()) - longest:g}) for the linkage to assemble, got {longest:g}"
         )
@@ -85,8 +93,7 @@ class FourBarResult:
     closed: np.ndarray
 
 
-def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=False,
-            singular_tol=1e-7) -> FourBarResult:
+def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=False, singular_tol=1e-7) -> FourBarResult:
     """Coupler and rocker angles of a four-bar and their analogues, closed form.
 
     Parameters
@@ -162,7 +169,7 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
         e4 = -(kx * c3 + ky * s3) / (c * S)
     if strict and not valid.all():
         first = th2.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
-        raise ValueError(
+        raise GearleverError(
             f"theta2: the four-bar cannot close or is at a dead point at theta2 = {first!r} rad "
             f"({int((~valid).sum())} of {valid.size} points)"
         )
@@ -182,8 +189,16 @@ def fourbar_system(ground, crank, coupler, rocker) -> LoopSystem:
     ('theta3', 'theta4')
     """
     d, a, b, c = _lengths(ground, crank, coupler, rocker)
-    return LoopSystem([[Vector("A", a, INPUT), Vector("BA", b, "theta3"),
-                        Vector("B", c, "theta4", -1), Vector("O4", d, 0.0, -1)]])
+    return LoopSystem(
+        [
+            [
+                Vector("A", a, INPUT),
+                Vector("BA", b, "theta3"),
+                Vector("B", c, "theta4", -1),
+                Vector("O4", d, 0.0, -1),
+            ]
+        ]
+    )
 
 
 @dataclass(frozen=True)
@@ -319,8 +334,11 @@ def limit_positions(ground, crank, coupler, rocker, branch="open") -> LimitPosit
                 t2.append(float(th2))
                 t4.append(float(th4))
     order = np.argsort(t4)
-    return LimitPositions(np.sort(np.array(lims, dtype=float)),
-                          np.array(t2, dtype=float)[order], np.array(t4, dtype=float)[order])
+    return LimitPositions(
+        np.sort(np.array(lims, dtype=float)),
+        np.array(t2, dtype=float)[order],
+        np.array(t4, dtype=float)[order],
+    )
 
 
 def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearlever._validate import finite
+from gearlever.errors import GearleverError
 from gearlever.loops.engine import LoopSystem
 
 __all__ = ["PlanTerm", "velocity_plan", "acceleration_plan"]
@@ -49,17 +50,17 @@ class PlanTerm:
 
 def _one(system, sol, index):
     if not isinstance(system, LoopSystem):
-        raise ValueError("system must be a LoopSystem")
+        raise GearleverError("system must be a LoopSystem")
     i = int(index)
     if not (-sol.phi.size <= i < sol.phi.size):
-        raise ValueError(f"index must be within the solution's {sol.phi.size} points, got {index!r}")
+        raise GearleverError(f"index must be within the solution's {sol.phi.size} points, got {index!r}")
     phi = sol.phi.reshape(-1)[i]
     n = len(system.unknowns)
     x = sol.x.reshape(-1, n)[i]
     dx = sol.dx_dphi.reshape(-1, n)[i]
     d2x = sol.d2x_dphi2.reshape(-1, n)[i]
     if not sol.valid.reshape(-1)[i]:
-        raise ValueError(f"index must point at a valid (closed, non-dead) position, got {index!r}")
+        raise GearleverError(f"index must point at a valid (closed, non-dead) position, got {index!r}")
     return system.vector_analogues(np.array(phi), x, dx, d2x)
 
 

@@ -4,12 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
 
-matplotlib.use("Agg", force=False)
-import matplotlib.pyplot as plt  # noqa: E402
-
-from gearlever._io import atomic_path  # noqa: E402
+from gearlever._io import atomic_path
 
 #: PNG metadata left out so that re-running writes the same bytes.
 _PNG_METADATA = {"Software": None}

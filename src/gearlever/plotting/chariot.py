@@ -34,8 +34,18 @@ def plot_chariot_path(runs, ax=None, arrows: int = 16):
         idx = np.linspace(0, x.size - 1, arrows).round().astype(int)
         h = run.pointer_heading[idx]
         scale = 0.06 * max(np.ptp(x), np.ptp(y), run.track)
-        ax.quiver(x[idx], y[idx], np.cos(h) * scale, np.sin(h) * scale, color=color, angles="xy",
-                  scale_units="xy", scale=1, width=0.005, label=f"pointer, {label}")
+        ax.quiver(
+            x[idx],
+            y[idx],
+            np.cos(h) * scale,
+            np.sin(h) * scale,
+            color=color,
+            angles="xy",
+            scale_units="xy",
+            scale=1,
+            width=0.005,
+            label=f"pointer, {label}",
+        )
     ax.margins(0.1)  # room for the arrows at the edges (quiver does not widen the limits)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (units of track t)")
@@ -54,8 +64,7 @@ def plot_drift(runs, ax=None):
     """
     ax = axes(ax)
     for label, run in runs.items():
-        ax.plot(run.mid_distance(), run.drift, lw=1.2,
-                label=f"{label} (max |drift| {run.max_drift:.2e} rad)")
+        ax.plot(run.mid_distance(), run.drift, lw=1.2, label=f"{label} (max |drift| {run.max_drift:.2e} rad)")
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlabel("distance driven by the axle mid-point (units of track t)")
     ax.set_ylabel("pointer drift (rad)")

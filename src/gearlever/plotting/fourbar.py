@@ -25,9 +25,11 @@ def fourbar_curves(ground, crank, coupler, rocker, branch="open", points=721):
     for t in np.degrees(np.mod(lp.theta2_at_rocker_extremes, 2 * np.pi)):
         a1.axvline(t, color="0.6", lw=0.8, ls=":")
     a1.set_ylabel("analogue (rad/rad, rad/rad²)")
-    a1.set_title(f"Four-bar {ground:g}/{crank:g}/{coupler:g}/{rocker:g} "
-                 f"({grashof(ground, crank, coupler, rocker).kind}, {branch}): analogues; "
-                 "dotted: rocker extremes")
+    a1.set_title(
+        f"Four-bar {ground:g}/{crank:g}/{coupler:g}/{rocker:g} "
+        f"({grashof(ground, crank, coupler, rocker).kind}, {branch}): analogues; "
+        "dotted: rocker extremes"
+    )
     a1.legend(fontsize=8, ncol=2)
     a1.grid(True, alpha=0.3)
     a2.plot(deg, mu, color="tab:purple", label=r"transmission angle $\mu$")

@@ -13,13 +13,23 @@ import numpy as np
 from matplotlib.lines import Line2D
 
 from gearlever.loops import (
-    acceleration_plan, double_slider, double_slider_system, fourbar, fourbar_system,
+    acceleration_plan,
+    double_slider,
+    double_slider_system,
+    fourbar,
+    fourbar_system,
     velocity_plan,
 )
 from gearlever.plotting._common import axes
 
-__all__ = ["draw_plan", "velocity_plan_axes", "acceleration_plan_axes", "zrdpm_acceleration_plan",
-           "zrdpm_plans_figure", "fourbar_plans"]
+__all__ = [
+    "draw_plan",
+    "velocity_plan_axes",
+    "acceleration_plan_axes",
+    "zrdpm_acceleration_plan",
+    "zrdpm_plans_figure",
+    "fourbar_plans",
+]
 
 _SIDE_COLOR = {1: "tab:blue", -1: "tab:red"}
 
@@ -68,20 +78,44 @@ def draw_plan(terms, ax=None, *, prefix="a", unit="", labels=None, title=None):
             start, end = z, z + t.value
             lab = _label(prefix, t, labels)
             if abs(t.value) > 1e-9 * scale:
-                ax.annotate("", xy=(end.real, end.imag), xytext=(start.real, start.imag),
-                            arrowprops=dict(arrowstyle="-|>", color=_SIDE_COLOR[side], lw=1.6,
-                                            shrinkA=0, shrinkB=0))
+                ax.annotate(
+                    "",
+                    xy=(end.real, end.imag),
+                    xytext=(start.real, start.imag),
+                    arrowprops=dict(arrowstyle="-|>", color=_SIDE_COLOR[side], lw=1.6, shrinkA=0, shrinkB=0),
+                )
                 mid = 0.5 * (start + end)
                 nrm = 1j * t.value / abs(t.value) * 0.04 * scale * side
-                ax.text((mid + nrm).real, (mid + nrm).imag, lab, color=_SIDE_COLOR[side],
-                        ha="center", va="center", fontsize=11)
+                ax.text(
+                    (mid + nrm).real,
+                    (mid + nrm).imag,
+                    lab,
+                    color=_SIDE_COLOR[side],
+                    ha="center",
+                    va="center",
+                    fontsize=11,
+                )
             else:
-                ax.text(end.real, end.imag, f"  {lab[:-1]} = 0$", color=_SIDE_COLOR[side],
-                        ha="left", va="bottom", fontsize=10)
+                ax.text(
+                    end.real,
+                    end.imag,
+                    f"  {lab[:-1]} = 0$",
+                    color=_SIDE_COLOR[side],
+                    ha="left",
+                    va="bottom",
+                    fontsize=10,
+                )
             z = end
             pts.append(end)
-        handles.append(Line2D([], [], color=_SIDE_COLOR[side], lw=1.6,
-                              label=" + ".join(f"${prefix}_{{{n}}}$" for n in names)))
+        handles.append(
+            Line2D(
+                [],
+                [],
+                color=_SIDE_COLOR[side],
+                lw=1.6,
+                label=" + ".join(f"${prefix}_{{{n}}}$" for n in names),
+            )
+        )
     xs, ys = [p.real for p in pts], [p.imag for p in pts]
     ax.plot(xs, ys, linestyle="none", marker=".", color="0.3")
     ax.plot([0], [0], "ko", ms=5)
@@ -102,20 +136,28 @@ def draw_plan(terms, ax=None, *, prefix="a", unit="", labels=None, title=None):
 
 def velocity_plan_axes(system, sol, index=0, omega=1.0, ax=None, *, unit="", labels=None, title=None):
     """Velocity plan of any loop system at point ``index`` of ``sol``; returns the Axes."""
-    return draw_plan(velocity_plan(system, sol, index, omega), ax, prefix="v", unit=unit,
-                     labels=labels, title=title)
+    return draw_plan(velocity_plan(system, sol, index, omega), ax, prefix="v", unit=unit, labels=labels, title=title)
 
 
-def acceleration_plan_axes(system, sol, index=0, omega=1.0, alpha=0.0, ax=None, *, unit="",
-                           labels=None, title=None):
+def acceleration_plan_axes(system, sol, index=0, omega=1.0, alpha=0.0, ax=None, *, unit="", labels=None, title=None):
     """Acceleration plan of any loop system at point ``index`` of ``sol``; returns the Axes."""
-    return draw_plan(acceleration_plan(system, sol, index, omega, alpha), ax, prefix="a",
-                     unit=unit, labels=labels, title=title)
+    return draw_plan(
+        acceleration_plan(system, sol, index, omega, alpha),
+        ax,
+        prefix="a",
+        unit=unit,
+        labels=labels,
+        title=title,
+    )
 
 
 #: labels of paper eqs. 19-20 for the double-slider contour
-ZRDPM_LABELS = {("B", "s"): "$a_B$", ("A", "s"): "$a_A$", ("BA", "n"): "$a_{BA}^n$",
-                ("BA", "t"): "$a_{BA}^t$"}
+ZRDPM_LABELS = {
+    ("B", "s"): "$a_B$",
+    ("A", "s"): "$a_A$",
+    ("BA", "n"): "$a_{BA}^n$",
+    ("BA", "t"): "$a_{BA}^t$",
+}
 
 
 def zrdpm_acceleration_plan(l=21.0, r=0.0, phi_deg=30.0, omega=1.0, alpha=0.0, ax=None):
@@ -128,11 +170,12 @@ def zrdpm_acceleration_plan(l=21.0, r=0.0, phi_deg=30.0, omega=1.0, alpha=0.0, a
     """
     system = double_slider_system(l, r)
     sol = double_slider(l, r, [math.radians(phi_deg)])
-    title = (f"ZRDPM contour 1 acceleration plan (eqs. 19-20)\n"
-             f"$l_1$ = {l:g} cm, $\\varphi$ = {phi_deg:g}°, $\\omega_9$ = {omega:g} rad/s, "
-             f"$\\varepsilon_9$ = {alpha:g} rad/s²")
-    ax = acceleration_plan_axes(system, sol, 0, omega, alpha, ax, unit="cm/s²",
-                                labels=ZRDPM_LABELS, title=title)
+    title = (
+        f"ZRDPM contour 1 acceleration plan (eqs. 19-20)\n"
+        f"$l_1$ = {l:g} cm, $\\varphi$ = {phi_deg:g}°, $\\omega_9$ = {omega:g} rad/s, "
+        f"$\\varepsilon_9$ = {alpha:g} rad/s²"
+    )
+    ax = acceleration_plan_axes(system, sol, 0, omega, alpha, ax, unit="cm/s²", labels=ZRDPM_LABELS, title=title)
     ax.text(0.02, 0.03, r"$a_B = a_A + a_{BA}^n + a_{BA}^t$", transform=ax.transAxes, fontsize=10)
     return ax
 
@@ -147,8 +190,7 @@ def zrdpm_plans_figure(l=21.0, r=0.0, phi_deg=30.0, omega=1.0, alpha=0.5):
     return fig
 
 
-def fourbar_plans(ground, crank, coupler, rocker, theta2_deg, omega=1.0, alpha=0.0,
-                  branch="open", unit="cm"):
+def fourbar_plans(ground, crank, coupler, rocker, theta2_deg, omega=1.0, alpha=0.0, branch="open", unit="cm"):
     """Velocity and acceleration plans of a four-bar at one crank angle; returns the Figure."""
     import matplotlib.pyplot as plt
 
@@ -157,10 +199,26 @@ def fourbar_plans(ground, crank, coupler, rocker, theta2_deg, omega=1.0, alpha=0
     system = fourbar_system(ground, crank, coupler, rocker)
     sol = system.solve(th, {"theta3": float(r.theta3[0]), "theta4": float(r.theta4[0])}, strict=True)
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10.5, 5.0), layout="constrained")
-    velocity_plan_axes(system, sol, 0, omega, ax=a1, unit=f"{unit}/s",
-                       title=f"Velocity plan, $\\theta_2$ = {theta2_deg:g}°, $\\omega_2$ = {omega:g} rad/s")
-    acceleration_plan_axes(system, sol, 0, omega, alpha, ax=a2, unit=f"{unit}/s²",
-                           title=f"Acceleration plan, $\\alpha_2$ = {alpha:g} rad/s²")
-    fig.suptitle(f"Four-bar {ground:g}/{crank:g}/{coupler:g}/{rocker:g} {unit} "
-                 f"(ground/crank/coupler/rocker), {branch} branch")
+    velocity_plan_axes(
+        system,
+        sol,
+        0,
+        omega,
+        ax=a1,
+        unit=f"{unit}/s",
+        title=f"Velocity plan, $\\theta_2$ = {theta2_deg:g}°, $\\omega_2$ = {omega:g} rad/s",
+    )
+    acceleration_plan_axes(
+        system,
+        sol,
+        0,
+        omega,
+        alpha,
+        ax=a2,
+        unit=f"{unit}/s²",
+        title=f"Acceleration plan, $\\alpha_2$ = {alpha:g} rad/s²",
+    )
+    fig.suptitle(
+        f"Four-bar {ground:g}/{crank:g}/{coupler:g}/{rocker:g} {unit} (ground/crank/coupler/rocker), {branch} branch"
+    )
     return fig

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearlever import zrdpm
 from gearlever.plotting._common import axes, plt
+from gearlever.zrdpm import model as zrdpm
 
 #: Angles (degrees) at which curves are drawn: one point per degree.
 _PHI_DEG = np.linspace(0.0, 360.0, 361)
@@ -67,13 +67,19 @@ def plot_analogues(params1: zrdpm.ZrdpmContour | None = None, params2: zrdpm.Zrd
     for ax, p, lead, ratio_name in ((axs[0], params1, "9", "r_9/r_8"), (axs[1], params2, "6", "r_6/r_7")):
         kin = zrdpm.analogues(p, phi)
         uc, ug, ec, eg = (n.replace("_", "_{") + "}" for n in p.names[:4])
-        for arr, name, style in ((kin.u_carrier, uc, "-"), (kin.u_gear, ug, "-"),
-                                 (kin.e_carrier, ec, "--"), (kin.e_gear, eg, "--")):
+        for arr, name, style in (
+            (kin.u_carrier, uc, "-"),
+            (kin.u_gear, ug, "-"),
+            (kin.e_carrier, ec, "--"),
+            (kin.e_gear, eg, "--"),
+        ):
             ax.plot(_PHI_DEG, arr, ls=style, label=f"${name}$")
         _degree_axis(ax)
         ax.set_xlabel(rf"angle of leading link {lead}, $\varphi$ (deg)")
-        ax.set_title(f"contour {p.contour}: ${ratio_name} = {p.ratio:g}$, $l/(r_A+r_B) = {p.lever_gain:g}$",
-                     fontsize=10)
+        ax.set_title(
+            f"contour {p.contour}: ${ratio_name} = {p.ratio:g}$, $l/(r_A+r_B) = {p.lever_gain:g}$",
+            fontsize=10,
+        )
         ax.set_ylabel("analogue u, e (-)")
         ax.legend(fontsize=8, loc="lower center", ncol=4)
     lo, hi = axs[0].get_ylim()
@@ -97,33 +103,41 @@ def plot_table_comparison(reps):
         One panel per published column.
     """
     reps = list(reps)
-    fig, axs = plt.subplots(len(reps), 2, figsize=(11.0, 3.6 * len(reps)), layout="constrained",
-                            squeeze=False)
+    fig, axs = plt.subplots(len(reps), 2, figsize=(11.0, 3.6 * len(reps)), layout="constrained", squeeze=False)
     phi = np.deg2rad(_PHI_DEG)
     for row, rep in zip(axs, reps):
         pub, fit, sc = rep.table, rep.fit, rep.self_consistent
         ax_t, ay_t = zrdpm.tables_point_accelerations(fit.constants, phi)
         kin = zrdpm.analogues(sc.params, phi)
         k = fit.constants
-        for ax, name, published, model, selfc in ((row[0], pub.columns[0], pub.a_x, ax_t, kin.a_x),
-                                                  (row[1], pub.columns[1], pub.a_y, ay_t, kin.a_y)):
-            ax.plot(_PHI_DEG, model, color="C0",
-                    label=f"reproduction: eq. {16 if pub.contour == 1 else 35}, "
-                          f"l u² = {k.l_u2:.3f}, l e = {k.l_e:.3f} cm")
-            ax.plot(_PHI_DEG, selfc, color="C3", ls="--",
-                    label=f"self-consistent model, best fit l = {sc.params.l:.2f} cm")
+        for ax, name, published, model, selfc in (
+            (row[0], pub.columns[0], pub.a_x, ax_t, kin.a_x),
+            (row[1], pub.columns[1], pub.a_y, ay_t, kin.a_y),
+        ):
+            ax.plot(
+                _PHI_DEG,
+                model,
+                color="C0",
+                label=f"reproduction: eq. {16 if pub.contour == 1 else 35}, l u² = {k.l_u2:.3f}, l e = {k.l_e:.3f} cm",
+            )
+            ax.plot(
+                _PHI_DEG,
+                selfc,
+                color="C3",
+                ls="--",
+                label=f"self-consistent model, best fit l = {sc.params.l:.2f} cm",
+            )
             ax.plot(pub.phi_deg, published, "ko", ms=4, label=f"published, Table {pub.table}")
-            corr = (pub.corrected_x if name == pub.columns[0] else pub.corrected_y)
+            corr = pub.corrected_x if name == pub.columns[0] else pub.corrected_y
             if corr.any():
-                ax.plot(pub.phi_deg[corr], published[corr], "o", mfc="none", mec="C1", ms=9,
-                        label="OCR corrected")
+                ax.plot(pub.phi_deg[corr], published[corr], "o", mfc="none", mec="C1", ms=9, label="OCR corrected")
             _degree_axis(ax)
             sub = name.split("_")[1]
             ax.set_xlabel(r"angle of leading link, $\varphi$ (deg)")
             ax.set_ylabel(rf"$a_{sub}/\omega^2$ (cm)")
             ax.set_title(f"Table {pub.table}: $a_{sub}$ (max |dev| {fit.max_abs:.4f} cm)", fontsize=10)
             lo, hi = ax.get_ylim()
-            ax.set_ylim(lo - 0.45 * (hi - lo), hi)   # room for the legend under the curves
+            ax.set_ylim(lo - 0.45 * (hi - lo), hi)  # room for the legend under the curves
             ax.legend(fontsize=7, loc="lower center", ncol=2)
     fig.suptitle("ZRDPM Tables I and II: published, reproduced, and the self-consistent model")
     return fig

@@ -19,18 +19,24 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
 
     figures_dir = Path(figures_dir)
     out = []
-    save(zrdpm_plans_figure(ZRDPM_L1_CM, 0.0, ZRDPM_PHI_DEG, 1.0, ZRDPM_EPS9),
-         figures_dir / "loops_zrdpm_acceleration_plan.png")
-    out.append(f"loops: ZRDPM contour-1 acceleration plan (eqs. 19-20) at phi = {ZRDPM_PHI_DEG:g} deg, "
-               f"l1 = {ZRDPM_L1_CM:g} cm -> figures/loops_zrdpm_acceleration_plan.png")
+    save(
+        zrdpm_plans_figure(ZRDPM_L1_CM, 0.0, ZRDPM_PHI_DEG, 1.0, ZRDPM_EPS9),
+        figures_dir / "loops_zrdpm_acceleration_plan.png",
+    )
+    out.append(
+        f"loops: ZRDPM contour-1 acceleration plan (eqs. 19-20) at phi = {ZRDPM_PHI_DEG:g} deg, "
+        f"l1 = {ZRDPM_L1_CM:g} cm -> figures/loops_zrdpm_acceleration_plan.png"
+    )
     save(fourbar_plans(*FOURBAR, FOURBAR_THETA2_DEG), figures_dir / "loops_fourbar_plans.png")
     save(fourbar_curves(*FOURBAR), figures_dir / "loops_fourbar_curves.png")
     animate_fourbar(*FOURBAR, figures_dir / "loops_fourbar.gif", frames=18, dpi=50)
     import numpy as np
 
     r = fourbar(*FOURBAR, np.linspace(0, 2 * np.pi, 3600, endpoint=False))
-    out.append(f"loops: four-bar {'/'.join(f'{v:g}' for v in FOURBAR)} ({grashof(*FOURBAR).kind}): "
-               f"max |dtheta4/dphi| = {np.abs(r.dtheta4_dphi).max():.6f}, "
-               f"max |d2theta4/dphi2| = {np.abs(r.d2theta4_dphi2).max():.6f} "
-               "-> figures/loops_fourbar_{plans,curves}.png, loops_fourbar.gif")
+    out.append(
+        f"loops: four-bar {'/'.join(f'{v:g}' for v in FOURBAR)} ({grashof(*FOURBAR).kind}): "
+        f"max |dtheta4/dphi| = {np.abs(r.dtheta4_dphi).max():.6f}, "
+        f"max |d2theta4/dphi2| = {np.abs(r.d2theta4_dphi2).max():.6f} "
+        "-> figures/loops_fourbar_{plans,curves}.png, loops_fourbar.gif"
+    )
     return out

@@ -24,8 +24,10 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     sand = ttab.sandgren_table()
     write_csv(sand, tables_dir / "sandgren.csv")
     k2 = sand[sand.pairs == 2].iloc[0]
-    lines.append(f"trains: tables/sandgren.csv: K=2 optimum {k2.drivers} / {k2.followers}, "
-                 f"squared error {k2.squared_error:.6e}, {k2.n_solutions} set(s), {k2.n_ordered} ordered")
+    lines.append(
+        f"trains: tables/sandgren.csv: K=2 optimum {k2.drivers} / {k2.followers}, "
+        f"squared error {k2.squared_error:.6e}, {k2.n_solutions} set(s), {k2.n_ordered} ordered"
+    )
     ax = hplot.plot_single_ratio()
     save(ax.figure, figures_dir / "hooke_single.png")
     ax = hplot.plot_double_ratio()

@@ -13,6 +13,11 @@ from gearlever._io import write_text_atomic
 FLOAT_FORMAT = "%.12g"
 
 
+def frame(columns: dict) -> pd.DataFrame:
+    """A DataFrame of ``columns`` (name -> 1-D array), in the order given."""
+    return pd.DataFrame(columns)
+
+
 def write_csv(df: pd.DataFrame, path, float_format: str = FLOAT_FORMAT) -> Path:
     """Write ``df`` (without its index) to ``path`` atomically; return the path.
 

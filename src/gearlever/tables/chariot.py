@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pandas as pd
 
-from gearlever.car import car_differential
-from gearlever.chariot import NuttallTeeth, design_nuttall, nuttall_closed_form
+from gearlever.gears.car import car_differential
+from gearlever.gears.chariot import NuttallTeeth, design_nuttall, nuttall_closed_form
 
 #: Worked designs: (name, (n2, n5, n6, n7, n8, n9, n11)).
 NUTTALL_DESIGNS = (
@@ -43,35 +43,62 @@ def nuttall_designs_table(designs=NUTTALL_DESIGNS) -> pd.DataFrame:
         d = design_nuttall(t)
         a = d.solution.analysis
         cf = nuttall_closed_form(t)
-        rows.append({
-            "design": name, **t.as_dict(),
-            "unknowns": a.unknowns, "rank": a.rank, "dof": a.dof, "redundant": " ".join(a.redundant),
-            "rot7_per_rot1": _frac(d.pointer_per_right), "rot7_per_rot12": _frac(d.pointer_per_left),
-            "rot1_turns_per_pointer_turn": _frac(d.rot1_per_pointer_turn),
-            "rot12_turns_per_pointer_turn": _frac(d.rot12_per_pointer_turn),
-            "d1_per_t_fraction": _frac(d.d1_over_t), "d12_per_t_fraction": _frac(d.d12_over_t),
-            "d1_per_t": float(d.d1_over_t), "d12_per_t": float(d.d12_over_t),
-            "closed_form_agrees": bool(cf["d1_over_t"] == d.d1_over_t and cf["d12_over_t"] == d.d12_over_t
-                                       and cf["rot1"] == d.rot1_per_pointer_turn
-                                       and cf["rot12"] == d.rot12_per_pointer_turn),
-        })
+        rows.append(
+            {
+                "design": name,
+                **t.as_dict(),
+                "unknowns": a.unknowns,
+                "rank": a.rank,
+                "dof": a.dof,
+                "redundant": " ".join(a.redundant),
+                "rot7_per_rot1": _frac(d.pointer_per_right),
+                "rot7_per_rot12": _frac(d.pointer_per_left),
+                "rot1_turns_per_pointer_turn": _frac(d.rot1_per_pointer_turn),
+                "rot12_turns_per_pointer_turn": _frac(d.rot12_per_pointer_turn),
+                "d1_per_t_fraction": _frac(d.d1_over_t),
+                "d12_per_t_fraction": _frac(d.d12_over_t),
+                "d1_per_t": float(d.d1_over_t),
+                "d12_per_t": float(d.d12_over_t),
+                "closed_form_agrees": bool(
+                    cf["d1_over_t"] == d.d1_over_t
+                    and cf["d12_over_t"] == d.d12_over_t
+                    and cf["rot1"] == d.rot1_per_pointer_turn
+                    and cf["rot12"] == d.rot12_per_pointer_turn
+                ),
+            }
+        )
     return pd.DataFrame(rows)
 
 
-def car_cases_table(pinion_teeth: int = 11, ring_teeth: int = 41, pinion_speed_rad_s: float = 300.0,
-                    pinion_torque_N_m: float = 100.0, cases=CAR_CASES) -> pd.DataFrame:
+def car_cases_table(
+    pinion_teeth: int = 11,
+    ring_teeth: int = 41,
+    pinion_speed_rad_s: float = 300.0,
+    pinion_torque_N_m: float = 100.0,
+    cases=CAR_CASES,
+) -> pd.DataFrame:
     """Worked car-differential cases (speeds rad/s, torques N m, power W)."""
     rows = []
     for name, kw in cases:
         s = car_differential(pinion_teeth, ring_teeth, pinion_speed_rad_s, pinion_torque_N_m, **kw)
         d = s.as_dict()
-        rows.append({
-            "case": name, "pinion_teeth": pinion_teeth, "ring_teeth": ring_teeth,
-            "turn_radius_m": kw.get("turn_radius", float("nan")), "track_m": kw.get("track", float("nan")),
-            "pinion_speed_rad_s": pinion_speed_rad_s, "pinion_torque_N_m": pinion_torque_N_m,
-            "carrier_speed_rad_s": d["carrier_speed"], "left_speed_rad_s": d["left_speed"],
-            "right_speed_rad_s": d["right_speed"], "ring_torque_N_m": d["ring_torque"],
-            "left_torque_N_m": d["left_torque"], "right_torque_N_m": d["right_torque"],
-            "power_in_W": d["power_in"], "power_out_W": d["power_out"],
-        })
+        rows.append(
+            {
+                "case": name,
+                "pinion_teeth": pinion_teeth,
+                "ring_teeth": ring_teeth,
+                "turn_radius_m": kw.get("turn_radius", float("nan")),
+                "track_m": kw.get("track", float("nan")),
+                "pinion_speed_rad_s": pinion_speed_rad_s,
+                "pinion_torque_N_m": pinion_torque_N_m,
+                "carrier_speed_rad_s": d["carrier_speed"],
+                "left_speed_rad_s": d["left_speed"],
+                "right_speed_rad_s": d["right_speed"],
+                "ring_torque_N_m": d["ring_torque"],
+                "left_torque_N_m": d["left_torque"],
+                "right_torque_N_m": d["right_torque"],
+                "power_in_W": d["power_in"],
+                "power_out_W": d["power_out"],
+            }
+        )
     return pd.DataFrame(rows)

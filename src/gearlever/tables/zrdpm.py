@@ -7,7 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from gearlever import structure, zrdpm
+from gearlever.mechanism import structure
+from gearlever.zrdpm import model as zrdpm
 
 
 @dataclass(frozen=True)
@@ -53,8 +54,7 @@ def comparison_frame(rep: Reproduction) -> pd.DataFrame:
     phi = pub.phi
     ax, ay = zrdpm.tables_point_accelerations(fit.constants, phi)
     kin = zrdpm.analogues(sc.params, phi)
-    l_u2, l_e = zrdpm.recover_tables_constants(pub.contour, phi, pub.a_x, pub.a_y,
-                                               fit.constants.lever_angle0_deg)
+    l_u2, l_e = zrdpm.recover_tables_constants(pub.contour, phi, pub.a_x, pub.a_y, fit.constants.lever_angle0_deg)
     cx, cy = pub.columns
     uc, _, ec, _, _, _ = zrdpm.PAPER_NAMES[pub.contour]
     data = {"phi_deg": pub.phi_deg}
@@ -88,8 +88,13 @@ def constants_frame(reps) -> pd.DataFrame:
         common = dict(table=pub.table, contour=pub.contour, n_values=pub.size)
         tstats = dict(rms_residual_cm=rep.fit.rms, max_abs_residual_cm=rep.fit.max_abs)
         sstats = dict(rms_residual_cm=sc.rms, max_abs_residual_cm=sc.max_abs)
-        for par, val, unit in (("l_u2", k.l_u2, "cm"), ("l_e", k.l_e, "cm"), ("A", k.A, "cm"),
-                               ("B", k.B, "cm"), ("lever_angle0_fixed", k.lever_angle0_deg, "deg")):
+        for par, val, unit in (
+            ("l_u2", k.l_u2, "cm"),
+            ("l_e", k.l_e, "cm"),
+            ("A", k.A, "cm"),
+            ("B", k.B, "cm"),
+            ("lever_angle0_fixed", k.lever_angle0_deg, "deg"),
+        ):
             rows.append(dict(model="tables", **common, parameter=par, value=val, unit=unit, **tstats))
         for par, val, unit in (("l", sc.params.l, "cm"), ("lever_angle0", sc.params.lever_angle0_deg, "deg")):
             rows.append(dict(model="self-consistent", **common, parameter=par, value=val, unit=unit, **sstats))
@@ -101,7 +106,7 @@ def mobility_frame() -> pd.DataFrame:
 
     Notes
     -----
-    Paper eq. 1 (:func:`gearlever.structure.mobility`) on the cases of the data
+    Paper eq. 1 (:func:`gearlever.mechanism.structure.mobility`) on the cases of the data
     file ``zrdpm_mobility.csv``.
 
     Examples
@@ -113,9 +118,19 @@ def mobility_frame() -> pd.DataFrame:
     for case in structure.published_mobility_cases():
         w = structure.mobility(case["n"], case["p5"], case["p4"], case["q"])
         q = structure.redundant_constraints(case["n"], case["p5"], case["p4"], case["w"])
-        rows.append(dict(case=case["case"], n=case["n"], p5=case["p5"], p4=case["p4"],
-                         q_published=case["q"], w_published=case["w"], w_computed=w, q_computed=q,
-                         agrees=bool(w == case["w"] and q == case["q"])))
+        rows.append(
+            dict(
+                case=case["case"],
+                n=case["n"],
+                p5=case["p5"],
+                p4=case["p4"],
+                q_published=case["q"],
+                w_published=case["w"],
+                w_computed=w,
+                q_computed=q,
+                agrees=bool(w == case["w"] and q == case["q"]),
+            )
+        )
     return pd.DataFrame(rows)
 
 

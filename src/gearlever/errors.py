@@ -1,0 +1,30 @@
+"""The one error family of gearlever.
+
+Every refusal of bad input raises :class:`GearleverError`, a :class:`ValueError`
+whose message names the parameter (or file element) and what it must be.  A
+loop that cannot close at a requested input raises :class:`ClosureError`.
+The command line turns both, and any :class:`OSError`, into exit status 2 and
+one line on stderr.
+
+Imports nothing from the rest of the package.
+
+>>> from gearlever.errors import GearleverError
+>>> issubclass(GearleverError, ValueError)
+True
+"""
+
+from __future__ import annotations
+
+__all__ = ["ClosureError", "GearleverError"]
+
+
+class GearleverError(ValueError):
+    """Bad input: a value, file or element gearlever cannot model.
+
+    The message names the parameter and what it must be, e.g.
+    ``"teeth must be a positive integer, got -3"``.
+    """
+
+
+class ClosureError(GearleverError):
+    """A vector loop or mechanism cannot be closed at the requested input."""

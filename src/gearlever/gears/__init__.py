@@ -1,0 +1,29 @@
+"""Gears: the Willis relation, gear networks, the south-pointing chariot, the car differential.
+
+- :mod:`~gearlever.gears.willis`: the Willis (inverted-motion) relation of a pair
+  of gears on a carrier, the one statement of its sign rule used everywhere.
+- :mod:`~gearlever.gears.networks`: gear networks as data (members, meshes,
+  differentials, shafts), solved exactly in fractions.
+- :mod:`~gearlever.gears.chariot`: the Nuttall south-pointing chariot.
+- :mod:`~gearlever.gears.car`: the car (bevel) differential.
+
+Numeric core: may import numpy, :mod:`fractions`, :mod:`gearlever.errors`,
+:mod:`gearlever._validate`, :mod:`gearlever.data`; never pandas or matplotlib.
+"""
+
+from gearlever.gears.car import car_differential
+from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate
+from gearlever.gears.networks import Differential, Gear, Mesh, Network, SameShaft, parse_network
+
+__all__ = [
+    "Differential",
+    "Gear",
+    "Mesh",
+    "Network",
+    "SameShaft",
+    "parse_network",
+    "NuttallTeeth",
+    "design_nuttall",
+    "simulate",
+    "car_differential",
+]

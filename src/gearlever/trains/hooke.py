@@ -1,0 +1,429 @@
+"""Hooke's coupling (universal joint), single and double.
+
+Convention.  All angles are in radians.  ``shaft_angle`` beta is the angle
+between the two shafts of a joint (0 <= beta < pi/2).  The input angle phi is
+measured about the input shaft from the position in which the input fork
+lies in the plane of the two shafts; the output angle psi is measured about
+the output shaft from the matching position of the output shaft, so that
+psi = phi at phi = 0, pi/2, pi, ...  Then (c = cos beta)
+
+    tan psi = tan phi / c,
+
+and psi is taken continuous in phi (psi - phi stays within (-pi/2, pi/2)),
+so angles over several turns are handled.  The angular velocity ratio
+omega_out / omega_in = dpsi/dphi lies between cos beta (at phi = pi/2) and
+1 / cos beta (at phi = 0), the limits stated in the text (seed 004, section
+70, quoting its section 66).  The angular acceleration ratio is d2psi/dphi2:
+the output's angular acceleration divided by omega_in**2 for a uniformly
+turning input.
+
+Double coupling.  The first joint (shaft angle beta1) drives a short
+intermediate shaft, which drives the last shaft through the second joint
+(shaft angle beta2).  ``phase`` delta is the angle by which the
+intermediate shaft's second fork is turned about its axis away from the
+plane of its first fork.  With delta = 0 (forks in one plane) the second
+joint undoes the first: tan psi3 = (cos beta2 / cos beta1) tan phi, which is
+the identity when beta1 = beta2 (section 70 of the text: alpha3 = alpha1 at
+each instant).  Any other arrangement leaves a residual fluctuation,
+computed by :func:`double_fluctuation`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearlever import _validate
+from gearlever.errors import GearleverError
+
+__all__ = [
+    "DoubleFluctuation",
+    "HookeJoint",
+    "acceleration_ratio",
+    "d2psi_dphi2",
+    "double_acceleration_ratio",
+    "double_fluctuation",
+    "double_output_angle",
+    "double_velocity_ratio",
+    "dpsi_dphi",
+    "output_angle",
+    "ratio_extremes",
+    "velocity_ratio",
+]
+
+
+def _shaft_angle(name: str, value) -> float:
+    beta = _validate.finite(name, value)
+    if not 0.0 <= beta < math.pi / 2:
+        raise GearleverError(f"{name} must be at least 0 and below pi/2 rad (90 deg), got {value!r}")
+    return beta
+
+
+# Closed forms of the map tan h = tan x / c (c > 0), continuous in x.
+def _h(x, c):
+    s, co = np.sin(x), np.cos(x)
+    return x + np.arctan2(s * co * (1.0 - c), c * co * co + s * s)
+
+
+def _dh(x, c):
+    s, co = np.sin(x), np.cos(x)
+    return c / (c * c * co * co + s * s)
+
+
+def _d2h(x, c):
+    s, co = np.sin(x), np.cos(x)
+    den = c * c * co * co + s * s
+    return -c * (1.0 - c * c) * np.sin(2.0 * x) / (den * den)
+
+
+def output_angle(phi, shaft_angle):
+    """Output-shaft angle of a single Hooke's joint.
+
+    Parameters
+    ----------
+    phi : array_like
+        Input-shaft angle(s), rad.
+    shaft_angle : float
+        Angle beta between the shafts, rad, 0 <= beta < pi/2.
+
+    Returns
+    -------
+    ndarray
+        psi, rad, same shape as ``phi``, continuous in ``phi``.
+
+    Notes
+    -----
+    tan psi = tan phi / cos beta (module docstring for the convention;
+    the joint of seed 004, section 70, and its section 66).  Written as
+    psi = phi + atan2(sin phi cos phi (1 - c), c cos^2 phi + sin^2 phi), whose
+    denominator stays positive, so psi is continuous over any number of turns.
+
+    Examples
+    --------
+    >>> float(np.degrees(output_angle(np.radians(45.0), np.radians(60.0))))  # tan psi = 2
+    63.43494882292201
+    """
+    phi = _validate.finite_array("phi", phi)
+    beta = _shaft_angle("shaft_angle", shaft_angle)
+    return _h(phi, math.cos(beta))
+
+
+def velocity_ratio(phi, shaft_angle):
+    """Angular velocity ratio omega_out / omega_in = dpsi/dphi of a single joint.
+
+    Parameters
+    ----------
+    phi : array_like
+        Input angle(s), rad.
+    shaft_angle : float
+        beta, rad, 0 <= beta < pi/2.
+
+    Returns
+    -------
+    ndarray
+        Same shape as ``phi``; between cos beta and 1 / cos beta.
+
+    Notes
+    -----
+    dpsi/dphi = cos beta / (1 - sin^2 beta cos^2 phi)
+    = c / (c^2 cos^2 phi + sin^2 phi), from differentiating
+    tan psi = tan phi / c.  Extremes 1/c at phi = 0 and c at phi = pi/2
+    (seed 004, section 70: "fluctuates between the limits cos theta and
+    1/cos theta").
+
+    Examples
+    --------
+    >>> velocity_ratio([0.0, np.pi / 2], np.pi / 3).round(12).tolist()
+    [2.0, 0.5]
+    """
+    phi = _validate.finite_array("phi", phi)
+    beta = _shaft_angle("shaft_angle", shaft_angle)
+    return _dh(phi, math.cos(beta))
+
+
+def acceleration_ratio(phi, shaft_angle):
+    """Angular acceleration ratio d2psi/dphi2 of a single joint.
+
+    For a uniformly turning input this is alpha_out / omega_in**2.
+
+    Parameters
+    ----------
+    phi : array_like
+        Input angle(s), rad.
+    shaft_angle : float
+        beta, rad, 0 <= beta < pi/2.
+
+    Returns
+    -------
+    ndarray
+
+    Notes
+    -----
+    d2psi/dphi2 = -cos beta sin^2 beta sin 2phi / (1 - sin^2 beta cos^2 phi)^2,
+    the derivative of :func:`velocity_ratio`.
+
+    Examples
+    --------
+    >>> float(acceleration_ratio(np.pi / 4, np.pi / 3))  # -0.5*0.75/0.625**2
+    -0.96
+    """
+    phi = _validate.finite_array("phi", phi)
+    beta = _shaft_angle("shaft_angle", shaft_angle)
+    return _d2h(phi, math.cos(beta))
+
+
+def ratio_extremes(shaft_angle) -> tuple[float, float]:
+    """Least and greatest velocity ratio of a single joint: (cos beta, 1 / cos beta).
+
+    Notes
+    -----
+    Seed 004, section 70 (quoting its section 66).
+
+    Examples
+    --------
+    >>> [round(v, 12) for v in ratio_extremes(np.pi / 3)]
+    [0.5, 2.0]
+    """
+    beta = _shaft_angle("shaft_angle", shaft_angle)
+    c = math.cos(beta)
+    return c, 1.0 / c
+
+
+def _double_args(phi, shaft_angle, second_angle, phase):
+    phi = _validate.finite_array("phi", phi)
+    b1 = _shaft_angle("shaft_angle", shaft_angle)
+    b2 = b1 if second_angle is None else _shaft_angle("second_angle", second_angle)
+    delta = _validate.finite("phase", phase)
+    return phi, math.cos(b1), math.cos(b2), delta
+
+
+def double_output_angle(phi, shaft_angle, second_angle=None, phase=0.0):
+    """Last-shaft angle of a double Hooke's coupling.
+
+    Parameters
+    ----------
+    phi : array_like
+        First-shaft angle(s), rad.
+    shaft_angle : float
+        beta1, angle between the first and intermediate shafts, rad.
+    second_angle : float, optional
+        beta2, angle between the intermediate and last shafts, rad;
+        default beta1.
+    phase : float
+        delta, turn of the intermediate shaft's second fork out of the plane
+        of its first fork, rad (0: forks in one plane).
+
+    Returns
+    -------
+    ndarray
+        psi3, rad, same shape as ``phi``.
+
+    Notes
+    -----
+    psi2 = h(phi; c1), psi3 = delta + h(psi2 - delta; 1/c2), with
+    tan h(x; c) = tan x / c and c_i = cos beta_i.  The second joint is driven
+    by a fork of the "output" kind, hence 1/c2.  With delta = 0 and
+    beta1 = beta2, psi3 = phi (seed 004, section 70).
+
+    Examples
+    --------
+    >>> phi = np.linspace(0.0, 2 * np.pi, 7)
+    >>> bool(np.allclose(double_output_angle(phi, 0.5), phi))
+    True
+    """
+    phi, c1, c2, delta = _double_args(phi, shaft_angle, second_angle, phase)
+    psi2 = _h(phi, c1)
+    return delta + _h(psi2 - delta, 1.0 / c2)
+
+
+def double_velocity_ratio(phi, shaft_angle, second_angle=None, phase=0.0):
+    """Velocity ratio omega_last / omega_first of a double Hooke's coupling.
+
+    Parameters
+    ----------
+    phi, shaft_angle, second_angle, phase
+        As in :func:`double_output_angle`.
+
+    Returns
+    -------
+    ndarray
+
+    Notes
+    -----
+    dpsi3/dphi = h'(psi2 - delta; 1/c2) h'(phi; c1), with
+    h'(x; c) = c / (c^2 cos^2 x + sin^2 x).  Equal to 1 for every phi when
+    beta1 = beta2 and delta = 0 (seed 004, section 70).
+
+    Examples
+    --------
+    >>> double_velocity_ratio([0.3, 1.1], 0.4).round(12).tolist()
+    [1.0, 1.0]
+    """
+    phi, c1, c2, delta = _double_args(phi, shaft_angle, second_angle, phase)
+    psi2 = _h(phi, c1)
+    return _dh(psi2 - delta, 1.0 / c2) * _dh(phi, c1)
+
+
+def double_acceleration_ratio(phi, shaft_angle, second_angle=None, phase=0.0):
+    """Angular acceleration ratio d2psi3/dphi2 of a double Hooke's coupling.
+
+    Notes
+    -----
+    d2psi3/dphi2 = h''(psi2 - delta; 1/c2) h'(phi; c1)^2
+    + h'(psi2 - delta; 1/c2) h''(phi; c1) (chain rule on
+    :func:`double_output_angle`).
+
+    Examples
+    --------
+    >>> bool(np.allclose(double_acceleration_ratio([0.2, 0.9], 0.4), 0.0))
+    True
+    """
+    phi, c1, c2, delta = _double_args(phi, shaft_angle, second_angle, phase)
+    psi2 = _h(phi, c1)
+    x = psi2 - delta
+    d1 = _dh(phi, c1)
+    return _d2h(x, 1.0 / c2) * d1 * d1 + _dh(x, 1.0 / c2) * _d2h(phi, c1)
+
+
+@dataclass(frozen=True)
+class DoubleFluctuation:
+    """Residual fluctuation of a double coupling over a turn.
+
+    Attributes
+    ----------
+    min_ratio, max_ratio : float
+        Least and greatest omega_last / omega_first.
+    phi_min, phi_max : float
+        Input angles (rad, in [0, pi)) where they occur.
+    """
+
+    min_ratio: float
+    max_ratio: float
+    phi_min: float
+    phi_max: float
+
+    @property
+    def fluctuation(self) -> float:
+        """max_ratio - min_ratio."""
+        return self.max_ratio - self.min_ratio
+
+
+def double_fluctuation(shaft_angle, second_angle=None, phase=0.0, samples: int = 2048) -> DoubleFluctuation:
+    """Least and greatest velocity ratio of a double coupling over a turn.
+
+    Parameters
+    ----------
+    shaft_angle, second_angle, phase
+        As in :func:`double_output_angle` (rad).
+    samples : int
+        Grid points over one period [0, pi) before refinement.
+
+    Returns
+    -------
+    DoubleFluctuation
+
+    Notes
+    -----
+    The ratio has period pi in phi.  Its extremes are located on a grid and
+    refined by a bounded scalar minimisation (scipy) within one grid step.
+    Closed forms for checking: delta = 0 gives a single joint with
+    c = cos beta1 / cos beta2, delta = pi/2 one with c = cos beta1 cos beta2.
+
+    Examples
+    --------
+    >>> f = double_fluctuation(0.5, 0.5, np.pi / 2)
+    >>> abs(f.min_ratio - math.cos(0.5) ** 2) < 1e-9, abs(f.max_ratio - 1 / math.cos(0.5) ** 2) < 1e-9
+    (True, True)
+    """
+    from scipy.optimize import minimize_scalar
+
+    samples = _validate.positive_int("samples", samples)
+    _double_args(0.0, shaft_angle, second_angle, phase)
+    grid = np.linspace(0.0, np.pi, samples, endpoint=False)
+    vals = double_velocity_ratio(grid, shaft_angle, second_angle, phase)
+    step = np.pi / samples
+
+    def refine(i, sign):
+        def f(x):
+            return sign * float(double_velocity_ratio(x, shaft_angle, second_angle, phase))
+
+        res = minimize_scalar(f, bounds=(grid[i] - step, grid[i] + step), method="bounded", options={"xatol": 1e-12})
+        x = float(res.x) % np.pi
+        best = sign * float(res.fun)
+        if sign * best > sign * vals[i]:  # never worse than the grid value
+            x, best = float(grid[i]), float(vals[i])
+        return x, best
+
+    i_min, i_max = int(np.argmin(vals)), int(np.argmax(vals))
+    phi_min, vmin = refine(i_min, 1.0)
+    phi_max, vmax = refine(i_max, -1.0)
+    return DoubleFluctuation(vmin, vmax, phi_min, phi_max)
+
+
+@dataclass(frozen=True)
+class HookeJoint:
+    """A single or double Hooke's coupling as a parameter object (angles in degrees).
+
+    Attributes
+    ----------
+    shaft_angle_deg : float
+        beta1.
+    second_angle_deg : float or None
+        beta2 for a double coupling; None for a single joint.
+    phase_deg : float
+        delta of the double coupling.
+
+    Examples
+    --------
+    >>> HookeJoint(30.0).velocity_ratio([90.0]).round(6).tolist()
+    [0.866025]
+    """
+
+    shaft_angle_deg: float
+    second_angle_deg: float | None = None
+    phase_deg: float = 0.0
+
+    def __post_init__(self):
+        for name, value in (("shaft_angle", self.shaft_angle_deg), ("second_angle", self.second_angle_deg)):
+            if value is None and name == "second_angle":
+                continue
+            deg = _validate.finite(name, value)
+            if not 0.0 <= deg < 90.0:
+                raise GearleverError(f"{name} must be at least 0 and below 90 degrees, got {value!r}")
+        _validate.finite("phase", self.phase_deg)
+
+    @property
+    def double(self) -> bool:
+        return self.second_angle_deg is not None
+
+    def _args(self):
+        b1 = math.radians(self.shaft_angle_deg)
+        b2 = None if self.second_angle_deg is None else math.radians(self.second_angle_deg)
+        return b1, b2, math.radians(self.phase_deg)
+
+    def output_angle_deg(self, input_deg):
+        """Output angle(s), degrees, for input angle(s) in degrees."""
+        phi = np.radians(_validate.finite_array("input_deg", input_deg))
+        b1, b2, d = self._args()
+        out = double_output_angle(phi, b1, b2, d) if self.double else output_angle(phi, b1)
+        return np.degrees(out)
+
+    def velocity_ratio(self, input_deg):
+        """omega_out / omega_in at input angle(s) in degrees."""
+        phi = np.radians(_validate.finite_array("input_deg", input_deg))
+        b1, b2, d = self._args()
+        return double_velocity_ratio(phi, b1, b2, d) if self.double else velocity_ratio(phi, b1)
+
+    def acceleration_ratio(self, input_deg):
+        """d2psi/dphi2 at input angle(s) in degrees."""
+        phi = np.radians(_validate.finite_array("input_deg", input_deg))
+        b1, b2, d = self._args()
+        return double_acceleration_ratio(phi, b1, b2, d) if self.double else acceleration_ratio(phi, b1)
+
+
+#: Alias of :func:`velocity_ratio` named by what it is, dpsi/dphi.
+dpsi_dphi = velocity_ratio
+#: Alias of :func:`acceleration_ratio` named by what it is, d2psi/dphi2.
+d2psi_dphi2 = acceleration_ratio

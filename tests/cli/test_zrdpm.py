@@ -1,0 +1,87 @@
+"""CLI: gearlever mobility and gearlever zrdpm, good and bad input."""
+
+import json
+
+import pytest
+
+from gearlever.cli import main
+
+
+@pytest.mark.parametrize(
+    "argv, out",
+    [
+        (["mobility", "--n", "5", "--p5", "8", "--p4", "0", "--w", "1"], "q = 2"),
+        (["mobility", "--n", "7", "--p5", "8", "--p4", "3", "--q", "0"], "W = 2"),
+        (["mobility", "--n", "9", "--p5", "12", "--p4", "3", "--q", "2"], "W = 2"),
+    ],
+)
+def test_mobility_prints_the_papers_cases(capsys, argv, out):
+    assert main(argv) == 0
+    assert capsys.readouterr().out.strip() == out
+
+
+def test_zrdpm_json_records(capsys):
+    assert main(["zrdpm", "--contour", "1", "--phi", "0", "90", "--ratio", "0.5", "--format", "json"]) == 0
+    recs = json.loads(capsys.readouterr().out)
+    assert [list(r) for r in recs] == [["phi_deg", "u_carrier", "u_gear", "e_carrier", "e_gear"]] * 2
+    assert recs[0]["u_carrier"] == pytest.approx(1.0) and recs[0]["u_gear"] == pytest.approx(1.0)
+    assert recs[1]["e_gear"] == pytest.approx(-1.5)
+
+
+def test_zrdpm_range_table_and_csv(capsys):
+    assert main(["zrdpm", "--contour", "2", "--start", "0", "--stop", "360", "--step", "90"]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    assert lines[0].split() == ["phi_deg", "u_2", "u_7", "e_2", "e_7"] and len(lines) == 6
+    assert main(["zrdpm", "--contour", "2", "--phi", "45", "--format", "csv"]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert out[0] == "phi_deg,u_carrier,u_gear,e_carrier,e_gear"
+    assert float(out[1].split(",")[1]) == pytest.approx(2**0.5)
+
+
+def test_zrdpm_teeth_give_the_same_table_as_the_ratio(capsys):
+    assert main(["zrdpm", "--contour", "1", "--phi", "10", "200", "--teeth", "20", "40", "--format", "csv"]) == 0
+    by_teeth = capsys.readouterr().out
+    assert main(["zrdpm", "--contour", "1", "--phi", "10", "200", "--ratio", "0.5", "--format", "csv"]) == 0
+    assert capsys.readouterr().out == by_teeth
+
+
+def test_zrdpm_internal_mesh_changes_the_gear_only(capsys):
+    assert main(["zrdpm", "--contour", "1", "--phi", "30", "--mesh", "internal", "--format", "json"]) == 0
+    rec = json.loads(capsys.readouterr().out)[0]
+    # internal mesh: u_gear = (1 - k) u_carrier + k with k = 0.5
+    assert rec["u_gear"] == pytest.approx(0.5 * rec["u_carrier"] + 0.5)
+
+
+def test_zrdpm_writes_file_atomically(tmp_path, capsys):
+    target = tmp_path / "out.json"
+    assert main(["zrdpm", "--contour", "1", "--phi", "30", "--format", "json", "--out", str(target)]) == 0
+    assert json.loads(target.read_text())[0]["phi_deg"] == 30.0
+    assert [p.name for p in tmp_path.iterdir()] == ["out.json"]
+
+
+@pytest.mark.parametrize(
+    "argv, word",
+    [
+        (["mobility", "--n", "-1", "--p5", "8", "--p4", "0", "--w", "1"], "--n"),
+        (["mobility", "--n", "5", "--p5", "8", "--p4", "0"], "--q"),
+        (["mobility", "--n", "9", "--p5", "0", "--p4", "0", "--w", "1"], "w must"),
+        (["mobility", "--n", "5", "--p5", "x", "--p4", "0", "--q", "1"], "--p5"),
+        (["zrdpm", "--contour", "1", "--phi", "abc"], "--phi"),
+        (["zrdpm", "--contour", "3"], "--contour"),
+        (["zrdpm", "--contour", "1", "--l", "-2"], "--l"),
+        (["zrdpm", "--contour", "1", "--r-a", "0"], "--r-a"),
+        (["zrdpm", "--contour", "1", "--ratio", "0"], "--ratio"),
+        (["zrdpm", "--contour", "1", "--start", "10", "--stop", "0"], "--stop"),
+        (["zrdpm", "--contour", "1", "--step", "-5"], "--step"),
+        (["zrdpm", "--contour", "1", "--phi", "1", "--start", "0"], "--phi"),
+        (["zrdpm", "--contour", "1", "--teeth", "-20", "40"], "--teeth"),
+        (["zrdpm", "--contour", "1", "--teeth", "0", "40"], "--teeth"),
+        (["zrdpm", "--contour", "1", "--teeth", "20", "40", "--ratio", "2"], "--ratio"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(capsys, argv, word, tmp_path):
+    target = tmp_path / "never.csv"
+    assert main([*argv, "--out", str(target)] if argv[0] == "zrdpm" else argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and word in err and "Traceback" not in err
+    assert not target.exists() and list(tmp_path.iterdir()) == []
