@@ -79,7 +79,8 @@ def _chosen_parser(parser: argparse.ArgumentParser, args) -> argparse.ArgumentPa
 def _with_flag(message: str, parser: argparse.ArgumentParser | None) -> str:
     """Name the user's flag in front of a ``message`` that starts with a parameter name the parser knows.
 
-    ``"steps_per_turn must be ..."`` becomes ``"--steps-per-turn: steps_per_turn must be ..."``.
+    ``"steps_per_turn must be ..."`` becomes ``"--steps-per-turn: steps_per_turn must be ..."``;
+    ``"step: the way-points need ..."`` becomes ``"--step: the way-points need ..."``.
     """
     if parser is None:
         return message
@@ -89,7 +90,8 @@ def _with_flag(message: str, parser: argparse.ArgumentParser | None) -> str:
     for action in parser._actions:
         if action.dest == m.group(1) and action.option_strings:
             flag = max(action.option_strings, key=len)
-            return f"{flag}: {message}"
+            rest = message[m.end() :]
+            return flag + rest if rest.startswith(":") else f"{flag}: {message}"
     return message
 
 
