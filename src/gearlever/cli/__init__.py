@@ -21,7 +21,9 @@ Exit status and errors (handled here, once, for every sub-command):
 
 Before the handler runs, an ``--out`` file is checked
 (:func:`gearlever.cli._common.check_output`): a directory, a device, a
-missing folder or an unwritable place is refused before any work.
+missing folder or an unwritable place is refused before any work.  Numeric
+:class:`RuntimeWarning` s (overflow) are not printed: they would break the
+one-line rule; the affected values come out as inf/nan (null in JSON).
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ import os
 import pkgutil
 import re
 import sys
+import warnings
 
 
 class UsageError(Exception):
@@ -129,7 +132,11 @@ def main(argv=None) -> int:
         out = getattr(args, "out", None)
         if isinstance(out, str):
             check_output(out, "--out")
-        status = args.func(args)
+        with warnings.catch_warnings():
+            # numeric warnings (overflow, invalid value) would be extra lines on
+            # stderr; the results show them as inf/nan (json null) or the library refuses
+            warnings.simplefilter("ignore", RuntimeWarning)
+            status = args.func(args)
     except UsageError as exc:
         _print_error(_one_line(exc))
         return 2

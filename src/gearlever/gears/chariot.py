@@ -530,7 +530,9 @@ def simulate(
         # a NaN or inf anywhere in the input propagates to the end of a cumulative sum
         V.finite_array("ds_left", dl)
         V.finite_array("ds_right", dr)
-        raise GearleverError("ds_left and ds_right are too large: the headings overflow")
+        raise GearleverError(
+            "ds_left, ds_right: the path is too long for these wheels (d1, d12): the headings overflow"
+        )
     return ChariotRun(ds_left=dl, ds_right=dr, chassis_heading=heading, drift=drift, track=t, start=start)
 
 
