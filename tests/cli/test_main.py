@@ -108,3 +108,46 @@ def test_mplbackend_defaults_to_agg(monkeypatch, capsys):
     main(["mobility", "--n", "1", "--p5", "1", "--p4", "0", "--q", "0"])
     assert __import__("os").environ["MPLBACKEND"] == "Agg"
     assert capsys.readouterr().out.startswith("W = ")
+
+
+class _Tty:
+    def __init__(self, tty):
+        self.tty, self.text = tty, ""
+
+    def isatty(self):
+        return self.tty
+
+    def write(self, s):
+        self.text += s
+
+    def flush(self):
+        pass
+
+
+def test_progress_prints_on_a_terminal_only_and_erases_its_line():
+    import time
+
+    from gearlever.cli._common import progress
+
+    term, pipe = _Tty(True), _Tty(False)
+    for stream in (term, pipe):
+        with progress("working", stream=stream, delay=0.0, interval=0.01):
+            time.sleep(0.1)
+    assert "working ... " in term.text and term.text.endswith("\r\x1b[K")
+    assert pipe.text == ""
+
+
+def test_capped_types_name_the_cap():
+    import argparse
+
+    from gearlever.cli._common import capped_float, capped_int
+
+    assert capped_int(10**6)("1000000") == 10**6
+    with pytest.raises(argparse.ArgumentTypeError, match="at most 10\\^6"):
+        capped_int(10**6)("1000001")
+    with pytest.raises(argparse.ArgumentTypeError, match="positive integer"):
+        capped_int(10**6)("0")
+    with pytest.raises(argparse.ArgumentTypeError, match="at most 2.5"):
+        capped_float(2.5)("3")
+    with pytest.raises(argparse.ArgumentTypeError, match="finite"):
+        capped_float(2.5)("nan")
