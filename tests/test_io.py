@@ -1,15 +1,74 @@
-"""Atomic writes: the target is either the old file or the complete new one."""
+"""Atomic writes: the target is either the old file or the complete new one; bad targets are refused first."""
+
+import errno
+import os
+from pathlib import Path
 
 import pytest
 
-from gearlever._io import atomic_path, write_text_atomic
+from gearlever._io import atomic_path, check_target, to_json, write_text_atomic
 
 
 def test_write_text_atomic_writes_and_leaves_no_temporary(tmp_path):
-    target = tmp_path / "sub" / "out.csv"
+    target = tmp_path / "out.csv"
     write_text_atomic(target, "a,b\n1,2\n")
     assert target.read_text() == "a,b\n1,2\n"
     assert sorted(p.name for p in target.parent.iterdir()) == ["out.csv"]
+
+
+def test_missing_folder_is_refused_not_created(tmp_path):
+    target = tmp_path / "sub" / "out.csv"
+    with pytest.raises(FileNotFoundError) as exc:
+        write_text_atomic(target, "x")
+    assert exc.value.filename == str(tmp_path / "sub")
+    assert not (tmp_path / "sub").exists()
+
+
+def test_missing_folder_is_created_when_asked(tmp_path):
+    target = write_text_atomic(tmp_path / "a" / "b" / "out.csv", "x\n", mkdir=True)
+    assert target.read_text() == "x\n"
+
+
+@pytest.mark.parametrize(
+    ("make", "error", "code"),
+    [
+        (lambda d: d, IsADirectoryError, errno.EISDIR),
+        (lambda d: Path("/proc/gearlever-test.csv"), FileNotFoundError, errno.ENOENT),
+        (lambda d: Path("/etc/hostname/x.csv"), NotADirectoryError, errno.ENOTDIR),
+        (lambda d: Path("/dev/null"), OSError, errno.EINVAL),
+        (lambda d: Path(""), FileNotFoundError, errno.ENOENT),
+    ],
+    ids=["directory", "proc", "under-a-file", "device", "empty"],
+)
+def test_unwritable_targets_raise_oserror_naming_the_path(tmp_path, make, error, code):
+    target = make(tmp_path)
+    with pytest.raises(error) as exc:
+        write_text_atomic(target, "x")
+    assert exc.value.errno == code
+    assert exc.value.filename and exc.value.strerror
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_device_behind_a_symlink_is_not_replaced(tmp_path):
+    link = tmp_path / "null"
+    link.symlink_to("/dev/null")
+    with pytest.raises(OSError, match="not a regular file"):
+        write_text_atomic(link, "x")
+    assert Path("/dev/null").is_char_device() and link.is_symlink()
+
+
+def test_symlink_to_a_file_writes_through(tmp_path):
+    real = tmp_path / "real.txt"
+    real.write_text("old")
+    link = tmp_path / "link.txt"
+    link.symlink_to(real)
+    write_text_atomic(link, "new")
+    assert link.is_symlink() and real.read_text() == "new"
+
+
+def test_check_target_leaves_no_probe_file(tmp_path):
+    assert check_target(tmp_path / "x.csv") == tmp_path / "x.csv"
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_failed_write_keeps_old_file_and_removes_temporary(tmp_path):
@@ -34,3 +93,9 @@ def test_written_file_has_the_mode_of_a_plain_open(tmp_path):
     plain.write_text("x")
     target = write_text_atomic(tmp_path / "atomic.txt", "x")
     assert target.stat().st_mode & 0o777 == plain.stat().st_mode & 0o777
+    assert os.stat(target).st_size == 1
+
+
+def test_to_json_is_strict_and_keeps_key_order():
+    text = to_json({"z": float("nan"), "a": [float("-inf"), 1.5]}, indent=None)
+    assert text == '{"z": null, "a": [null, 1.5]}'

@@ -1,4 +1,4 @@
-"""Input checks: each raises ValueError naming the parameter and what it must be."""
+"""Input checks: each raises GearleverError naming the parameter and what it must be."""
 
 import math
 
@@ -6,6 +6,34 @@ import numpy as np
 import pytest
 
 from gearlever import _validate as v
+from gearlever.errors import GearleverError
+
+CHECKS = [
+    (v.finite, "nan"),
+    (v.positive, -1.0),
+    (v.nonnegative, -1.0),
+    (v.positive_int, 0),
+    (v.nonnegative_int, -1),
+    (v.finite_array, [np.inf]),
+    (v.nonempty_array, []),
+]
+
+
+@pytest.mark.parametrize(("check", "bad"), CHECKS, ids=[c.__name__ for c, _ in CHECKS])
+def test_every_check_raises_gearlevererror_naming_the_parameter_and_what_it_must_be(check, bad):
+    with pytest.raises(GearleverError, match=r"^the_param must (be|hold) "):
+        check("the_param", bad)
+
+
+def test_no_assert_guards_input_in_the_package():
+    import pathlib
+    import re
+
+    import gearlever
+
+    src = pathlib.Path(gearlever.__file__).parent
+    users = [str(p.relative_to(src)) for p in src.rglob("*.py") if re.search(r"^\s*assert\b", p.read_text(), re.M)]
+    assert users == []
 
 
 @pytest.mark.parametrize("bad", [0, -1.5, math.nan, math.inf, "3", None, True])

@@ -7,6 +7,7 @@ file (or none) is there, or the complete new one.
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import math
 import os
@@ -17,12 +18,108 @@ from pathlib import Path
 import numpy as np
 
 
+def _refuse(errno_code: int, reason: str, path) -> OSError:
+    """An :class:`OSError` of the right subclass naming ``path`` and ``reason``."""
+    return OSError(errno_code, reason, str(path))
+
+
+def check_target(target, *, mkdir: bool = False) -> Path:
+    """Check that a file can be written at ``target``; return it as a :class:`~pathlib.Path`.
+
+    Refuses (with an :class:`OSError` whose ``filename`` is the offending
+    path and whose ``strerror`` says why) a target that is a directory or
+    another non-regular file (a device, a pipe), a target whose folder does
+    not exist (unless ``mkdir``), is not a folder, or cannot hold a new file
+    (read-only, ``/proc``...).  The last check creates and removes an empty
+    temporary file in the folder, the only reliable test (``os.access`` says
+    yes to root everywhere).
+
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> check_target(d / "x.csv") == d / "x.csv"
+    True
+    >>> check_target(d / "missing" / "x.csv")
+    Traceback (most recent call last):
+    ...
+    FileNotFoundError: [Errno 2] folder does not exist: '...missing'
+    """
+    target = Path(target)
+    if str(target) in ("", "."):
+        raise _refuse(errno.ENOENT, "empty file name", target)
+    if target.is_dir():
+        raise _refuse(errno.EISDIR, "is a directory", target)
+    if target.exists() and not target.is_file():
+        raise _refuse(errno.EINVAL, "is not a regular file (a device or pipe is not replaced)", target)
+    parent = target.parent
+    if not parent.exists():
+        if mkdir:
+            parent.mkdir(parents=True, exist_ok=True)
+        else:
+            # the nearest existing ancestor may be a regular file: say so
+            for up in parent.parents:
+                if up.exists():
+                    if not up.is_dir():
+                        raise _refuse(errno.ENOTDIR, "is not a directory", up)
+                    break
+            raise _refuse(errno.ENOENT, "folder does not exist", parent)
+    if not parent.is_dir():
+        raise _refuse(errno.ENOTDIR, "is not a directory", parent)
+    try:
+        fd, probe = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".probe", dir=parent)
+    except OSError as exc:
+        raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", target) from None
+    os.close(fd)
+    os.unlink(probe)
+    return target
+
+
+def check_folder(folder, *, create: bool = False) -> Path:
+    """Check that files can be written in ``folder`` (existing, or creatable); return it.
+
+    An existing ``folder`` must be a directory that can hold a new file; a
+    missing one must have a nearest existing ancestor that is a writable
+    directory.  Nothing is created unless ``create`` is true (then the folder
+    and its missing parents are made after the checks pass).  Refusals are
+    :class:`OSError` naming the path and the reason.
+
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> check_folder(d / "new").exists()
+    False
+    >>> check_folder(d / "new", create=True).is_dir()
+    True
+    """
+    folder = Path(folder)
+    if str(folder) == "":
+        raise _refuse(errno.ENOENT, "empty folder name", folder)
+    existing = folder
+    while not existing.exists():
+        if existing.parent == existing:
+            break
+        existing = existing.parent
+    if not existing.is_dir():
+        raise _refuse(errno.ENOTDIR, "is not a directory", existing)
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".gearlever.", suffix=".probe", dir=existing)
+    except OSError as exc:
+        raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", existing) from None
+    os.close(fd)
+    os.unlink(probe)
+    if create and existing != folder:
+        folder.mkdir(parents=True, exist_ok=True)
+    return folder
+
+
 @contextlib.contextmanager
-def atomic_path(target, suffix: str | None = None):
+def atomic_path(target, suffix: str | None = None, *, mkdir: bool = False):
     """Yield a temporary path in ``target``'s folder; rename it onto ``target`` on success.
 
-    The folder is created if missing.  If the body raises, the temporary file
-    is removed and ``target`` is left as it was.
+    The target is checked first with :func:`check_target`: a directory, a
+    device, a folder that does not exist (it is created only when ``mkdir``
+    is true) or an unwritable folder raise :class:`OSError` naming the path,
+    before anything is written.  If the body raises, the temporary file is
+    removed and ``target`` is left as it was.  A symbolic link is written
+    through (its target is replaced), as a plain ``open`` would.
 
     >>> import tempfile, pathlib
     >>> d = pathlib.Path(tempfile.mkdtemp())
@@ -32,12 +129,17 @@ def atomic_path(target, suffix: str | None = None):
     'hi'
     """
     target = Path(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(
-        prefix=f".{target.name}.",
-        suffix=suffix if suffix is not None else ".tmp" + target.suffix,
-        dir=target.parent,
-    )
+    if target.is_symlink():
+        target = Path(os.path.realpath(target))
+    target = check_target(target, mkdir=mkdir)
+    try:
+        fd, tmp_name = tempfile.mkstemp(
+            prefix=f".{target.name}.",
+            suffix=suffix if suffix is not None else ".tmp" + target.suffix,
+            dir=target.parent,
+        )
+    except OSError as exc:
+        raise _refuse(exc.errno or errno.EACCES, exc.strerror or "cannot write", target) from None
     os.close(fd)
     tmp = Path(tmp_name)
     try:
@@ -57,10 +159,14 @@ def _umask() -> int:
     return mask
 
 
-def write_text_atomic(target, text: str) -> Path:
-    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``target`` atomically and return the path."""
+def write_text_atomic(target, text: str, *, mkdir: bool = False) -> Path:
+    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``target`` atomically and return the path.
+
+    The folder must exist (it is created only when ``mkdir`` is true); see
+    :func:`atomic_path` for what is refused.
+    """
     target = Path(target)
-    with atomic_path(target) as tmp:
+    with atomic_path(target, mkdir=mkdir) as tmp:
         with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
     return target

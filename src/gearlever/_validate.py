@@ -1,7 +1,8 @@
 """Input checks shared by the numeric modules.
 
-Every check raises :class:`ValueError` whose message starts with the name of
-the parameter and says what it must be, e.g. ``"l1 must be a positive finite
+Every check raises :class:`gearlever.errors.GearleverError` (a
+:class:`ValueError`) whose message starts with the name of the parameter and
+says what it must be, e.g. ``"l1 must be a positive finite
 number, got -2.0"``.  The CLI prints that message as its one line on stderr.
 """
 

@@ -190,3 +190,63 @@ def test_out_file_written(capsys, tmp_path):
     f = tmp_path / "o.json"
     code, out, _ = run(capsys, *CAR, "--format", "json", "--out", str(f))
     assert code == 0 and out == "" and set(json.loads(f.read_text())) == KEYS
+
+
+@pytest.mark.parametrize(
+    ("extra", "words"),
+    [
+        (["--turns", "1e9"], ["--turns", "at most 10^7"]),
+        (["--turns", "1e5"], ["--turns", "--steps-per-turn", "cap 10^7"]),
+        (["--steps-per-turn", "100000000"], ["--steps-per-turn", "at most 10^7"]),
+        (["--turns", "20000", "--steps-per-turn", "1000"], ["cap 10^7"]),
+        (["--n7", "10000000"], ["--n7", "at most 10^6"]),
+        (["--step", "0.1"], ["--step", "--waypoints"]),
+    ],
+)
+def test_simulate_caps_refuse_with_the_cap_named(capsys, extra, words):
+    code, out, err = run(capsys, "chariot", "simulate", *TEETH, *extra)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert all(w in err for w in words), err
+
+
+@pytest.mark.parametrize("flag", [["--turns", "3"], ["--seed", "1"], ["--steps-per-turn", "10"], ["--heading", "1"]])
+def test_random_path_options_with_waypoints_are_refused(capsys, tmp_path, flag):
+    f = tmp_path / "pts.txt"
+    f.write_text("0 0\n1 0\n")
+    code, _, err = run(capsys, "chariot", "simulate", *TEETH, "--waypoints", str(f), *flag)
+    assert code == 2 and flag[0] in err and "--waypoints" in err and err.count("\n") == 1
+
+
+def test_waypoint_step_too_small_is_refused_before_allocating(capsys, tmp_path):
+    f = tmp_path / "pts.txt"
+    f.write_text("0 0\n1 0\n1 1\n")
+    code, _, err = run(capsys, "chariot", "simulate", *TEETH, "--waypoints", str(f), "--step", "1e-9")
+    assert code == 2 and err.startswith("gearlever: error: --step") and "10,000,000" in err
+
+
+def test_waypoint_step_within_the_cap_runs(capsys, tmp_path):
+    f = tmp_path / "pts.txt"
+    f.write_text("0 0\n1 0\n")
+    code, out, _ = run(
+        capsys, "chariot", "simulate", *TEETH, "--waypoints", str(f), "--step", "1e-6", "--format", "json"
+    )
+    assert code == 0 and json.loads(out)["steps"] == 1_000_000
+
+
+@pytest.mark.parametrize("name", ["/dev/zero", "/proc", "/etc/hostname/x", "{tmp}/empty.txt", "{tmp}/garbage.bin"])
+def test_unreadable_or_empty_waypoint_files_exit_2(capsys, tmp_path, name):
+    (tmp_path / "empty.txt").write_text("")
+    (tmp_path / "garbage.bin").write_bytes(b"\xff\xfe\x00garbage")
+    name = name.replace("{tmp}", str(tmp_path))
+    code, out, err = run(capsys, "chariot", "simulate", *TEETH, "--waypoints", name)
+    assert code == 2 and out == "" and err.count("\n") == 1 and "waypoints" in err
+
+
+def test_waypoint_file_above_the_byte_cap_is_refused(capsys, tmp_path, monkeypatch):
+    import gearlever.cli.chariot as cli_chariot
+
+    monkeypatch.setattr(cli_chariot, "MAX_WAYPOINT_BYTES", 100)
+    f = tmp_path / "big.txt"
+    f.write_text("0 0\n" * 100)
+    code, _, err = run(capsys, "chariot", "simulate", *TEETH, "--waypoints", str(f))
+    assert code == 2 and "cap of 100 bytes" in err

@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from gearlever.errors import GearleverError
 from gearlever.gears.chariot import (
     NuttallTeeth,
     design_nuttall,
@@ -180,3 +181,35 @@ def test_simulate_bad_inputs():
         simulate(DESIGN, [0.1], [0.1], d1=0.0)
     with pytest.raises(ValueError, match="turns must be a positive"):
         random_path(0)
+
+
+def test_random_path_refuses_more_steps_than_the_cap():
+    from gearlever.gears.chariot import MAX_STEPS, random_path
+
+    with pytest.raises(GearleverError, match=r"^turns: turns\*steps_per_turn must be at most 10,000,000"):
+        random_path(MAX_STEPS / 1000 + 1, steps_per_turn=1000)
+    with pytest.raises(GearleverError, match="^turns"):
+        random_path(1e300, steps_per_turn=10**9)
+
+
+def test_waypoint_path_refuses_a_step_that_implies_too_many_steps(monkeypatch):
+    import gearlever.gears.chariot as chariot
+
+    with pytest.raises(GearleverError, match=r"^step: the way-points need"):
+        chariot.waypoint_path([[0, 0], [1, 0]], step=1 / chariot.MAX_STEPS / 2)
+    with pytest.raises(GearleverError, match=r"^step"):
+        chariot.waypoint_path([[0, 0], [1, 0]], step=1e-300)
+    monkeypatch.setattr(chariot, "MAX_STEPS", 1000)
+    dl, _, _ = chariot.waypoint_path([[0, 0], [1, 0]], step=1 / 1000 * 1.0000001)
+    assert dl.size == 1000
+    with pytest.raises(GearleverError, match=r"more than the cap 1,000 "):
+        chariot.waypoint_path([[0, 0], [1, 0], [1, 1]], step=1 / 1000 * 1.0000001)
+
+
+def test_parse_waypoints_refuses_more_points_than_the_cap(monkeypatch):
+    import gearlever.gears.chariot as chariot
+
+    monkeypatch.setattr(chariot, "MAX_WAYPOINTS", 3)
+    assert chariot.parse_waypoints("0 0\n1 1\n2 2\n").shape == (3, 2)
+    with pytest.raises(GearleverError, match="^waypoints must hold at most 3 points"):
+        chariot.parse_waypoints("0 0\n1 1\n2 2\n3 3\n")

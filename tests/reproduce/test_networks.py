@@ -30,6 +30,7 @@ def test_car_table_power_balance_and_held_wheel():
 
 
 def test_reproduce_writes_deterministic_tables_and_sane_figures(tmp_path):
+    (tmp_path / "t").mkdir(), (tmp_path / "f").mkdir()  # the registry creates the folders, not the step
     lines = networks.run(tmp_path / "t", tmp_path / "f")
     assert any("nuttall.csv" in x and "5/5" in x for x in lines)
     first = {p.name: p.read_bytes() for p in (tmp_path / "t").iterdir()}

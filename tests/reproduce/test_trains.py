@@ -50,6 +50,8 @@ def test_plots_return_axes_and_save(tmp_path):
 
 
 def test_reproduce_writes_deterministic_files(tmp_path):
+    for sub in ("t", "f", "again"):  # the registry creates the folders, not the step
+        (tmp_path / sub).mkdir()
     lines = rtrains.run(tmp_path / "t", tmp_path / "f")
     assert any("sandgren" in ln for ln in lines)
     names = ["hooke.csv", "hooke_extremes.csv", "train_designs.csv", "sandgren.csv"]

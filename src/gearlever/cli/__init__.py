@@ -5,8 +5,25 @@ sub-command (found automatically, in alphabetical order of module name).  A
 sub-command's handler is stored as ``func`` on its parser and returns an exit
 status.  The CLI only parses arguments, calls the library and writes files.
 
-Errors: bad arguments and any :class:`ValueError` from the library end the
-program with exit status 2 and exactly one line on stderr, no traceback.
+Exit status and errors (handled here, once, for every sub-command):
+
+* 0: done.
+* 2: bad input, with exactly one line on stderr and no traceback: a bad
+  argument (argparse names the flag), any :class:`ValueError` (so every
+  :class:`~gearlever.errors.GearleverError`; a message that starts with a
+  parameter name the parser knows is prefixed with the user's flag), any
+  :class:`OSError` (the line names the path and the reason), an
+  :class:`OverflowError`, or a :class:`MemoryError` (the caps on sizes should
+  prevent it).
+* 130: interrupted (Ctrl-C), one line.
+* 1: an internal error (a bug), one line asking for a report; set
+  ``GEARLEVER_TRACEBACK=1`` to see the traceback instead.
+
+Before the handler runs, an ``--out`` file is checked
+(:func:`gearlever.cli._common.check_output`): a directory, a device, a
+missing folder or an unwritable place is refused before any work.  Numeric
+:class:`RuntimeWarning` s (overflow) are not printed: they would break the
+one-line rule; the affected values come out as inf/nan (null in JSON).
 """
 
 from __future__ import annotations
@@ -15,7 +32,9 @@ import argparse
 import importlib
 import os
 import pkgutil
+import re
 import sys
+import warnings
 
 
 class UsageError(Exception):
@@ -50,24 +69,106 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _chosen_parser(parser: argparse.ArgumentParser, args) -> argparse.ArgumentParser:
+    """The innermost sub-command parser that ``args`` came from."""
+    while True:
+        subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+        name = getattr(args, subs[0].dest, None) if subs else None
+        if name is None or name not in subs[0].choices:
+            return parser
+        parser = subs[0].choices[name]
+
+
+def _with_flag(message: str, parser: argparse.ArgumentParser | None) -> str:
+    """Name the user's flag in front of a ``message`` that starts with a parameter name the parser knows.
+
+    ``"steps_per_turn must be ..."`` becomes ``"--steps-per-turn: steps_per_turn must be ..."``;
+    ``"step: the way-points need ..."`` becomes ``"--step: the way-points need ..."``.
+    """
+    if parser is None:
+        return message
+    m = re.match(r"([A-Za-z_][A-Za-z0-9_]*)\b", message)
+    if not m:
+        return message
+    for action in parser._actions:
+        if action.dest == m.group(1) and action.option_strings:
+            flag = max(action.option_strings, key=len)
+            rest = message[m.end() :]
+            return flag + rest if rest.startswith(":") else f"{flag}: {message}"
+    return message
+
+
+def _one_line(text: str) -> str:
+    lines = [ln.strip() for ln in str(text).splitlines() if ln.strip()]
+    return " ".join(lines)
+
+
+def _oserror_line(exc: OSError) -> str:
+    reason = exc.strerror or _one_line(exc) or type(exc).__name__
+    names = [repr(str(f)) for f in (exc.filename, exc.filename2) if f is not None]
+    return f"gearlever: error: {' -> '.join(names) + ': ' if names else ''}{reason}"
+
+
+def _print_error(line: str) -> None:
+    try:
+        print(line, file=sys.stderr)
+        sys.stderr.flush()
+    except (OSError, ValueError):
+        pass
+
+
 def main(argv=None) -> int:
-    """Run the CLI; return the exit status (0 ok, 2 bad input)."""
+    """Run the CLI; return the exit status (0 ok, 2 bad input, 130 interrupted, 1 internal error)."""
     # The command line writes files and never opens windows: it, not the library,
     # chooses a non-interactive matplotlib backend (the user's MPLBACKEND wins).
     os.environ.setdefault("MPLBACKEND", "Agg")
-    parser = build_parser()
+    from gearlever.cli._common import check_output
+
+    chosen = None
     try:
+        parser = build_parser()
         args = parser.parse_args(argv)
-        status = args.func(args)
+        chosen = _chosen_parser(parser, args)
+        out = getattr(args, "out", None)
+        if isinstance(out, str):
+            check_output(out, "--out")
+        with warnings.catch_warnings():
+            # numeric warnings (overflow, invalid value) would be extra lines on
+            # stderr; the results show them as inf/nan (json null) or the library refuses
+            warnings.simplefilter("ignore", RuntimeWarning)
+            status = args.func(args)
     except UsageError as exc:
-        print(str(exc).replace("\n", " "), file=sys.stderr)
-        return 2
-    except ValueError as exc:
-        print(
-            f"gearlever: error: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}",
-            file=sys.stderr,
-        )
+        _print_error(_one_line(exc))
         return 2
     except BrokenPipeError:
+        # the reader went away (``gearlever ... | head``): not an error; keep
+        # Python from complaining again when it flushes stdout at exit
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        except (OSError, ValueError, AttributeError):
+            pass
         return 0
+    except OSError as exc:
+        _print_error(_oserror_line(exc))
+        return 2
+    except ValueError as exc:
+        _print_error(f"gearlever: error: {_with_flag(_one_line(exc), chosen) or type(exc).__name__}")
+        return 2
+    except OverflowError as exc:
+        _print_error(f"gearlever: error: a value is out of range ({_one_line(exc) or 'overflow'})")
+        return 2
+    except MemoryError:
+        _print_error(
+            "gearlever: error: out of memory: a size argument is too large for this machine (see the caps in --help)"
+        )
+        return 2
+    except KeyboardInterrupt:
+        _print_error("gearlever: interrupted")
+        return 130
+    except Exception as exc:  # noqa: BLE001 - last resort: one line instead of a traceback
+        if os.environ.get("GEARLEVER_TRACEBACK"):
+            raise
+        _print_error(f"gearlever: internal error (please report): {type(exc).__name__}: {_one_line(exc)}")
+        return 1
     return int(status or 0)

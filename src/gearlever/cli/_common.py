@@ -1,12 +1,42 @@
-"""Helpers shared by the CLI sub-commands: number parsing and output."""
+"""Helpers shared by the CLI sub-commands: number parsing, caps, output and progress.
+
+How a sub-command stays safe (what :func:`gearlever.cli.main` already does
+for every command, and what each command can add):
+
+* Errors: raise :class:`gearlever.errors.GearleverError` (or let the library
+  raise it, or an :class:`OSError`); ``main`` prints one line and exits 2.
+  Never print a traceback or call ``sys.exit`` from a handler.
+* Numbers: give every argument an argparse ``type`` from this module
+  (:func:`finite_float`, :func:`positive_float`, :func:`positive_int`,
+  :func:`nonnegative_int`); argparse then names the flag in the error.
+* Sizes: every argument that sets how much is allocated or computed gets a
+  cap, ``type=capped_int(CAP)`` or ``type=capped_float(CAP)``, with ``CAP``
+  a named constant next to the code that allocates and a comment giving the
+  memory/time reasoning.  Caps on a product of arguments (turns times steps
+  per turn) are checked in the handler with :func:`check_cap`.
+* Outputs: ``main`` checks ``args.out`` with :func:`check_output` before the
+  handler runs; a command with other output arguments calls
+  :func:`check_output` (files) or :func:`check_output_folder` (folders) first
+  thing, before any work.  Write with :func:`emit` or the atomic helpers of
+  :mod:`gearlever._io`, never with ``open(path, "w")``.
+* JSON: :func:`to_json` only (strict: NaN and infinities become null).
+* Long work: wrap it in ``with progress("what"):`` so that a user at a
+  terminal sees it is alive (nothing is printed when stderr is not a
+  terminal, or for work under :data:`PROGRESS_DELAY` seconds).
+"""
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
+import sys
+import threading
+import time
 
 from gearlever import _io
 from gearlever._io import write_text_atomic
+from gearlever.errors import GearleverError
 
 
 def finite_float(text: str) -> float:
@@ -50,9 +80,125 @@ def positive_int(text: str) -> int:
     return value
 
 
-def emit(text: str, out: str | None = None) -> None:
-    """Print ``text`` to stdout, or write it atomically to the file ``out``."""
-    if out:
+def _cap_text(cap) -> str:
+    """``10**7`` as ``10^7`` (readable), other caps as written."""
+    if isinstance(cap, int) and cap >= 1000 and str(cap).rstrip("0") == "1":
+        return f"10^{len(str(cap)) - 1}"
+    return f"{cap:g}" if isinstance(cap, float) else str(cap)
+
+
+def capped_int(cap: int, low: int = 1):
+    """argparse type factory: an integer ``low <= n <= cap`` (the cap is named in the refusal).
+
+    >>> t = capped_int(10**6)
+    >>> t("20")
+    20
+    >>> t("2000000")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: must be at most 10^6 (the cap for this size), got '2000000'
+    """
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            what = "a positive integer" if low == 1 else f"an integer >= {low}"
+            raise argparse.ArgumentTypeError(f"must be {what}, got {text!r}") from None
+        if value < low:
+            what = "a positive integer" if low == 1 else f"an integer >= {low}"
+            raise argparse.ArgumentTypeError(f"must be {what}, got {text!r}")
+        if value > cap:
+            raise argparse.ArgumentTypeError(f"must be at most {_cap_text(cap)} (the cap for this size), got {text!r}")
+        return value
+
+    parse.__name__ = f"integer <= {_cap_text(cap)}"
+    return parse
+
+
+def capped_float(cap: float, *, positive: bool = True):
+    """argparse type factory: a finite float ``<= cap`` (and ``> 0`` when ``positive``).
+
+    >>> capped_float(1e7)("5")
+    5.0
+    >>> capped_float(1e7)("1e9")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: must be at most 1e+07 (the cap for this size), got '1e9'
+    """
+
+    def parse(text: str) -> float:
+        value = positive_float(text) if positive else finite_float(text)
+        if value > cap:
+            raise argparse.ArgumentTypeError(f"must be at most {_cap_text(cap)} (the cap for this size), got {text!r}")
+        return value
+
+    parse.__name__ = f"number <= {_cap_text(cap)}"
+    return parse
+
+
+def check_cap(what: str, value: float, cap: float) -> None:
+    """Refuse a size computed from several arguments when it exceeds ``cap``.
+
+    ``what`` names the flags, e.g. ``"--turns 5e6 with --steps-per-turn 1000"``.
+
+    >>> check_cap("--turns 10 with --steps-per-turn 1000", 10_000, 10**7)
+    >>> check_cap("--turns 1e9 with --steps-per-turn 1000", 1e12, 10**7)
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: --turns 1e9 with --steps-per-turn 1000 imply 1e+12, more than the cap 10^7
+    """
+    if not value <= cap:  # also refuses NaN
+        raise GearleverError(f"{what} imply {value:.6g}, more than the cap {_cap_text(cap)}")
+
+
+def check_output(path, flag: str = "--out") -> None:
+    """Refuse an output file that cannot be written, before any work is done.
+
+    Refused, with a :class:`GearleverError` naming ``flag``, the path and the
+    reason: an empty name, a directory, a device, a folder that does not
+    exist (it is not created), a path under a regular file, an unwritable
+    folder (``/proc``).  ``None`` (stdout) passes.
+
+    >>> check_output(None)
+    >>> check_output("/proc/x.csv")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: --out '/proc/x.csv': cannot write in this folder: No such file or directory
+    """
+    if path is None:
+        return
+    try:
+        _io.check_target(path)
+    except OSError as exc:
+        raise GearleverError(_oserror_text(flag, path, exc)) from None
+
+
+def check_output_folder(path, flag: str) -> None:
+    """Refuse an output folder that is a file or cannot be created or written (nothing is created).
+
+    >>> check_output_folder("/proc/t", "--tables")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: --tables '/proc/t': cannot write in this folder: ... (at '/proc')
+    """
+    try:
+        _io.check_folder(path)
+    except OSError as exc:
+        raise GearleverError(_oserror_text(flag, path, exc)) from None
+
+
+def _oserror_text(flag: str, path, exc: OSError) -> str:
+    reason = exc.strerror or type(exc).__name__
+    where = str(path) if path is not None else ""
+    culprit = f" (at {exc.filename!r})" if exc.filename and str(exc.filename) != where else ""
+    return f"{flag} {where!r}: {reason}{culprit}"
+
+
+def emit(text: str, out: str | None = None, flag: str = "--out") -> None:
+    """Print ``text`` to stdout, or write it atomically to the file ``out`` (checked first)."""
+    if out is not None:
+        check_output(out, flag)
         write_text_atomic(out, text if text.endswith("\n") else text + "\n")
     else:
         print(text)
@@ -61,3 +207,53 @@ def emit(text: str, out: str | None = None) -> None:
 def to_json(obj) -> str:
     """Strict JSON (NaN and infinities as null), keys in the order given; see :func:`gearlever._io.to_json`."""
     return _io.to_json(obj, indent=2)
+
+
+#: Seconds of work before :func:`progress` starts printing.
+PROGRESS_DELAY = 2.0
+
+
+@contextlib.contextmanager
+def progress(label: str, stream=None, delay: float = PROGRESS_DELAY, interval: float = 1.0):
+    """Show ``label`` and the elapsed seconds on stderr while the body runs, if it is a terminal.
+
+    Nothing is printed when the stream is not a terminal (pipes, files, tests)
+    or when the body takes less than ``delay`` seconds; the line is erased at
+    the end.  The body needs no callback: a daemon thread does the printing.
+
+    >>> with progress("simulating"):
+    ...     pass
+    """
+    stream = sys.stderr if stream is None else stream
+    try:
+        tty = stream.isatty()
+    except (AttributeError, ValueError):
+        tty = False
+    if not tty:
+        yield
+        return
+    done = threading.Event()
+    shown = threading.Event()
+    start = time.monotonic()
+
+    def tick():
+        if done.wait(delay):
+            return
+        while not done.is_set():
+            with contextlib.suppress(OSError, ValueError):
+                stream.write(f"\r{label} ... {time.monotonic() - start:.0f} s")
+                stream.flush()
+                shown.set()
+            done.wait(interval)
+
+    thread = threading.Thread(target=tick, name="gearlever-progress", daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        done.set()
+        thread.join()
+        if shown.is_set():
+            with contextlib.suppress(OSError, ValueError):
+                stream.write("\r\033[K")
+                stream.flush()

@@ -2,7 +2,14 @@
 
 ``gearlever chariot nuttall --n2 .. --n11 .. [--track T] [--format table|json]``
 ``gearlever chariot simulate --design nuttall --n2 .. --n11 .. [--track T] [--d1 X] [--d12 Y]
-[--path random --turns N --seed S | --waypoints FILE] [--format table|json]``
+[--path random --turns N --seed S --steps-per-turn K --heading RAD | --waypoints FILE --step L]
+[--format table|json]``
+
+Caps (refused above, naming the cap): tooth numbers at most :data:`MAX_TEETH`;
+a path of at most :data:`gearlever.gears.chariot.MAX_STEPS` steps (``--turns``
+times ``--steps-per-turn``, or the way-points' length over ``--step``); a
+way-point file of at most :data:`MAX_WAYPOINT_BYTES` bytes.  Options of the
+random path and of the way-point path do not mix.
 """
 
 from __future__ import annotations
@@ -10,20 +17,44 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from gearlever.cli._common import emit, finite_float, nonnegative_int, positive_float, positive_int, to_json
+from gearlever.cli._common import (
+    capped_float,
+    capped_int,
+    check_cap,
+    emit,
+    finite_float,
+    nonnegative_int,
+    positive_float,
+    progress,
+    to_json,
+)
 from gearlever.errors import GearleverError
+from gearlever.gears.chariot import MAX_STEPS
 
 _TEETH = ("n2", "n5", "n6", "n7", "n8", "n9", "n11")
+
+#: Largest tooth number accepted: no built gear comes near it, and it keeps the
+#: exact fractions of the solver small (a few digits) and every diameter a
+#: float well inside range (bigger numbers cost no memory but overflow floats).
+MAX_TEETH = 10**6
+#: Largest way-point file read (bytes): ~10^6 lines of x y pairs, parsed in a
+#: few seconds and a few hundred MB at most; the file is read at most this far.
+MAX_WAYPOINT_BYTES = 64 * 2**20
+#: Defaults of the random path (its options are None when not given, so that
+#: mixing them with --waypoints is refused rather than silently ignored).
+RANDOM_DEFAULTS = {"turns": 10.0, "seed": 0, "steps_per_turn": 1000, "heading": 0.0}
+#: Default longest step of the way-point path, units of the track.
+DEFAULT_STEP = 0.01
 
 
 def _add_teeth(p) -> None:
     for name in _TEETH:
         p.add_argument(
             f"--{name}",
-            type=positive_int,
+            type=capped_int(MAX_TEETH),
             required=True,
             metavar="TEETH",
-            help=f"tooth number {name} (see the Nuttall parts list)",
+            help=f"tooth number {name} (see the Nuttall parts list), at most {MAX_TEETH:,}",
         )
     p.add_argument(
         "--track",
@@ -65,18 +96,18 @@ def register(sub) -> None:
     s.add_argument("--path", choices=("random",), default="random", help="random drive (default)")
     s.add_argument(
         "--turns",
-        type=positive_float,
-        default=10.0,
+        type=capped_float(MAX_STEPS),
+        default=None,
         metavar="N",
-        help="random path: total chassis turning in full turns (default 10)",
+        help=f"random path: total chassis turning in full turns (default 10; N*K at most {MAX_STEPS:,} steps)",
     )
-    s.add_argument("--seed", type=nonnegative_int, default=0, metavar="S", help="random path seed (default 0)")
+    s.add_argument("--seed", type=nonnegative_int, default=None, metavar="S", help="random path seed (default 0)")
     s.add_argument(
         "--steps-per-turn",
-        type=positive_int,
-        default=1000,
+        type=capped_int(MAX_STEPS),
+        default=None,
         metavar="K",
-        help="random path: steps per full turn (default 1000)",
+        help=f"random path: steps per full turn (default 1000; N*K at most {MAX_STEPS:,} steps)",
     )
     s.add_argument(
         "--waypoints",
@@ -87,14 +118,15 @@ def register(sub) -> None:
     s.add_argument(
         "--step",
         type=positive_float,
-        default=0.01,
+        default=None,
         metavar="L",
-        help="way-point path: longest step of a contact point, units of T (default 0.01)",
+        help=f"way-point path: longest step of a contact point, units of T (default {DEFAULT_STEP}; "
+        f"at most {MAX_STEPS:,} steps in all)",
     )
     s.add_argument(
         "--heading",
         type=finite_float,
-        default=0.0,
+        default=None,
         metavar="RAD",
         help="random path: starting chassis heading in rad (default 0)",
     )
@@ -152,38 +184,75 @@ def _nuttall(args) -> int:
     return 0
 
 
+def _read_waypoints(name: str) -> str:
+    """The text of the way-point file ``name`` (a regular file, at most :data:`MAX_WAYPOINT_BYTES`)."""
+    path = Path(name)
+    try:
+        if path.exists() and not path.is_file() and not path.is_dir():
+            raise GearleverError(f"--waypoints {name!r}: must be a regular file (not a device or pipe)")
+        with open(path, "rb") as fh:
+            data = fh.read(MAX_WAYPOINT_BYTES + 1)
+        if len(data) > MAX_WAYPOINT_BYTES:
+            raise GearleverError(f"--waypoints {name!r}: file larger than the cap of {MAX_WAYPOINT_BYTES:,} bytes")
+        return data.decode("utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = getattr(exc, "strerror", None) or type(exc).__name__
+        raise GearleverError(f"--waypoints {name!r}: waypoints file cannot be read: {reason}") from None
+
+
+def _path_options(args):
+    """Refuse options of one kind of path given with the other; fill in the defaults."""
+    random_given = [k for k in RANDOM_DEFAULTS if getattr(args, k) is not None]
+    if args.waypoints is not None:
+        if random_given:
+            flags = ", ".join("--" + k.replace("_", "-") for k in random_given)
+            verb = "belongs" if len(random_given) == 1 else "belong"
+            raise GearleverError(f"{flags} {verb} to the random path and cannot be used with --waypoints")
+        args.step = DEFAULT_STEP if args.step is None else args.step
+    else:
+        if args.step is not None:
+            raise GearleverError("--step belongs to the way-point path: give it with --waypoints")
+        for k, v in RANDOM_DEFAULTS.items():
+            if getattr(args, k) is None:
+                setattr(args, k, v)
+        check_cap(
+            f"--turns {args.turns:g} with --steps-per-turn {args.steps_per_turn}",
+            args.turns * args.steps_per_turn,
+            MAX_STEPS,
+        )
+
+
 def _simulate(args) -> int:
     from gearlever.gears.chariot import parse_waypoints, random_path, simulate, waypoint_path
 
+    _path_options(args)
     d = _design(args)
     if args.waypoints is not None:
-        try:
-            text = Path(args.waypoints).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as exc:
-            reason = getattr(exc, "strerror", None) or type(exc).__name__
-            raise GearleverError(f"waypoints file {args.waypoints!r} cannot be read: {reason}") from None
-        pts = parse_waypoints(text)
-        dl, dr, h0 = waypoint_path(pts, track=d.track, step=args.step * d.track)
-        run = simulate(
-            d,
-            dl,
-            dr,
-            d1=args.d1 and args.d1 * d.track,
-            d12=args.d12 and args.d12 * d.track,
-            heading0=h0,
-            start=pts[0],
-        )
+        pts = parse_waypoints(_read_waypoints(args.waypoints))
+        with progress("chariot simulate: way-point path"):
+            dl, dr, h0 = waypoint_path(pts, track=d.track, step=args.step * d.track)
+            run = simulate(
+                d,
+                dl,
+                dr,
+                d1=args.d1 and args.d1 * d.track,
+                d12=args.d12 and args.d12 * d.track,
+                heading0=h0,
+                start=pts[0],
+            )
         path = f"path through the {len(pts)} way-points of {args.waypoints}"
     else:
-        dl, dr = random_path(args.turns, seed=args.seed, steps_per_turn=args.steps_per_turn, track=d.track)
-        run = simulate(
-            d,
-            dl,
-            dr,
-            d1=args.d1 and args.d1 * d.track,
-            d12=args.d12 and args.d12 * d.track,
-            heading0=args.heading,
-        )
+        steps = max(1, round(args.turns * args.steps_per_turn))
+        with progress(f"chariot simulate: random path of {steps:,} steps"):
+            dl, dr = random_path(args.turns, seed=args.seed, steps_per_turn=args.steps_per_turn, track=d.track)
+            run = simulate(
+                d,
+                dl,
+                dr,
+                d1=args.d1 and args.d1 * d.track,
+                d12=args.d12 and args.d12 * d.track,
+                heading0=args.heading,
+            )
         path = f"random path, seed {args.seed}"
     turns = run.turns
     result = {

@@ -3,12 +3,20 @@
 ``gearlever differential car --pinion-teeth Z1 --ring-teeth Z2 --pinion-speed W --pinion-torque G
 [--turn-radius R --track T | --left-speed W4] [--format table|json]``
 (neither a turn nor a left speed: a straight run).
+
+Caps: tooth numbers at most :data:`MAX_TEETH`.  Speeds and torques are any
+finite numbers; a result too large for a float is printed as ``inf`` (table)
+or ``null`` (json).
 """
 
 from __future__ import annotations
 
-from gearlever.cli._common import emit, finite_float, positive_float, positive_int, to_json
+from gearlever.cli._common import capped_int, emit, finite_float, positive_float, to_json
 from gearlever.errors import GearleverError
+
+#: Largest tooth number accepted: far above any built ring or pinion; it keeps
+#: ``Z1/Z2`` and ``Z2/Z1`` ordinary floats (a huge integer ratio overflows).
+MAX_TEETH = 10**6
 
 
 def register(sub) -> None:
@@ -16,8 +24,8 @@ def register(sub) -> None:
     cmds = p.add_subparsers(dest="differential_command", metavar="{car}")
     cmds.required = True
     c = cmds.add_parser("car", help="ring and pinion, carrier, wheel speeds, torques and power")
-    c.add_argument("--pinion-teeth", type=positive_int, required=True, metavar="Z1")
-    c.add_argument("--ring-teeth", type=positive_int, required=True, metavar="Z2")
+    c.add_argument("--pinion-teeth", type=capped_int(MAX_TEETH), required=True, metavar="Z1")
+    c.add_argument("--ring-teeth", type=capped_int(MAX_TEETH), required=True, metavar="Z2")
     c.add_argument(
         "--pinion-speed",
         type=finite_float,

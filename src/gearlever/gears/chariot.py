@@ -219,6 +219,18 @@ def nuttall_closed_form(teeth: NuttallTeeth) -> dict[str, Fraction]:
 # paths
 # ---------------------------------------------------------------------------
 
+#: Most steps a path may have (:func:`random_path`, :func:`waypoint_path`).
+#: Memory: a random path and its :func:`simulate` run peak at about 55 bytes
+#: per step (the two step arrays and their temporaries, the two N+1 heading
+#: arrays, the summary's temporaries), so 10^7 steps take ~0.6 GB; time is
+#: ~0.15 us per step, ~1.5 s for 10^7 steps on one core.  Above this a path
+#: is refused before anything is allocated.
+MAX_STEPS = 10**7
+#: Most way-points :func:`parse_waypoints` reads: parsing costs ~2 us and each
+#: point adds at least two steps, so 10^6 points stay within a few seconds
+#: and well under :data:`MAX_STEPS`.
+MAX_WAYPOINTS = 10**6
+
 
 def random_path(
     turns: float, seed: int = 0, steps_per_turn: int = 1000, track: float = 1.0
@@ -226,7 +238,8 @@ def random_path(
     """A random drive whose chassis turns ``turns`` full turns in all (sum of |heading changes|).
 
     Returns the per-step signed distances travelled by the left and right
-    contact points, ``(ds_left, ds_right)``, ``round(turns*steps_per_turn)`` steps.
+    contact points, ``(ds_left, ds_right)``, ``round(turns*steps_per_turn)`` steps
+    (at most :data:`MAX_STEPS`).
     The drive is made of runs of 50 steps of constant speed and turn rate
     (arcs, spins on the spot, reversing), reproducible from ``seed``.
 
@@ -238,7 +251,13 @@ def random_path(
     seed = V.nonnegative_int("seed", seed)
     steps_per_turn = V.positive_int("steps_per_turn", steps_per_turn)
     track = V.positive("track", track)
-    n = max(1, int(round(turns * steps_per_turn)))
+    steps = turns * steps_per_turn
+    if not steps <= MAX_STEPS:
+        raise GearleverError(
+            f"turns: turns*steps_per_turn must be at most {MAX_STEPS:,} steps (memory and time cap), "
+            f"got {turns:g}*{steps_per_turn} = {steps:.3g}"
+        )
+    n = max(1, int(round(steps)))
     rng = np.random.default_rng(seed)
     run = 50
     runs = -(-n // run)
@@ -273,6 +292,8 @@ def parse_waypoints(text: str) -> np.ndarray:
         if pair is None or len(pair) != 2 or not all(math.isfinite(v) for v in pair):
             raise GearleverError(f"waypoints line {k}: expected two finite numbers 'x y', got {raw.strip()!r}")
         pts.append(pair)
+        if len(pts) > MAX_WAYPOINTS:
+            raise GearleverError(f"waypoints must hold at most {MAX_WAYPOINTS:,} points (time cap), line {k}")
     if len(pts) < 2:
         raise GearleverError(f"waypoints must hold at least two points, got {len(pts)}")
     return np.array(pts, dtype=float)
@@ -283,7 +304,8 @@ def waypoint_path(points, track: float = 1.0, step: float = 0.01):
 
     Returns ``(ds_left, ds_right, heading0)``: per-step contact distances (no
     step longer than ``step``) and the starting heading (towards the second
-    distinct point).  Repeated consecutive points are skipped.
+    distinct point).  Repeated consecutive points are skipped.  A path of
+    more than :data:`MAX_STEPS` steps is refused before it is allocated.
 
     >>> dl, dr, h0 = waypoint_path([[0, 0], [1, 0], [1, 1]], step=0.5)
     >>> h0, len(dl)
@@ -309,7 +331,15 @@ def waypoint_path(points, track: float = 1.0, step: float = 0.01):
     mid[0::2] = length
     dpsi[1::2] = spin
     size = np.maximum(np.abs(mid), np.abs(dpsi) * track / 2)
-    count = np.maximum(1, np.ceil(size / step)).astype(int)
+    with np.errstate(over="ignore"):
+        count_f = np.maximum(1, np.ceil(size / step))
+        total = float(count_f[size > 0].sum())
+    if not total <= MAX_STEPS:
+        raise GearleverError(
+            f"step: the way-points need {total:.3g} steps of at most {step:g}, more than the cap "
+            f"{MAX_STEPS:,} (memory and time); give a longer step"
+        )
+    count = count_f.astype(int)
     keep = size > 0
     mid, dpsi, count = mid[keep], dpsi[keep], count[keep]
     ds_mid = np.repeat(mid / count, count)
@@ -500,7 +530,9 @@ def simulate(
         # a NaN or inf anywhere in the input propagates to the end of a cumulative sum
         V.finite_array("ds_left", dl)
         V.finite_array("ds_right", dr)
-        raise GearleverError("ds_left and ds_right are too large: the headings overflow")
+        raise GearleverError(
+            "ds_left, ds_right: the path is too long for these wheels (d1, d12): the headings overflow"
+        )
     return ChariotRun(ds_left=dl, ds_right=dr, chassis_heading=heading, drift=drift, track=t, start=start)
 
 

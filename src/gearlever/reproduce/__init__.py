@@ -1,8 +1,11 @@
 """Regenerate every file in tables/ and figures/.
 
 Each module in this package defines ``run(tables_dir, figures_dir)``, which
-writes its files (atomically) and returns a list of summary lines.  They run
-in alphabetical order of module name.  This package may import ``tables``
+writes its files (atomically, into folders that exist) and returns a list of
+summary lines.  They run in alphabetical order of module name.  :func:`run`
+checks both folders before anything is written (each must be a writable
+directory or creatable), then creates them; a refused folder raises
+:class:`OSError` naming it, and no file is written.  This package may import ``tables``
 (pandas) and ``plotting`` (matplotlib); the numeric modules never do.
 """
 
@@ -15,9 +18,13 @@ from pathlib import Path
 
 def run(tables_dir, figures_dir) -> list[str]:
     """Run every reproduction step; return all summary lines."""
+    from gearlever._io import check_folder
+
     tables_dir, figures_dir = Path(tables_dir), Path(figures_dir)
-    tables_dir.mkdir(parents=True, exist_ok=True)
-    figures_dir.mkdir(parents=True, exist_ok=True)
+    for folder in (tables_dir, figures_dir):  # both checked before either is created
+        check_folder(folder)
+    for folder in (tables_dir, figures_dir):
+        check_folder(folder, create=True)
     lines: list[str] = []
     for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
         if info.name.startswith("_"):
