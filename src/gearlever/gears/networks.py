@@ -424,38 +424,7 @@ class _Elimination:
                 remaining[c] -= 1
                 row[c] = row.get(c, 0) + v
             row = {c: v for c, v in row.items() if v}
-            scale = Fraction(1)
-            hist: dict[int, Fraction] = {}
-            heap = [self.pivot_of[c] for c in row if c in self.pivot_of]
-            heapq.heapify(heap)
-            seen = set(heap)
-            while heap:
-                k = heapq.heappop(heap)
-                pc, brow = self.basis[k]
-                rp = row.get(pc)
-                if not rp:
-                    continue
-                bp = brow[pc]
-                # row' = bp*row - rp*B_k = (bp*scale) * (A_i - sum h B - rp/(bp*scale) B_k)
-                hist[k] = hist.get(k, Fraction(0)) + Fraction(rp) / (bp * scale)
-                new = {c: bp * v for c, v in row.items()}
-                for c, v in brow.items():
-                    w = new.get(c, 0) - rp * v
-                    if w:
-                        new[c] = w
-                    else:
-                        new.pop(c, None)
-                        continue
-                    j = self.pivot_of.get(c)
-                    if j is not None and j not in seen:
-                        seen.add(j)
-                        heapq.heappush(heap, j)
-                scale *= bp
-                g = math.gcd(*new.values()) if new else 1
-                if g > 1:
-                    new = {c: v // g for c, v in new.items()}
-                    scale /= g
-                row = new
+            row, hist, scale = self.reduce(row)
             if not row:
                 self.redundant.append((i, hist))
                 continue
@@ -472,6 +441,46 @@ class _Elimination:
             self.origin.append(i)
             self.scale.append(scale)
             self.history.append(hist)
+
+    def reduce(self, row: dict[int, int]) -> tuple[dict[int, int], dict[int, Fraction], Fraction]:
+        """Reduce an integer row by the basis: ``(rest, h, s)`` with ``rest = s (row - sum_k h[k] B_k)``.
+
+        ``rest`` has no pivot column of the basis; it is empty when ``row`` is
+        in the span of the basis rows, and then ``h`` are its coordinates.
+        """
+        scale = Fraction(1)
+        hist: dict[int, Fraction] = {}
+        heap = [self.pivot_of[c] for c in row if c in self.pivot_of]
+        heapq.heapify(heap)
+        seen = set(heap)
+        while heap:
+            k = heapq.heappop(heap)
+            pc, brow = self.basis[k]
+            rp = row.get(pc)
+            if not rp:
+                continue
+            bp = brow[pc]
+            # row' = bp*row - rp*B_k = (bp*scale) * (A_i - sum h B - rp/(bp*scale) B_k)
+            hist[k] = hist.get(k, Fraction(0)) + Fraction(rp) / (bp * scale)
+            new = {c: bp * v for c, v in row.items()}
+            for c, v in brow.items():
+                w = new.get(c, 0) - rp * v
+                if w:
+                    new[c] = w
+                else:
+                    new.pop(c, None)
+                    continue
+                j = self.pivot_of.get(c)
+                if j is not None and j not in seen:
+                    seen.add(j)
+                    heapq.heappush(heap, j)
+            scale *= bp
+            g = math.gcd(*new.values()) if new else 1
+            if g > 1:
+                new = {c: v // g for c, v in new.items()}
+                scale /= g
+            row = new
+        return row, hist, scale
 
     @property
     def rank(self) -> int:
@@ -654,13 +663,8 @@ class Network:
         r, c, v = self._coo()
         return sp.csr_array((v, (r, c)), shape=(len(self._int_rows), len(self.gears)))
 
-    def _elimination(self, keep_free=frozenset(), stop_on_free=False, upto=None) -> _Elimination:
-        rows = self._int_rows if upto is None else self._int_rows[:upto]
-        return _Elimination(rows, len(self.gears), keep_free, stop_on_free)
-
-    def _forced_still(self, upto=None) -> set[int]:
-        expr = self._elimination(upto=upto).expressions()
-        return {j for j, e in expr.items() if not e}
+    def _elimination(self, keep_free=frozenset(), stop_on_free=False) -> _Elimination:
+        return _Elimination(self._int_rows, len(self.gears), keep_free, stop_on_free)
 
     def analyse(self) -> NetworkAnalysis:
         """Unknowns, rank, dof and redundant constraints; raise if the network is locked.
@@ -688,7 +692,8 @@ class Network:
         the multipliers it was reduced with, so a row that reduces to zero
         gives its dependency exactly (Nuttall: (e) = (d) - (c)).  Members
         forced still are the columns that back-substitution expresses as 0;
-        the constraint that forces each is found by bisection over prefixes.
+        the constraint that forces each is the latest one its unit row needs
+        from the basis.
         """
         names = self.names
         n = len(names)
@@ -699,7 +704,7 @@ class Network:
             combo = el.combination(i, hist)
             deps[labels[i]] = {labels[k]: -v for k, v in combo.items() if k != i}
         still = {j for j, e in el.expressions().items() if not e}
-        when = self._lock_points(still)
+        when = self._lock_points(el, still)
         meshing = {
             self._index[m]
             for c in self.constraints
@@ -727,24 +732,20 @@ class Network:
             locked={names[j]: labels[k] for j, k in sorted(when.items())},
         )
 
-    def _lock_points(self, still: set[int]) -> dict[int, int]:
-        """For each member forced still, the index of the first constraint with which it is (bisection)."""
+    @staticmethod
+    def _lock_points(el: _Elimination, still: set[int]) -> dict[int, int]:
+        """For each member forced still, the index of the first constraint after which it is.
+
+        ``e_j`` lies in the span of the basis rows; its coordinates are unique,
+        and the basis rows made from the first ``p`` constraints span exactly
+        the rows of those constraints, so the answer is the latest origin among
+        the basis rows ``e_j`` needs.
+        """
         out: dict[int, int] = {}
-
-        def split(lo, hi, members):
-            # members: still after hi constraints, not after lo
-            if not members:
-                return
-            if hi - lo == 1:
-                for j in members:
-                    out[j] = hi - 1
-                return
-            mid = (lo + hi) // 2
-            at_mid = self._forced_still(upto=mid) & members
-            split(lo, mid, at_mid)
-            split(mid, hi, members - at_mid)
-
-        split(0, len(self._int_rows), set(still))
+        for j in sorted(still):
+            rest, hist, _ = el.reduce({j: 1})
+            assert not rest  # j was found forced still, so e_j is in the row space
+            out[j] = max(el.origin[k] for k, h in hist.items() if h)
         return out
 
     def _check_inputs(self, inputs, dof=None) -> tuple[str, ...]:
