@@ -28,7 +28,7 @@ def epicyclic_table(network: Network, inputs, carrier: str | None = None, turned
 
     >>> from gearlever.gears.planetary import planetary_network
     >>> epicyclic_table(planetary_network(24, 60, planet=18), ["sun"], "carrier")["per_sun"].tolist()
-    ['1', '2/7', '-2/3', '0']
+    ['1', '0', '2/7', '-2/3']
     """
     sol = network.solve(inputs)
     names = list(network.names)
