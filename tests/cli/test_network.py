@@ -80,3 +80,62 @@ def test_network_bad_input_exit_2_one_line(capsys, tmp_path, text, extra, needle
 def test_network_missing_file_exit_2(capsys, tmp_path):
     assert main(["network", str(tmp_path / "none.csv")]) == 2
     assert "cannot be read" in capsys.readouterr().err
+
+
+EXAMPLES = __import__("pathlib").Path(__file__).resolve().parents[2] / "examples"
+
+
+def test_network_tabular_ferguson_table_and_json(capsys):
+    f = str(EXAMPLES / "ferguson_paradox.csv")
+    assert main(["network", f, "--inputs", "arm", "--tabular", "arm"]) == 0
+    out = capsys.readouterr().out
+    assert "rot_w99 = -1/99*rot_arm" in out and "rot_w101 = 1/101*rot_arm" in out and "rot_w100 = 0" in out
+    assert "tabular method: carrier arm" in out
+    line = next(ln for ln in out.splitlines() if ln.startswith("w99 "))
+    assert [c.strip() for c in line.split("|")] == [
+        "w99",
+        "99",
+        "100/99",
+        "-100/99*rot_arm",
+        "rot_arm",
+        "-1/99*rot_arm",
+    ]
+    assert main(["network", f, "--inputs", "arm", "--tabular", "arm", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    rows = {r["member"]: r for r in data["tabular"]["rows"]}
+    assert rows["w101"] == {"member": "w101", "teeth": 101, "relative": "100/101", "total": ["1/101"]}
+    assert data["tabular"]["x"] == ["-1"] and data["tabular"]["y"] == ["1"]
+
+
+@pytest.mark.parametrize(
+    "text, extra, needle",
+    [
+        ("", [], "no member records"),
+        ("# nothing\n", [], "no member records"),
+        (
+            "member,s,gear,30\nmember,p,gear,20\nconstraint,m,mesh,s,p,arm,1\n",
+            [],
+            "constraint (m): unknown gear 'arm'",
+        ),
+        ("member,s,gear,30\nmember,p,gear,20\nconstraint,m,mesh,s,p,p,1\n", [], "carrier 'p' must differ"),
+        ("member,s,gear,30\nmember,c\nconstraint,d,differential,s,frame,c\n", [], "frame cannot be a side gear"),
+        ("member,p,gear,20\nmember,a\nconstraint,m,mesh,frame,p,a\n", [], "frame cannot mesh on carrier 'a'"),
+        ("member,s,gear,0\n", [], "teeth must be a positive integer"),
+        (
+            "member,s,gear,30\nmember,p,gear,20\nmember,a\nconstraint,m,mesh,s,p,a\n",
+            ["--inputs", "s,a", "--tabular", "zz"],
+            "carrier 'zz' is not a member",
+        ),
+        (
+            "member,s,gear,30\nmember,p,gear,20\nmember,a\nconstraint,m,mesh,s,p,a\n",
+            ["--tabular", "a"],
+            "--tabular needs --inputs",
+        ),
+    ],
+)
+def test_network_carrier_and_empty_file_errors_exit_2_one_line(capsys, tmp_path, text, extra, needle):
+    f = tmp_path / "net.csv"
+    f.write_text(text)
+    assert main(["network", str(f), *extra]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and len(err.strip().splitlines()) == 1

@@ -3,6 +3,7 @@
 import itertools
 import re
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -335,3 +336,140 @@ def test_parse_network_round_trip_of_nuttall_records():
 def test_parse_network_errors_name_line_gear_or_constraint(text, message):
     with pytest.raises(ValueError, match=message):
         parse_network(text)
+
+
+# --- meshes on a carrier, the frame, empty networks, sparse paths ------------------------------
+
+
+def test_mesh_on_carrier_row_is_willis_relative_to_the_carrier():
+    m = Mesh("m", "s", "p", sign=1, carrier="c")
+    assert m.terms({"s": 30, "p": 20, "c": None}) == {"s": 30, "p": 20, "c": -50}
+    ring = Mesh("r", "p", "R", sign=-1, carrier="c")
+    assert ring.terms({"p": 20, "R": 70, "c": None}) == {"p": 20, "R": -70, "c": 50}
+
+
+def test_planet_meshing_fixed_axis_written_the_obvious_way_now_errors_or_is_right():
+    # the planet written on the carrier gives Willis; the carrier can never silently drop out
+    net = Network(
+        [Gear("sun", 30), Gear("planet", 20), Gear("arm")],
+        [SameShaft("fix", "sun", FRAME), Mesh("m", "sun", "planet", carrier="arm")],
+    )
+    assert net.solve(["arm"]).coefficients["planet"] == (1 + Fraction(30, 20),)
+
+
+@pytest.mark.parametrize(
+    "make, message",
+    [
+        (lambda: Differential("x", "S", FRAME, "C"), r"frame cannot be a side gear.*shaft"),
+        (lambda: Differential("x", FRAME, "S", "C"), r"frame cannot be a side gear"),
+        (lambda: Mesh("m", FRAME, "p", carrier="arm"), r"frame cannot mesh on carrier 'arm'.*shaft"),
+        (lambda: Mesh("m", "p", "q", carrier="p"), r"carrier 'p' must differ"),
+        (lambda: Mesh("m", "p", "q", carrier=""), r"carrier must be a non-empty string"),
+    ],
+)
+def test_constraints_needing_the_frames_teeth_are_refused_with_how_to_write_them(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_unknown_carrier_and_toothless_planet_are_named():
+    with pytest.raises(ValueError, match=r"constraint \(m\): unknown gear 'arm'"):
+        Network([Gear("s", 20), Gear("p", 10)], [Mesh("m", "s", "p", carrier="arm")])
+    with pytest.raises(ValueError, match="at least one member"):
+        Network([], [])
+
+
+def test_parse_network_reads_the_carrier_column_and_refuses_an_empty_file():
+    net = parse_network("member,s,gear,30\nmember,p,gear,20\nmember,a,carrier\nconstraint,m1,mesh,s,p,a,1,\n")
+    assert net.constraints[0] == Mesh("m1", "s", "p", 1, carrier="a")
+    for text in ("", "# only a comment\n", "constraint,k,shaft,a,b\n"):
+        with pytest.raises(ValueError, match="no member"):
+            parse_network(text)
+    with pytest.raises(ValueError, match=r"network line 3: .*third column must be empty"):
+        parse_network("member,a,gear,1\nmember,b,gear,2\nconstraint,k,shaft,a,b,c\n")
+
+
+def test_rows_are_the_terms_of_each_constraint_and_match_the_dense_matrix():
+    net = nuttall()
+    rows = net.rows()
+    assert rows == [c.terms(net.teeth) for c in net.constraints]
+    dense = net.matrix()
+    for r, d in zip(rows, dense):
+        assert {n: v for n, v in zip(net.names, d) if v} == r
+    assert np.array_equal(net.matrix_sparse().toarray(), net.matrix_float())
+
+
+@st.composite
+def random_carrier_networks(draw):
+    """Random networks mixing fixed-axis and carrier meshes, shafts, ties to the frame, differentials."""
+    size = draw(st.integers(3, 12))
+    gears = [Gear(f"g{k}", draw(st.integers(6, 90))) for k in range(size)]
+    cons = []
+    for k in range(1, size):
+        j = draw(st.integers(0, k - 1))
+        kind = draw(st.sampled_from(["mesh", "carrier", "shaft", "diff", "fix"]))
+        others = [i for i in range(size) if i not in (j, k)]
+        if kind == "mesh":
+            cons.append(Mesh(f"c{k}", f"g{j}", f"g{k}", sign=draw(st.sampled_from([1, -1]))))
+        elif kind == "carrier":
+            c = draw(st.sampled_from(others))
+            cons.append(Mesh(f"c{k}", f"g{j}", f"g{k}", sign=draw(st.sampled_from([1, -1])), carrier=f"g{c}"))
+        elif kind == "shaft":
+            cons.append(SameShaft(f"c{k}", f"g{j}", f"g{k}"))
+        elif kind == "fix":
+            cons.append(SameShaft(f"c{k}", f"g{k}", FRAME))
+        else:
+            c = draw(st.sampled_from(others + [None]))
+            cons.append(Differential(f"c{k}", f"g{j}", f"g{k}", FRAME if c is None else f"g{c}"))
+    return Network(gears, cons)
+
+
+@settings(max_examples=80, deadline=None)
+@given(random_carrier_networks())
+def test_random_carrier_networks_exact_rank_matches_svd_and_float_path_agrees(net):
+    A = net.matrix_float()
+    s = np.linalg.svd(A, compute_uv=False)
+    rank = int(np.sum(s > 1e-10 * s[0])) if s.size and s[0] > 0 else 0
+    try:
+        a = net.analyse()
+    except ValueError as exc:
+        assert "locks" in str(exc)
+        return
+    assert a.rank == rank
+    # redundant rows: each equals the stated combination of earlier rows, exactly
+    rows = dict(zip([c.label for c in net.constraints], net.rows()))
+    for lab, dep in a.dependencies.items():
+        combo = {}
+        for k, f in dep.items():
+            for n, v in rows[k].items():
+                combo[n] = combo.get(n, 0) + f * v
+        assert {n: v for n, v in combo.items() if v} == rows[lab]
+    # inputs: the free columns of an exact elimination
+    el = net._elimination()
+    inputs = [net.names[j] for j in range(len(net.names)) if j not in el.pivot_of]
+    sol = net.solve(inputs)
+    for row in net.rows():
+        for k in range(len(inputs)):
+            assert sum(v * sol.coefficients[n][k] for n, v in row.items()) == 0
+    for name in a.locked:
+        assert all(c == 0 for c in sol.coefficients[name])
+    if inputs:
+        exact = sol.matrix(net.names)
+        scale = max(1.0, np.abs(exact).max())
+        assert np.allclose(net.solve_float(inputs), exact, rtol=1e-8, atol=1e-8 * scale)
+
+
+def test_large_branch_network_exact_and_float_paths_agree():
+    """A spine of equal gears with branches of meshes joined by differentials (the benchmark's shape)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "bench_networks", Path(__file__).resolve().parents[2] / "benchmarks" / "bench_networks.py"
+    )
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    net = bench.branch_network(600)
+    a = net.analyse()
+    assert a.dof == 1 and not a.redundant and not a.locked
+    exact = net.solve(["s0"]).matrix(net.names)
+    assert np.allclose(net.solve_float(["s0"]), exact, rtol=1e-9, atol=1e-12)

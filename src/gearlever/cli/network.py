@@ -1,8 +1,10 @@
-"""``gearlever network FILE --inputs A,B [--teeth n2=30,...] [--format table|json]``.
+"""``gearlever network FILE --inputs A,B [--teeth n2=30,...] [--tabular CARRIER [--turned M]] [--format table|json]``.
 
 Solve a gear network given as CSV records (see :func:`gearlever.gears.networks.parse_network`):
 counts, redundant constraints, and every member's rotation as an exact linear
-function of the inputs.  An inconsistent network, an unknown gear or a bad
+function of the inputs; with ``--tabular`` the textbook table of the
+epicyclic train on that carrier (see :func:`gearlever.gears.epicyclic.tabular_method`).
+An empty file, an inconsistent network, an unknown gear or a bad
 tooth number ends with exit 2 and one line naming it.
 """
 
@@ -28,6 +30,18 @@ def register(sub) -> None:
         default="",
         metavar="SYM=N,...",
         help="values of tooth-number symbols used in FILE, e.g. n2=30,n5=24",
+    )
+    p.add_argument(
+        "--tabular",
+        default=None,
+        metavar="CARRIER",
+        help="also print the tabular method: CARRIER fixed and one member turned +1, then all turned with it",
+    )
+    p.add_argument(
+        "--turned",
+        default=None,
+        metavar="MEMBER",
+        help="with --tabular: the member turned +1 (default: the first gear meshing on CARRIER)",
     )
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--out", default=None, metavar="FILE", help="write to FILE instead of stdout")
@@ -88,6 +102,30 @@ def _run(args) -> int:
         result["inputs"] = list(sol.inputs)
         result["coefficients"] = {n: [_frac(c) for c in cs] for n, cs in sol.coefficients.items()}
         lines += [sol.relation(n) for n in net.names]
+    if args.tabular is not None or args.turned is not None:
+        from gearlever.gears.epicyclic import tabular_method
+
+        if args.tabular is None:
+            raise GearleverError("--turned needs --tabular CARRIER")
+        if not args.inputs:
+            raise GearleverError("--tabular needs --inputs (as many as the degrees of freedom)")
+        tab = tabular_method(net, args.tabular, result["inputs"], turned=args.turned)
+        result["tabular"] = {
+            "carrier": tab.carrier,
+            "turned": tab.turned,
+            "x": [_frac(v) for v in tab.x],
+            "y": [_frac(v) for v in tab.y],
+            "rows": [
+                {
+                    "member": r.member,
+                    "teeth": r.teeth,
+                    "relative": None if r.relative is None else _frac(r.relative),
+                    "total": [_frac(v) for v in r.total],
+                }
+                for r in tab.rows
+            ],
+        }
+        lines += [""] + tab.lines()
     if args.format == "json":
         emit(to_json(result), args.out)
     else:

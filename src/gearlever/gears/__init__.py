@@ -4,6 +4,8 @@
   of gears on a carrier, the one statement of its sign rule used everywhere.
 - :mod:`~gearlever.gears.networks`: gear networks as data (members, meshes,
   differentials, shafts), solved exactly in fractions.
+- :mod:`~gearlever.gears.epicyclic`: the tabular method of epicyclic trains.
+- :mod:`~gearlever.gears.planetary`: planetary sets, assembly conditions, tooth search.
 - :mod:`~gearlever.gears.chariot`: the Nuttall south-pointing chariot.
 - :mod:`~gearlever.gears.car`: the car (bevel) differential.
 
@@ -13,7 +15,9 @@ Numeric core: may import numpy, :mod:`fractions`, :mod:`gearlever.errors`,
 
 from gearlever.gears.car import car_differential
 from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate
+from gearlever.gears.epicyclic import TabularMethod, tabular_method
 from gearlever.gears.networks import Differential, Gear, Mesh, Network, SameShaft, parse_network
+from gearlever.gears.planetary import PlanetaryDesign, PlanetarySet, design_planetary, planetary_network
 
 __all__ = [
     "Differential",
@@ -22,6 +26,12 @@ __all__ = [
     "Network",
     "SameShaft",
     "parse_network",
+    "TabularMethod",
+    "tabular_method",
+    "PlanetaryDesign",
+    "PlanetarySet",
+    "design_planetary",
+    "planetary_network",
     "NuttallTeeth",
     "design_nuttall",
     "simulate",

@@ -2,36 +2,55 @@
 
 A network is a set of members (gears, shafts, carriers, road wheels), some of
 them with tooth numbers, tied together by linear constraints on their
-rotations.  Three kinds of constraint cover the south-pointing chariots and
-the car differential:
+rotations.  Three kinds of constraint cover fixed-axis trains, epicyclic
+(planetary) trains, the south-pointing chariots and the car differential:
 
-``Mesh(label, p, q, sign=1)``
-    two gears on fixed axes in mesh: ``n_p*rot_p + sign*n_q*rot_q = 0``.
-    ``sign=1`` is the external mesh; ``sign=-1`` is used when the two
-    rotations are counted from opposite points of view (a bevel pair such as
-    Nuttall (e), "POV to the far right") or for an internal (ring) gear.
+``Mesh(label, p, q, sign=1, carrier=None)``
+    two gears in mesh whose axes are held by ``carrier`` (the Willis relation
+    seen from the carrier): ``z_p*(rot_p - rot_c) + sign*z_q*(rot_q - rot_c) = 0``
+    with ``rot_c = 0`` when there is no carrier (fixed axes).  ``sign=1`` is
+    the external mesh; ``sign=-1`` an internal (ring) gear, or two rotations
+    counted from opposite points of view (a bevel pair such as Nuttall (e),
+    "POV to the far right").  A planet meshing a sun or a ring on an arm is
+    ``Mesh("m", "sun", "planet", carrier="arm")``.
 ``Differential(label, a, b, carrier)``
     side gears ``a`` and ``b`` in mesh through planets held by ``carrier``:
     ``n_a*rot_a + n_b*rot_b - (n_a + n_b)*rot_carrier = 0``; the carrier may
-    be the fixed frame.
+    be the fixed frame, a side gear may not (its tooth number is needed).
 ``SameShaft(label, p, q)``
-    ``rot_p = rot_q`` (a rigid coupling).
+    ``rot_p = rot_q`` (a rigid coupling; ``SameShaft(label, p, FRAME)`` holds
+    ``p`` still: that is how a fixed sun or ring is written).
 
 The fixed frame is the member named :data:`FRAME` (``"frame"``): its rotation
-is 0 and it is not an unknown.
+is 0 and it is not an unknown.  A gear held still is a member with teeth tied
+to the frame by a shaft; a constraint that would need the frame's own tooth
+number is refused with an error that says how to write it, never answered by
+dropping a term.
+
+Exact rows: :meth:`Constraint.terms(teeth) <Mesh.terms>` gives one
+constraint's row ``{member: Fraction}`` and :meth:`Network.rows` all of them
+(sparse), :meth:`Network.matrix` the dense matrix; these are the stable public
+way to read the constraint system (e.g. for a static force analysis, whose
+equilibrium equations are the transpose of these rows).
 
 :meth:`Network.analyse` returns the number of unknown rotations, the rank of
-the constraint matrix, the degrees of freedom and the redundant constraints
-(each with the exact combination of earlier constraints it follows from).
-:meth:`Network.solve` expresses every member's rotation as an exact linear
-function (:class:`fractions.Fraction` coefficients) of chosen input members;
-:meth:`Network.solve_float` does the same with numpy in floating point, for
-large networks, and is checked against the exact path in the tests.
+the constraint matrix, the degrees of freedom, the redundant constraints (each
+with the exact combination of earlier constraints it follows from) and the
+members forced to stand still.  :meth:`Network.solve` expresses every member's
+rotation as an exact linear function (:class:`fractions.Fraction`
+coefficients) of chosen input members; both use sparse elimination, linear in
+the size of networks without fill-in (trains, branches, epicyclics).
+:meth:`Network.solve_float` does the same in floating point with a sparse LU
+factorisation (scipy, imported only when called), for large networks, and is
+checked against the exact path in the tests.
 """
 
 from __future__ import annotations
 
+import heapq
+import math
 import numbers
+from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -42,6 +61,12 @@ from gearlever.errors import GearleverError
 
 #: Name of the fixed frame (rotation 0, never an unknown).
 FRAME = "frame"
+
+#: How to write a gear held still (quoted by the errors that refuse the frame as a toothed member).
+_HOW_TO_FIX = (
+    "declare the fixed gear as a member with teeth tied to the frame "
+    "(Gear('G', N) and SameShaft('fix', 'G', 'frame'); CSV: member,G,gear,N and constraint,fix,shaft,G,frame)"
+)
 
 
 def _check_name(what: str, name) -> str:
@@ -86,37 +111,81 @@ class Gear:
 
 @dataclass(frozen=True)
 class Mesh:
-    """Two fixed-axis gears in mesh: ``n_p*rot_p + sign*n_q*rot_q = 0``.
+    """Two gears in mesh, on fixed axes or on a carrier: ``z_p (rot_p - rot_c) + sign z_q (rot_q - rot_c) = 0``.
+
+    ``rot_c = 0`` when ``carrier`` is None (or the frame).  On fixed axes a
+    mesh with the frame holds the other gear still (the frame's term is zero
+    whatever its size); on a carrier the frame's tooth number would be needed,
+    so that is refused: tie a toothed member to the frame instead.
 
     Examples
     --------
     >>> Mesh("d", "7", "8").terms({"7": 10, "8": 20})
     {'7': Fraction(10, 1), '8': Fraction(20, 1)}
+    >>> Mesh("r", "planet", "ring", sign=-1, carrier="arm").terms({"planet": 18, "ring": 60, "arm": None})
+    {'planet': Fraction(18, 1), 'ring': Fraction(-60, 1), 'arm': Fraction(42, 1)}
+
+    Notes
+    -----
+    Willis' equation: seen from the carrier the pair is a fixed-axis mesh,
+    ``(rot_q - rot_c)/(rot_p - rot_c) = -sign z_p/z_q`` (R. Willis,
+    *Principles of Mechanism*, 2nd ed., 1870, chapter on epicyclic trains;
+    J. E. Shigley and J. J. Uicker, *Theory of Machines and Mechanisms*,
+    "planetary gear trains", the formula method).  The same statement in
+    floats is :func:`gearlever.gears.willis.driven_speed`.
     """
 
     label: str
     p: str
     q: str
     sign: int = 1
+    carrier: str | None = None
 
     def __post_init__(self):
         _check_name("constraint label", self.label)
         if self.sign not in (1, -1) or isinstance(self.sign, bool):
             raise GearleverError(f"constraint ({self.label}): sign must be 1 or -1, got {self.sign!r}")
+        c = self.carrier
+        if c is None:
+            return
+        _check_name(f"constraint ({self.label}): carrier", c)
+        if c in (self.p, self.q):
+            raise GearleverError(
+                f"constraint ({self.label}): the carrier {c!r} must differ from "
+                f"the meshing gears {self.p!r}, {self.q!r}"
+            )
+        if c != FRAME and FRAME in (self.p, self.q):
+            raise GearleverError(
+                f"constraint ({self.label}): the frame cannot mesh on carrier {c!r} (its tooth number is needed); "
+                + _HOW_TO_FIX
+            )
 
     def members(self) -> tuple[str, ...]:
-        return (self.p, self.q)
+        """Names the constraint ties together (the carrier last, when there is one)."""
+        return (self.p, self.q) if self.carrier is None else (self.p, self.q, self.carrier)
 
-    def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
-        """Coefficients of the constraint row (the frame's term dropped)."""
+    def _int_terms(self, teeth) -> list[tuple[str, int]]:
+        on_carrier = self.carrier is not None and self.carrier != FRAME
+        if on_carrier:
+            _known(self, teeth, self.carrier)
         n_p = _teeth_of(self, teeth, self.p)
         n_q = _teeth_of(self, teeth, self.q)
-        return _collect([(self.p, Fraction(n_p)), (self.q, Fraction(self.sign * n_q))])
+        pairs = [(self.p, n_p), (self.q, self.sign * n_q)]
+        if on_carrier:
+            pairs.append((self.carrier, -(n_p + self.sign * n_q)))
+        return pairs
+
+    def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
+        """Exact coefficients of the constraint row, ``{member: Fraction}`` (the frame, rotation 0, has none)."""
+        return _collect(self._int_terms(teeth))
 
 
 @dataclass(frozen=True)
 class Differential:
     """Side gears ``a``, ``b`` through planets on ``carrier``: ``n_a*rot_a + n_b*rot_b - (n_a+n_b)*rot_c = 0``.
+
+    The carrier may be the frame; a side gear may not (write it as a toothed
+    member tied to the frame).
 
     Examples
     --------
@@ -131,19 +200,30 @@ class Differential:
 
     def __post_init__(self):
         _check_name("constraint label", self.label)
+        if FRAME in (self.a, self.b):
+            raise GearleverError(
+                f"constraint ({self.label}): the frame cannot be a side gear of a differential "
+                "(its tooth number is needed); " + _HOW_TO_FIX
+            )
 
     def members(self) -> tuple[str, ...]:
+        """Names the constraint ties together (side gears, then the carrier)."""
         return (self.a, self.b, self.carrier)
 
-    def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
+    def _int_terms(self, teeth) -> list[tuple[str, int]]:
+        _known(self, teeth, self.carrier)
         n_a = _teeth_of(self, teeth, self.a)
         n_b = _teeth_of(self, teeth, self.b)
-        return _collect([(self.a, Fraction(n_a)), (self.b, Fraction(n_b)), (self.carrier, Fraction(-(n_a + n_b)))])
+        return [(self.a, n_a), (self.b, n_b), (self.carrier, -(n_a + n_b))]
+
+    def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
+        """Exact coefficients of the constraint row, ``{member: Fraction}`` (the frame has none)."""
+        return _collect(self._int_terms(teeth))
 
 
 @dataclass(frozen=True)
 class SameShaft:
-    """Two members rigidly coupled: ``rot_p - rot_q = 0``.
+    """Two members rigidly coupled: ``rot_p - rot_q = 0`` (``q`` may be the frame: ``p`` held still).
 
     Examples
     --------
@@ -159,12 +239,17 @@ class SameShaft:
         _check_name("constraint label", self.label)
 
     def members(self) -> tuple[str, ...]:
+        """Names the constraint ties together."""
         return (self.p, self.q)
 
-    def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
+    def _int_terms(self, teeth) -> list[tuple[str, int]]:
         for name in (self.p, self.q):
             _known(self, teeth, name)
-        return _collect([(self.p, Fraction(1)), (self.q, Fraction(-1))])
+        return [(self.p, 1), (self.q, -1)]
+
+    def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
+        """Exact coefficients of the constraint row, ``{member: Fraction}`` (the frame has none)."""
+        return _collect(self._int_terms(teeth))
 
 
 Constraint = Mesh | Differential | SameShaft
@@ -178,20 +263,24 @@ def _known(constraint, teeth, name):
 def _teeth_of(constraint, teeth, name) -> int:
     _known(constraint, teeth, name)
     if name == FRAME:
-        return 0  # its rotation is 0: the term drops out whatever its size
+        return 0  # only reached on fixed axes, where the frame's term is 0 * rot_frame = 0 whatever its size
     n = teeth[name]
     if n is None:
         raise GearleverError(f"constraint ({constraint.label}): gear {name!r} has no tooth number")
     return n
 
 
-def _collect(pairs) -> dict[str, Fraction]:
-    out: dict[str, Fraction] = {}
+def _merge(pairs) -> dict[str, int]:
+    out: dict[str, int] = {}
     for name, coef in pairs:
         if name == FRAME:
-            continue
-        out[name] = out.get(name, Fraction(0)) + coef
+            continue  # rot_frame = 0: its term is zero
+        out[name] = out.get(name, 0) + coef
     return {k: v for k, v in out.items() if v != 0}
+
+
+def _collect(pairs) -> dict[str, Fraction]:
+    return {k: Fraction(v) for k, v in _merge(pairs).items()}
 
 
 def _fmt(coef: Fraction) -> str:
@@ -229,10 +318,10 @@ class NetworkAnalysis:
     dof : degrees of freedom, ``unknowns - rank``.
     redundant : labels of the constraints that follow from earlier ones (in order).
     dependencies : for each redundant label, ``{earlier label: factor}`` with
-        row(redundant) = sum(factor * row(earlier)).
+        row(redundant) = sum(factor * row(earlier)), in constraint order.
     locked : members the constraints force to stand still (e.g. a carrier
-        between equal side gears turning opposite ways), ``{name: label of the
-        constraint at which that happens}``.
+        between equal side gears turning opposite ways, a ring tied to the
+        frame), ``{name: label of the first constraint with which that happens}``.
     """
 
     unknowns: int
@@ -302,6 +391,140 @@ class NetworkSolution:
         )
 
 
+class _Elimination:
+    """Sparse fraction-free elimination of integer rows, taken in the order given.
+
+    Each new row is reduced by the basis rows whose pivot columns it contains,
+    in the order the basis rows were made (a heap of their indices): a basis
+    row contains no pivot of an earlier one, so the reduction ends.  The pivot
+    of a reduced row is the column with the fewest occurrences in the rows
+    still to come (a Markowitz-like choice that keeps chains and branches free
+    of fill-in), never a column of ``keep_free`` unless nothing else is left.
+    ``history`` records, for every basis row ``B_k``, ``B_k = s_k (A_i -
+    sum_j h_kj B_j)`` so that a row which reduces to zero (redundant) gives its
+    combination of earlier constraints exactly.
+    """
+
+    def __init__(self, rows: Sequence[Sequence[tuple[int, int]]], n: int, keep_free=frozenset(), stop_on_free=False):
+        self.n = n
+        remaining = [0] * n
+        for r in rows:
+            for c, _ in r:
+                remaining[c] += 1
+        self.pivot_of: dict[int, int] = {}  # column -> basis index
+        self.basis: list[tuple[int, dict[int, int]]] = []  # (pivot column, int row)
+        self.origin: list[int] = []  # constraint index of each basis row
+        self.scale: list[Fraction] = []
+        self.history: list[dict[int, Fraction]] = []
+        self.redundant: list[tuple[int, dict[int, Fraction]]] = []  # (constraint index, h)
+        self.free_relation: tuple[int, dict[int, int], dict[int, Fraction], Fraction] | None = None
+        for i, r in enumerate(rows):
+            row: dict[int, int] = {}
+            for c, v in r:
+                remaining[c] -= 1
+                row[c] = row.get(c, 0) + v
+            row = {c: v for c, v in row.items() if v}
+            row, hist, scale = self.reduce(row)
+            if not row:
+                self.redundant.append((i, hist))
+                continue
+            cand = [c for c in row if c not in keep_free]
+            if not cand:
+                if stop_on_free:
+                    self.free_relation = (i, row, hist, scale)
+                    return
+                cand = list(row)
+            pc = min(cand, key=lambda c: (remaining[c], c))
+            k = len(self.basis)
+            self.pivot_of[pc] = k
+            self.basis.append((pc, row))
+            self.origin.append(i)
+            self.scale.append(scale)
+            self.history.append(hist)
+
+    def reduce(self, row: dict[int, int]) -> tuple[dict[int, int], dict[int, Fraction], Fraction]:
+        """Reduce an integer row by the basis: ``(rest, h, s)`` with ``rest = s (row - sum_k h[k] B_k)``.
+
+        ``rest`` has no pivot column of the basis; it is empty when ``row`` is
+        in the span of the basis rows, and then ``h`` are its coordinates.
+        """
+        scale = Fraction(1)
+        hist: dict[int, Fraction] = {}
+        heap = [self.pivot_of[c] for c in row if c in self.pivot_of]
+        heapq.heapify(heap)
+        seen = set(heap)
+        while heap:
+            k = heapq.heappop(heap)
+            pc, brow = self.basis[k]
+            rp = row.get(pc)
+            if not rp:
+                continue
+            bp = brow[pc]
+            # row' = bp*row - rp*B_k = (bp*scale) * (A_i - sum h B - rp/(bp*scale) B_k)
+            hist[k] = hist.get(k, Fraction(0)) + Fraction(rp) / (bp * scale)
+            new = {c: bp * v for c, v in row.items()}
+            for c, v in brow.items():
+                w = new.get(c, 0) - rp * v
+                if w:
+                    new[c] = w
+                else:
+                    new.pop(c, None)
+                    continue
+                j = self.pivot_of.get(c)
+                if j is not None and j not in seen:
+                    seen.add(j)
+                    heapq.heappush(heap, j)
+            scale *= bp
+            g = math.gcd(*new.values()) if new else 1
+            if g > 1:
+                new = {c: v // g for c, v in new.items()}
+                scale /= g
+            row = new
+        return row, hist, scale
+
+    @property
+    def rank(self) -> int:
+        return len(self.basis)
+
+    def combination(self, i: int, hist: Mapping[int, Fraction], scale: Fraction = Fraction(1)) -> dict[int, Fraction]:
+        """``{constraint index: factor}`` of the row ``scale (A_i - sum_k hist[k] B_k)`` in terms of constraint rows."""
+        out: dict[int, Fraction] = {i: Fraction(scale)}
+        coef: dict[int, Fraction] = {k: -scale * h for k, h in hist.items() if h}
+        heap = [-k for k in coef]
+        heapq.heapify(heap)
+        while heap:
+            k = -heapq.heappop(heap)
+            c = coef.pop(k, 0)
+            if not c:
+                continue
+            s = self.scale[k]
+            o = self.origin[k]
+            out[o] = out.get(o, Fraction(0)) + c * s
+            for j, h in self.history[k].items():
+                if j not in coef:
+                    heapq.heappush(heap, -j)
+                coef[j] = coef.get(j, Fraction(0)) - c * s * h
+        return {k: v for k, v in sorted(out.items()) if v}
+
+    def expressions(self) -> dict[int, dict[int, Fraction]]:
+        """Every column as an exact combination ``{free column: factor}`` of the non-pivot (free) columns."""
+        expr: dict[int, dict[int, Fraction]] = {}
+        for c in range(self.n):
+            if c not in self.pivot_of:
+                expr[c] = {c: Fraction(1)}
+        for pc, brow in reversed(self.basis):
+            bp = brow[pc]
+            acc: dict[int, Fraction] = {}
+            for c, v in brow.items():
+                if c == pc:
+                    continue
+                f = Fraction(-v, bp)
+                for fc, fv in expr[c].items():
+                    acc[fc] = acc.get(fc, 0) + f * fv
+            expr[pc] = {c: v for c, v in acc.items() if v}
+        return expr
+
+
 @dataclass(frozen=True)
 class Network:
     """Gears and constraints; see the module docstring for the three constraint kinds.
@@ -316,6 +539,16 @@ class Network:
     >>> net.solve(["p"]).relation("q")
     'rot_q = -1/2*rot_p'
 
+    A planet on an arm rolling round a fixed 100-tooth sun (Ferguson's paradox):
+
+    >>> ferguson = Network(
+    ...     [Gear("arm"), Gear("sun", 100), Gear("planet", 20), Gear("w99", 99), Gear("w101", 101)],
+    ...     [SameShaft("fix", "sun", FRAME), Mesh("m", "sun", "planet", carrier="arm"),
+    ...      Mesh("a", "w99", "planet", carrier="arm"), Mesh("b", "w101", "planet", carrier="arm")])
+    >>> sol = ferguson.solve(["arm"])
+    >>> sol.relation("w99"), sol.relation("w101")
+    ('rot_w99 = -1/99*rot_arm', 'rot_w101 = 1/101*rot_arm')
+
     Three gears in a ring lock each other, and the error names the constraint:
 
     >>> ring = Network([Gear("a", 10), Gear("b", 10), Gear("c", 10)],
@@ -327,7 +560,8 @@ class Network:
 
     Notes
     -----
-    Rows: mesh ``n_p rot_p + n_q rot_q = 0``, differential
+    Rows: mesh ``z_p (rot_p - rot_c) + sign z_q (rot_q - rot_c) = 0`` (Willis'
+    equation; ``rot_c = 0`` on fixed axes), differential
     ``n_a rot_a + n_b rot_b - (n_a+n_b) rot_c = 0``, same shaft ``rot_p = rot_q``
     (reference README, "The generic differential"; Nuttall (a)-(i)).
     """
@@ -335,54 +569,102 @@ class Network:
     gears: tuple[Gear, ...]
     constraints: tuple[Constraint, ...]
     _teeth: Mapping[str, int | None] = field(init=False, repr=False, compare=False)
+    _index: Mapping[str, int] = field(init=False, repr=False, compare=False)
+    _int_rows: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         gears = tuple(self.gears)
         constraints = tuple(self.constraints)
+        if not gears:
+            raise GearleverError("a network needs at least one member, got none")
         for g in gears:
             if not isinstance(g, Gear):
                 raise GearleverError(f"gears must be Gear objects, got {g!r}")
         for c in constraints:
             if not isinstance(c, (Mesh, Differential, SameShaft)):
                 raise GearleverError(f"constraints must be Mesh, Differential or SameShaft, got {c!r}")
-        names = [g.name for g in gears]
-        dup = sorted({n for n in names if names.count(n) > 1})
+        names = Counter(g.name for g in gears)
+        dup = sorted(n for n, k in names.items() if k > 1)
         if dup:
             raise GearleverError(f"gear {dup[0]!r} is defined more than once")
-        labels = [c.label for c in constraints]
-        dupl = sorted({x for x in labels if labels.count(x) > 1})
+        labels = Counter(c.label for c in constraints)
+        dupl = sorted(x for x, k in labels.items() if k > 1)
         if dupl:
             raise GearleverError(f"constraint label {dupl[0]!r} is used more than once")
         teeth = {g.name: g.teeth for g in gears}
+        index = {g.name: j for j, g in enumerate(gears)}
+        rows = []
         for c in constraints:
             ms = c.members()
             if len(set(ms)) != len(ms):
                 raise GearleverError(f"constraint ({c.label}): a member appears twice in {ms}")
-            c.terms(teeth)  # unknown gear / missing teeth -> ValueError naming the constraint
+            terms = _merge(c._int_terms(teeth))  # unknown gear / missing teeth -> error naming the constraint
+            rows.append(tuple((index[k], v) for k, v in terms.items()))
         object.__setattr__(self, "gears", gears)
         object.__setattr__(self, "constraints", constraints)
         object.__setattr__(self, "_teeth", teeth)
+        object.__setattr__(self, "_index", index)
+        object.__setattr__(self, "_int_rows", tuple(rows))
 
     @property
     def names(self) -> tuple[str, ...]:
         """Names of the unknown rotations, in the order given."""
         return tuple(g.name for g in self.gears)
 
+    @property
+    def teeth(self) -> Mapping[str, int | None]:
+        """``{member: tooth number or None}`` (the argument of :meth:`Mesh.terms` and its siblings)."""
+        return dict(self._teeth)
+
+    def rows(self) -> list[dict[str, Fraction]]:
+        """Exact constraint rows, one ``{member: Fraction}`` per constraint, in order (sparse; stable API).
+
+        ``rows()[k]`` equals ``constraints[k].terms(teeth)``: the row of the
+        constraint ``sum(coef * rot_member) = 0``.
+
+        >>> Network([Gear("p", 20), Gear("q", 40)], [Mesh("pq", "p", "q")]).rows()
+        [{'p': Fraction(20, 1), 'q': Fraction(40, 1)}]
+        """
+        names = self.names
+        return [{names[j]: Fraction(v) for j, v in r} for r in self._int_rows]
+
     def matrix(self) -> list[list[Fraction]]:
-        """Exact constraint matrix: one row per constraint, one column per member."""
-        col = {n: j for j, n in enumerate(self.names)}
-        rows = []
-        for c in self.constraints:
-            row = [Fraction(0)] * len(col)
-            for name, coef in c.terms(self._teeth).items():
-                row[col[name]] += coef
-            rows.append(row)
-        return rows
+        """Exact dense constraint matrix: one row per constraint, one column per member (:attr:`names`)."""
+        n = len(self.gears)
+        out = []
+        for r in self._int_rows:
+            row = [Fraction(0)] * n
+            for j, v in r:
+                row[j] = Fraction(v)
+            out.append(row)
+        return out
 
     def matrix_float(self) -> np.ndarray:
-        """The constraint matrix in float64 (for the numpy path)."""
-        m = self.matrix()
-        return np.array([[float(x) for x in r] for r in m], dtype=float).reshape(len(m), len(self.names))
+        """The dense constraint matrix in float64."""
+        A = np.zeros((len(self._int_rows), len(self.gears)))
+        for i, r in enumerate(self._int_rows):
+            for j, v in r:
+                A[i, j] = v
+        return A
+
+    def _coo(self):
+        rows, cols, vals = [], [], []
+        for i, r in enumerate(self._int_rows):
+            for j, v in r:
+                rows.append(i)
+                cols.append(j)
+                vals.append(v)
+        return np.array(rows, dtype=np.int64), np.array(cols, dtype=np.int64), np.array(vals, dtype=float)
+
+    def matrix_sparse(self):
+        """The constraint matrix as a ``scipy.sparse.csr_array`` of float64 (scipy imported here)."""
+        import scipy.sparse as sp
+
+        r, c, v = self._coo()
+        return sp.csr_array((v, (r, c)), shape=(len(self._int_rows), len(self.gears)))
+
+    def _elimination(self, keep_free=frozenset(), stop_on_free=False) -> _Elimination:
+        return _Elimination(self._int_rows, len(self.gears), keep_free, stop_on_free)
 
     def analyse(self) -> NetworkAnalysis:
         """Unknowns, rank, dof and redundant constraints; raise if the network is locked.
@@ -390,9 +672,10 @@ class Network:
         Constraints are taken in order; one whose row is a combination of the
         rows before it is redundant.  The network is inconsistent (a locked
         train) when the constraints force every member to stand still, or
-        force still a gear that meshes with another moving member: the
-        ValueError names the constraint at which that happens.  Other members
-        forced still are listed in ``locked``.
+        force still a gear meshing on fixed axes with another moving member:
+        the error names the constraint at which that happens.  Other members
+        forced still (a fixed sun or ring, a gear the train holds still) are
+        listed in ``locked``.
 
         Examples
         --------
@@ -404,69 +687,68 @@ class Network:
 
         Notes
         -----
-        Incremental Gauss-Jordan elimination over the rationals; each basis row
-        carries the combination of constraints it came from, so a row that
-        reduces to zero gives its dependency exactly.  Nuttall: (e) = (d) - (c).
+        Sparse fraction-free Gaussian elimination over the integers, rows in
+        the order given, pivots chosen to avoid fill-in; each basis row keeps
+        the multipliers it was reduced with, so a row that reduces to zero
+        gives its dependency exactly (Nuttall: (e) = (d) - (c)).  Members
+        forced still are the columns that back-substitution expresses as 0;
+        the constraint that forces each is the latest one its unit row needs
+        from the basis.
         """
         names = self.names
         n = len(names)
-        basis: list[tuple[int, list[Fraction], dict[str, Fraction]]] = []
-        redundant: list[str] = []
-        deps: dict[str, dict[str, Fraction]] = {}
-        locked: dict[int, str] = {}
-        # gears meshing with another moving member: if one of them is forced still the train is jammed
-        meshing = {m for c in self.constraints if isinstance(c, Mesh) and FRAME not in (c.p, c.q) for m in (c.p, c.q)}
-        for c, row0 in zip(self.constraints, self.matrix()):
-            row = list(row0)
-            combo = {c.label: Fraction(1)}
-            for piv, brow, bcombo in basis:
-                f = row[piv]
-                if f:
-                    row = [x - f * y for x, y in zip(row, brow)]
-                    for k, v in bcombo.items():
-                        combo[k] = combo.get(k, Fraction(0)) - f * v
-            nz = [j for j, x in enumerate(row) if x]
-            if not nz:
-                redundant.append(c.label)
-                deps[c.label] = {k: -v for k, v in combo.items() if k != c.label and v}
-                continue
-            piv = nz[0]
-            f = row[piv]
-            row = [x / f for x in row]
-            combo = {k: v / f for k, v in combo.items()}
-            new_basis = []
-            for bp, brow, bcombo in basis:
-                g = brow[piv]
-                if g:
-                    brow = [x - g * y for x, y in zip(brow, row)]
-                    bcombo = dict(bcombo)
-                    for k, v in combo.items():
-                        bcombo[k] = bcombo.get(k, Fraction(0)) - g * v
-                new_basis.append((bp, brow, bcombo))
-            basis = new_basis + [(piv, row, combo)]
-            now_locked = {bp for bp, brow, _ in basis if sum(1 for x in brow if x) == 1}
-            fresh = now_locked - set(locked)
-            jammed = sorted(j for j in fresh if names[j] in meshing)
-            if jammed or (n and len(now_locked) == n):
-                who = sorted(fresh)
-                what = (
-                    f"gears {', '.join(repr(names[j]) for j in who)} (forces them to stand still)"
-                    if len(who) > 1
-                    else f"gear {names[who[0]]!r} (forces it to stand still)"
-                )
-                raise GearleverError(f"network is inconsistent: constraint ({c.label}) locks {what}")
-            locked.update({j: c.label for j in fresh})
-        rank = len(basis)
+        el = self._elimination()
+        labels = [c.label for c in self.constraints]
+        deps = {}
+        for i, hist in el.redundant:
+            combo = el.combination(i, hist)
+            deps[labels[i]] = {labels[k]: -v for k, v in combo.items() if k != i}
+        still = {j for j, e in el.expressions().items() if not e}
+        when = self._lock_points(el, still)
+        meshing = {
+            self._index[m]
+            for c in self.constraints
+            if isinstance(c, Mesh) and c.carrier in (None, FRAME) and FRAME not in (c.p, c.q)
+            for m in (c.p, c.q)
+        }
+        triggers = [when[j] for j in still & meshing]
+        if n and len(still) == n:
+            triggers.append(max(when.values()))
+        if triggers:
+            at = min(triggers)
+            who = sorted(j for j, k in when.items() if k == at)
+            what = (
+                f"gears {', '.join(repr(names[j]) for j in who)} (forces them to stand still)"
+                if len(who) > 1
+                else f"gear {names[who[0]]!r} (forces it to stand still)"
+            )
+            raise GearleverError(f"network is inconsistent: constraint ({labels[at]}) locks {what}")
         return NetworkAnalysis(
             unknowns=n,
-            rank=rank,
-            dof=n - rank,
-            redundant=tuple(redundant),
-            dependencies={k: dict(v) for k, v in deps.items()},
-            locked={names[j]: label for j, label in sorted(locked.items())},
+            rank=el.rank,
+            dof=n - el.rank,
+            redundant=tuple(labels[i] for i, _ in el.redundant),
+            dependencies=deps,
+            locked={names[j]: labels[k] for j, k in sorted(when.items())},
         )
 
-    def _check_inputs(self, inputs, dof) -> tuple[str, ...]:
+    @staticmethod
+    def _lock_points(el: _Elimination, still: set[int]) -> dict[int, int]:
+        """For each member forced still, the index of the first constraint after which it is.
+
+        ``e_j`` lies in the span of the basis rows; its coordinates are unique,
+        and the basis rows made from the first ``p`` constraints span exactly
+        the rows of those constraints, so the answer is the latest origin among
+        the basis rows ``e_j`` needs.
+        """
+        out: dict[int, int] = {}
+        for j in sorted(still):
+            rest, hist, _ = el.reduce({j: 1})
+            assert not rest  # j was found forced still, so e_j is in the row space
+            out[j] = max(el.origin[k] for k, h in hist.items() if h)
+        return out
+
+    def _check_inputs(self, inputs, dof=None) -> tuple[str, ...]:
         if isinstance(inputs, str):
             inputs = [inputs]
         inputs = tuple(inputs)
@@ -477,7 +759,7 @@ class Network:
                 raise GearleverError(f"unknown gear {name!r} in inputs")
         if len(set(inputs)) != len(inputs):
             raise GearleverError(f"inputs must be distinct, got {list(inputs)}")
-        if len(inputs) != dof:
+        if dof is not None and len(inputs) != dof:
             raise GearleverError(
                 f"inputs: the network has {dof} degree(s) of freedom, "
                 f"so it needs {dof} input(s), got {len(inputs)} {list(inputs)}"
@@ -487,7 +769,7 @@ class Network:
     def solve(self, inputs: Sequence[str]) -> NetworkSolution:
         """Every member's rotation as an exact linear function of ``inputs``.
 
-        Raises ValueError if the inputs are not independent (a constraint ties
+        Raises an error if the inputs are not independent (a constraint ties
         them together), naming the constraints involved.
 
         Examples
@@ -500,61 +782,45 @@ class Network:
 
         Notes
         -----
-        Reduced row echelon form of the constraint matrix (exact), pivots taken
-        first among the non-input members: each of them is then
-        ``rot = -sum(R[row, input] * rot_input)``.  A pivot on an input column
-        is a relation among the inputs, reported with its constraints.
+        Sparse elimination (as in :meth:`analyse`) that never pivots on an
+        input column, then back-substitution: each other member is an exact
+        combination of the free columns, which are then exactly the inputs.
+        A row that reduces to input columns only is a relation among the
+        inputs, reported with the constraints it combines.
         """
         analysis = self.analyse()
         inputs = self._check_inputs(inputs, analysis.dof)
         names = self.names
-        others = [j for j, nm in enumerate(names) if nm not in inputs]
-        in_cols = [names.index(nm) for nm in inputs]
-        rows = self.matrix()
-        labels = [c.label for c in self.constraints]
-        m = len(rows)
-        aug = [list(r) + [Fraction(int(i == k)) for k in range(m)] for i, r in enumerate(rows)]
-        order = others + in_cols
-        pivots: list[int] = []
-        r = 0
-        for col in order:
-            p = next((i for i in range(r, m) if aug[i][col]), None)
-            if p is None:
-                continue
-            aug[r], aug[p] = aug[p], aug[r]
-            f = aug[r][col]
-            aug[r] = [x / f for x in aug[r]]
-            for i in range(m):
-                if i != r and aug[i][col]:
-                    g = aug[i][col]
-                    aug[i] = [x - g * y for x, y in zip(aug[i], aug[r])]
-            pivots.append(col)
-            r += 1
-        n = len(names)
-        for i, col in enumerate(pivots):
-            if col in in_cols:
-                rel = {names[j]: aug[i][j] for j in in_cols if aug[i][j]}
-                used = [labels[k] for k in range(m) if aug[i][n + k]]
-                raise GearleverError(
-                    f"inputs {list(inputs)} are not independent: constraints "
-                    f"({'), ('.join(used)}) force {format_linear(rel)} = 0"
-                )
-        coefs: dict[str, tuple[Fraction, ...]] = {}
-        row_of = {col: i for i, col in enumerate(pivots)}
-        for j, nm in enumerate(names):
-            if nm in inputs:
-                coefs[nm] = tuple(Fraction(int(nm == k)) for k in inputs)
-            else:
-                i = row_of[j]  # every other member is a pivot: rank == len(others) here
-                coefs[nm] = tuple(-aug[i][c] for c in in_cols)
+        in_cols = [self._index[nm] for nm in inputs]
+        el = self._elimination(keep_free=frozenset(in_cols), stop_on_free=True)
+        if el.free_relation is not None:
+            i, row, hist, scale = el.free_relation
+            lead = row[min(row)]
+            rel = {names[j]: Fraction(v, lead) for j, v in sorted(row.items())}
+            labels = [c.label for c in self.constraints]
+            used = [labels[k] for k in el.combination(i, hist, scale)]
+            raise GearleverError(
+                f"inputs {list(inputs)} are not independent: constraints ({'), ('.join(used)}) force "
+                f"{format_linear(rel)} = 0"
+            )
+        expr = el.expressions()
+        coefs = {nm: tuple(expr[j].get(c, Fraction(0)) for c in in_cols) for j, nm in enumerate(names)}
         return NetworkSolution(inputs=inputs, coefficients=coefs, analysis=analysis)
 
-    def solve_float(self, inputs: Sequence[str], rtol: float = 1e-10) -> np.ndarray:
-        """Float path: matrix (members x inputs) of d rot_member / d rot_input by numpy.
+    def _free_expressions(self, extra_rows=(), keep_free=()) -> dict[str, dict[str, Fraction]]:
+        """Every member as ``{free member: factor}`` for the constraints plus ``extra_rows`` (``{name: int}``)."""
+        rows = list(self._int_rows) + [tuple((self._index[k], v) for k, v in r.items()) for r in extra_rows]
+        keep = frozenset(self._index[k] for k in keep_free)
+        expr = _Elimination(rows, len(self.gears), keep).expressions()
+        names = self.names
+        return {names[j]: {names[c]: v for c, v in e.items()} for j, e in expr.items()}
 
-        Rows follow :attr:`names`.  The rank is taken from the singular values
-        with tolerance ``rtol`` (relative to the largest); dependent inputs or
-        an undetermined member raise ValueError.
+    def solve_float(self, inputs: Sequence[str], rtol: float = 1e-10) -> np.ndarray:
+        """Float path: matrix (members x inputs) of d rot_member / d rot_input by a sparse LU.
+
+        Rows follow :attr:`names`.  Inputs that are dependent, too few or too
+        many are refused (a pivot of the factorisation below ``rtol`` times the
+        largest, or a residual above ``1e-8``).
 
         Examples
         --------
@@ -564,31 +830,54 @@ class Network:
 
         Notes
         -----
-        Least squares ``A_o X = -A_i`` (numpy ``lstsq``) on the float constraint
-        matrix split into non-input and input columns; exact when ``A_o`` has
-        full column rank, which is checked first.
+        ``A_o X = -A_i`` with ``A`` the float constraint matrix split into
+        non-input and input columns: a sparse LU (SuperLU through
+        ``scipy.sparse.linalg.splu``) of ``A_o`` when it is square, of the
+        normal equations ``A_o^T A_o`` when the network has redundant rows.
         """
-        A = self.matrix_float()
-        n = len(self.names)
-        if A.shape[0]:
-            s = np.linalg.svd(A, compute_uv=False)
-            rank = int(np.sum(s > rtol * s[0])) if s.size and s[0] > 0 else 0
-        else:
-            rank = 0
-        inputs = self._check_inputs(inputs, n - rank)
-        in_cols = [self.names.index(nm) for nm in inputs]
-        others = [j for j in range(n) if j not in in_cols]
-        A_o, A_i = A[:, others], A[:, in_cols]
-        if others:
-            s_o = np.linalg.svd(A_o, compute_uv=False) if A_o.size else np.zeros(0)
-            r_o = int(np.sum(s_o > rtol * s_o[0])) if s_o.size and s_o[0] > 0 else 0
-            if r_o < len(others):
-                raise GearleverError(f"inputs {list(inputs)} are not independent (float rank test)")
-            X, *_ = np.linalg.lstsq(A_o, -A_i, rcond=None)
+        import scipy.sparse as sp
+        import scipy.sparse.linalg as spla
+
+        inputs = self._check_inputs(inputs)
+        n = len(self.gears)
+        m = len(self._int_rows)
+        in_cols = [self._index[nm] for nm in inputs]
+        newcol = np.full(n, -1, dtype=np.int64)
+        is_in = np.zeros(n, bool)
+        is_in[in_cols] = True
+        others = np.flatnonzero(~is_in)
+        newcol[others] = np.arange(others.size)
+        r, c, v = self._coo()
+        sel = ~is_in[c]
+        A_o = sp.csc_array((v[sel], (r[sel], newcol[c[sel]])), shape=(m, others.size))
+        B = np.zeros((m, len(inputs)))
+        pos = {col: k for k, col in enumerate(in_cols)}
+        for ri, ci, vi in zip(r[~sel], c[~sel], v[~sel]):
+            B[ri, pos[int(ci)]] -= vi
         out = np.zeros((n, len(inputs)))
         out[in_cols, range(len(inputs))] = 1.0
-        if others:
-            out[others, :] = X
+        if others.size == 0:
+            if np.abs(B).max(initial=0) > 0:
+                raise GearleverError(f"inputs {list(inputs)} are not independent (float rank test)")
+            return out
+        why = f"inputs {list(inputs)} are not independent, or not as many as the degrees of freedom (float rank test)"
+        if m < others.size:
+            raise GearleverError(why)
+        square = m == others.size
+        M = A_o if square else (A_o.T @ A_o).tocsc()
+        rhs = B if square else A_o.T @ B
+        try:
+            lu = spla.splu(M)
+        except RuntimeError:
+            raise GearleverError(why) from None
+        d = np.abs(lu.U.diagonal())
+        if d.size and d.min() <= rtol * d.max():
+            raise GearleverError(why)
+        X = lu.solve(rhs)
+        scale = max(1.0, np.abs(X).max(initial=0))
+        if np.abs(A_o @ X - B).max(initial=0) > 1e-8 * scale * max(1.0, np.abs(v).max(initial=0)):
+            raise GearleverError(why)
+        out[others, :] = X
         return out
 
 
@@ -598,11 +887,18 @@ def parse_network(text: str, teeth: Mapping[str, int] | None = None) -> Network:
     One record per line, ``#`` lines are comments::
 
         member,NAME,KIND,TEETH,,,,DESCRIPTION
-        constraint,LABEL,differential|mesh|shaft,FIRST,SECOND,CARRIER,SIGN,DESCRIPTION
+        constraint,LABEL,mesh,GEAR,GEAR,CARRIER,SIGN,DESCRIPTION
+        constraint,LABEL,differential,SIDE,SIDE,CARRIER,,DESCRIPTION
+        constraint,LABEL,shaft,MEMBER,MEMBER,,,DESCRIPTION
 
     ``TEETH`` is a positive integer, empty (no teeth), or a symbol looked up in
-    ``teeth`` (e.g. ``n2``).  A differential's carrier may be ``frame``; a
-    mesh's ``SIGN`` is 1 (default) or -1.  Errors name the line.
+    ``teeth`` (e.g. ``n2``).  A mesh's ``CARRIER`` (third column) is empty for
+    fixed axes or names the arm that holds both axes; its ``SIGN`` is 1
+    (default, external) or -1 (internal, or opposite points of view).  A
+    differential's carrier may be ``frame``; a fixed gear is a toothed member
+    tied to the frame: ``constraint,fix,shaft,RING,frame``.  A text with no
+    member is refused.  Errors name the line.  Time and memory are linear in
+    the text.
 
     Examples
     --------
@@ -641,8 +937,13 @@ def parse_network(text: str, teeth: Mapping[str, int] | None = None) -> Network:
                     sign = rec[6] or "1"
                     if sign not in ("1", "-1", "+1"):
                         raise GearleverError(f"constraint ({rec[1]}): sign must be 1 or -1, got {sign!r}")
-                    rows.append(Mesh(rec[1], rec[3], rec[4], int(sign)))
+                    rows.append(Mesh(rec[1], rec[3], rec[4], int(sign), carrier=rec[5] or None))
                 elif kind == "shaft":
+                    if rec[5]:
+                        raise GearleverError(
+                            f"constraint ({rec[1]}): a shaft joins two members, the third column must be empty, "
+                            f"got {rec[5]!r}"
+                        )
                     rows.append(SameShaft(rec[1], rec[3], rec[4]))
                 else:
                     raise GearleverError(
@@ -652,4 +953,6 @@ def parse_network(text: str, teeth: Mapping[str, int] | None = None) -> Network:
                 raise GearleverError(f"record must start with 'member' or 'constraint', got {rec[0]!r}")
         except ValueError as exc:
             raise GearleverError(f"network line {k}: {exc}") from None
+    if not gears:
+        raise GearleverError("network has no member records (a network needs at least one 'member' line)")
     return Network(gears, rows)
