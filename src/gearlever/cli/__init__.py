@@ -3,7 +3,9 @@
 Each module in this package that defines ``register(subparsers)`` adds one
 sub-command (found automatically, in alphabetical order of module name).  A
 sub-command's handler is stored as ``func`` on its parser and returns an exit
-status.  The CLI only parses arguments, calls the library and writes files.
+status.  The CLI only parses arguments, calls the library and writes files:
+it may import every other part of gearlever (the library lazily, inside the
+handlers, so that ``gearlever --help`` stays fast), never the reverse.
 
 Exit status and errors (handled here, once, for every sub-command):
 

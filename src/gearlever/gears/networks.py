@@ -744,7 +744,8 @@ class Network:
         out: dict[int, int] = {}
         for j in sorted(still):
             rest, hist, _ = el.reduce({j: 1})
-            assert not rest  # j was found forced still, so e_j is in the row space
+            if rest:  # j was found forced still, so e_j must lie in the row space
+                raise RuntimeError(f"internal error: member {j} is forced still but not in the row space")
             out[j] = max(el.origin[k] for k, h in hist.items() if h)
         return out
 
