@@ -24,6 +24,7 @@ Jacobian.  Pure numpy; no solver call per point.
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -60,9 +61,10 @@ class _Forms:
 
     def __init__(self, c, V, W):
         self.c = np.asarray(c, dtype=float).reshape(-1, 2)
-        self.Vx = np.ascontiguousarray(np.asarray(V, dtype=float).reshape(len(self.c), -1, 2)[..., 0].T)
-        self.Vy = np.ascontiguousarray(np.asarray(V, dtype=float).reshape(len(self.c), -1, 2)[..., 1].T)
-        self.W = np.ascontiguousarray(np.asarray(W, dtype=float).reshape(len(self.c), -1).T)
+        V = np.asarray(V, dtype=float).reshape(len(self.c), -1, 2)
+        self.Vx = np.ascontiguousarray(V[..., 0])  # (K, n)
+        self.Vy = np.ascontiguousarray(V[..., 1])
+        self.W = np.ascontiguousarray(np.asarray(W, dtype=float).reshape(len(self.c), -1))  # (K, S)
         self.has_sliders = bool(np.any(self.W))
 
 
@@ -248,8 +250,8 @@ class KinematicSystem:
         # reduced Jacobian tables: dG/dz = -(s @ A1 + c @ A2) (x rows), (c @ A1 - s @ A2) (y rows)
         self._jz_tables()
         # independent rows at the sketch
-        x0 = np.zeros((1, self.nx))
-        Jz = self._jz(x0, *self._trig(x0))[0]
+        x0 = np.zeros((self.nx, 1))
+        Jz = self.jz(x0, *self.trig(x0))[:, :, 0]
         if numeric_rank(Jz / self.L) < self.dz:
             raise GearleverError(
                 "inputs: the inputs do not fix the mechanism at the sketch (the sketch is a dead point, "
@@ -263,162 +265,179 @@ class KinematicSystem:
         K = f.c.shape[0]
         dz = self.dz
         Nphi = N[:n]  # (n, dz)
-        # rows interleaved (x0, y0, x1, y1, ...) x dz, flattened row-major
-        self._A1 = (f.Vx[:, :, None] * Nphi[:, None, :]).reshape(n, K * dz)
-        self._A2 = (f.Vy[:, :, None] * Nphi[:, None, :]).reshape(n, K * dz)
+        self.zlinks = np.flatnonzero(np.any(Nphi != 0, axis=1))
+        # (K*dz, n): entry [K dz + m, k] = V[K, k] N[k, m]
+        self._A1 = np.ascontiguousarray(np.einsum("Kk,km->Kmk", f.Vx, Nphi).reshape(K * dz, n))
+        self._A2 = np.ascontiguousarray(np.einsum("Kk,km->Kmk", f.Vy, Nphi).reshape(K * dz, n))
         S = self.S
         if S:
             Ns = N[n:]  # (S, dz)
-            self._B1 = (f.W[:, :, None] * Ns[:, None, :]).reshape(S, K * dz)
             No = np.where(self.so[:, None] >= 0, Nphi[np.maximum(self.so, 0)], 0.0)  # (S, dz)
-            self._B2 = (f.W[:, :, None] * No[:, None, :]).reshape(S, K * dz)
+            self._B1 = np.ascontiguousarray(np.einsum("Kj,jm->Kmj", f.W, Ns).reshape(K * dz, S))
+            self._B2 = np.ascontiguousarray(np.einsum("Kj,jm->Kmj", f.W, No).reshape(K * dz, S))
 
     # ------------------------------------------------------------- evaluation
-    def _trig(self, x):
-        phi = x[:, : self.n]
+    # Arrays are laid out feature-major: x (nx, N), C = cos(phi), S = sin(phi) (n, N),
+    # so that every sum over links is one small-by-long matrix product.
+    def trig(self, x):
+        """``cos`` and ``sin`` of the link rotations, (n, N) each."""
+        phi = x[: self.n]
         return np.cos(phi), np.sin(phi)
 
-    def _ru(self, c, s):
-        """Slider directions turned with their guides, (N, S) each."""
-        if not self.S:
-            return None, None
-        ce = np.concatenate([c, np.ones((c.shape[0], 1))], axis=1)[:, self.so]
-        se = np.concatenate([s, np.zeros((s.shape[0], 1))], axis=1)[:, self.so]
-        return ce * self.ux - se * self.uy, se * self.ux + ce * self.uy
+    def _ru(self, C, S):
+        """Slider directions turned with their guides, (S, N) each."""
+        Ce = np.concatenate([C, np.ones((1, C.shape[1]))])[self.so]
+        Se = np.concatenate([S, np.zeros((1, S.shape[1]))])[self.so]
+        return Ce * self.ux[:, None] - Se * self.uy[:, None], Se * self.ux[:, None] + Ce * self.uy[:, None]
 
-    def eval_forms(self, f: _Forms, x, c, s, xd=None, xdd=None):
-        """Positions (and velocities, accelerations) of stacked expressions: arrays ``(N, K)`` x, y each."""
+    def eval_forms(self, f: _Forms, x, C, S, xd=None, xdd=None):
+        """Positions (and velocities, accelerations) of stacked expressions, ``(K, N)`` arrays x and y."""
         n = self.n
-        X = f.c[:, 0] + c @ f.Vx - s @ f.Vy
-        Y = f.c[:, 1] + s @ f.Vx + c @ f.Vy
-        S = self.S
-        if S and f.has_sliders:
-            rux, ruy = self._ru(c, s)
-            sl = x[:, n:]
-            X = X + (sl * rux) @ f.W
-            Y = Y + (sl * ruy) @ f.W
+        X = f.c[:, 0, None] + (f.Vx @ C - f.Vy @ S)
+        Y = f.c[:, 1, None] + (f.Vx @ S + f.Vy @ C)
+        sliders = self.S and f.has_sliders
+        if sliders:
+            rux, ruy = self._ru(C, S)
+            sl = x[n:]
+            X += f.W @ (sl * rux)
+            Y += f.W @ (sl * ruy)
         out = [(X, Y)]
         if xd is None:
             return out
-        w = xd[:, :n]
-        # sum_k w_k R'_k v_k = rot90(sum_k w_k R_k v_k)
-        a, b = w * c, w * s
-        RX, RY = a @ f.Vx - b @ f.Vy, b @ f.Vx + a @ f.Vy
-        VX, VY = -RY, RX
-        if S and f.has_sliders:
-            sd = xd[:, n:]
-            wo = np.concatenate([w, np.zeros((w.shape[0], 1))], axis=1)[:, self.so]
-            VX = VX + (sd * rux - sl * wo * ruy) @ f.W
-            VY = VY + (sd * ruy + sl * wo * rux) @ f.W
+        w = xd[:n]
+        a, b = w * C, w * S
+        # sum_k w_k R'(phi_k) v_k = rot90(sum_k w_k R(phi_k) v_k)
+        VX = -(f.Vx @ b + f.Vy @ a)
+        VY = f.Vx @ a - f.Vy @ b
+        if sliders:
+            sd = xd[n:]
+            wo = np.concatenate([w, np.zeros((1, w.shape[1]))])[self.so]
+            VX += f.W @ (sd * rux - sl * wo * ruy)
+            VY += f.W @ (sd * ruy + sl * wo * rux)
         out.append((VX, VY))
         if xdd is None:
             return out
-        e = xdd[:, :n]
-        a2, b2 = e * c, e * s
-        w2 = w * w
-        a3, b3 = w2 * c, w2 * s
-        AX = -(b2 @ f.Vx + a2 @ f.Vy) - (a3 @ f.Vx - b3 @ f.Vy)
-        AY = (a2 @ f.Vx - b2 @ f.Vy) - (b3 @ f.Vx + a3 @ f.Vy)
-        if S and f.has_sliders:
-            sdd = xdd[:, n:]
-            eo = np.concatenate([e, np.zeros((e.shape[0], 1))], axis=1)[:, self.so]
-            # s'' R u + (2 s' w + s e) R' u - s w^2 R u
+        e = xdd[:n]
+        ww = w * w
+        # sum_k e_k R'_k v_k - w_k^2 R_k v_k
+        P, Q = e * S + ww * C, e * C - ww * S
+        AX = -(f.Vx @ P + f.Vy @ Q)
+        AY = f.Vx @ Q - f.Vy @ P
+        if sliders:
+            sdd = xdd[n:]
+            eo = np.concatenate([e, np.zeros((1, e.shape[1]))])[self.so]
             k1 = sdd - sl * wo * wo
             k2 = 2.0 * sd * wo + sl * eo
-            AX = AX + (k1 * rux - k2 * ruy) @ f.W
-            AY = AY + (k1 * ruy + k2 * rux) @ f.W
+            AX += f.W @ (k1 * rux - k2 * ruy)
+            AY += f.W @ (k1 * ruy + k2 * rux)
         out.append((AX, AY))
         return out
 
-    def _residual(self, x, c, s):
-        X, Y = self.eval_forms(self.closure, x, c, s)[0]
-        G = np.empty((x.shape[0], 2 * X.shape[1]))
-        G[:, 0::2], G[:, 1::2] = X, Y
+    def residual(self, x, C, S):
+        """Closure rows, ``(2K, N)``: x and y of each cut pair, interleaved."""
+        X, Y = self.eval_forms(self.closure, x, C, S)[0]
+        G = np.empty((2 * X.shape[0], X.shape[1]))
+        G[0::2], G[1::2] = X, Y
         return G
 
-    def _jz(self, x, c, s):
-        """Reduced Jacobian dG/dz, shape (N, 2K, dz)."""
+    def jz(self, x, C, S):
+        """Reduced Jacobian ``dG/dz`` of the closure rows, shape ``(2K, dz, N)``."""
         K, dz = self.closure.c.shape[0], self.dz
-        JX = -(s @ self._A1 + c @ self._A2)
-        JY = c @ self._A1 - s @ self._A2
+        Nn = C.shape[1]
+        JX = -(self._A1 @ S + self._A2 @ C)
+        JY = self._A1 @ C - self._A2 @ S
         if self.S:
-            rux, ruy = self._ru(c, s)
-            sl = x[:, self.n :]
-            JX = JX + rux @ self._B1 - (sl * ruy) @ self._B2
-            JY = JY + ruy @ self._B1 + (sl * rux) @ self._B2
-        J = np.empty((x.shape[0], 2 * K, dz))
-        J[:, 0::2, :] = JX.reshape(-1, K, dz)
-        J[:, 1::2, :] = JY.reshape(-1, K, dz)
+            rux, ruy = self._ru(C, S)
+            sl = x[self.n :]
+            JX += self._B1 @ rux - self._B2 @ (sl * ruy)
+            JY += self._B1 @ ruy + self._B2 @ (sl * rux)
+        J = np.empty((2 * K, dz, Nn))
+        J[0::2] = JX.reshape(K, dz, Nn)
+        J[1::2] = JY.reshape(K, dz, Nn)
         return J
 
     @staticmethod
     def _solve_small(J, b):
-        """Solve J y = b for stacked small square J (N, d, d); closed form for d <= 2."""
-        d = J.shape[-1]
+        """Solve ``J y = b`` for stacked square ``J`` (d, d, N), ``b`` (d, N); Cramer's rule for d <= 2."""
+        d = J.shape[0]
         if d == 1:
-            return b / J[:, :, 0]
+            return b / J[0]
         if d == 2:
-            a, bb, c, dd = J[:, 0, 0], J[:, 0, 1], J[:, 1, 0], J[:, 1, 1]
+            a, bb, c, dd = J[0, 0], J[0, 1], J[1, 0], J[1, 1]
             det = a * dd - bb * c
-            y0 = (dd * b[:, 0] - bb * b[:, 1]) / det
-            y1 = (a * b[:, 1] - c * b[:, 0]) / det
-            return np.stack([y0, y1], axis=1)
-        return np.linalg.solve(J, b[..., None])[..., 0]
+            return np.stack([(dd * b[0] - bb * b[1]) / det, (a * b[1] - c * b[0]) / det])
+        return np.linalg.solve(np.moveaxis(J, -1, 0), b.T[..., None])[..., 0].T
 
-    def _hadamard(self, J):
-        d = J.shape[-1]
-        if d == 0:
-            return np.ones(J.shape[0]), np.ones(J.shape[0])
+    @staticmethod
+    def _hadamard(J):
+        """Hadamard ratio ``|det J| / prod(column norms)`` (1 orthogonal, 0 singular) and ``sign(det J)``."""
+        d = J.shape[0]
         if d == 1:
-            det = J[:, 0, 0]
+            det = J[0, 0]
         elif d == 2:
-            det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+            det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
         else:
-            det = np.linalg.det(np.nan_to_num(J))
+            det = np.linalg.det(np.nan_to_num(np.moveaxis(J, -1, 0)))
         with np.errstate(invalid="ignore", divide="ignore"):
-            ratio = np.abs(det) / np.prod(np.sqrt(np.sum(J * J, axis=-2)), axis=-1)
+            ratio = np.abs(det) / np.prod(np.sqrt(np.sum(J * J, axis=0)), axis=0)
         return np.nan_to_num(ratio, nan=0.0), np.sign(det)
 
     def coordinates(self, dq, z):
-        """Reduced coordinates ``x = X_p dq + N z``, shape (N, nx)."""
-        x = dq @ self.Xp.T
+        """Reduced coordinates ``x = X_p dq + N z``, shape (nx, N)."""
+        x = self.Xp @ dq
         if self.dz:
-            x = x + z @ self.N.T
+            x += self.N @ z
         return x
 
-    def newton(self, dq, z, max_iter: int = 12):
-        """Batched Newton on the selected closure rows; returns ``(z, x, converged)``."""
-        if self.dz == 0:
-            x = self.coordinates(dq, z)
-            return z, x, np.ones(dq.shape[0], dtype=bool)
-        tol = 1e-13 * self.L
-        z = z.copy()
-        sel = self.sel
-        for _ in range(max_iter):
-            x = self.coordinates(dq, z)
-            c, s = self._trig(x)
-            G = self._residual(x, c, s)
-            with np.errstate(invalid="ignore"):
-                if not np.any(np.abs(G[:, sel]) > tol):
-                    break
-            J = self._jz(x, c, s)[:, sel]
-            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                z = z - self._solve_small(J, G[:, sel])
-        else:
-            x = self.coordinates(dq, z)
-            c, s = self._trig(x)
-            G = self._residual(x, c, s)
-        with np.errstate(invalid="ignore"):
-            conv = np.all(np.abs(G) <= 1e-9 * self.L, axis=1)
-        return z, x, conv
+    def newton(self, dq, z, CS=None, max_iter: int = 12):
+        """Batched Newton on the selected closure rows from ``z`` (dz, N).
 
-    def derivatives(self, x, qd, qdd):
-        """Velocities ``xd`` and accelerations ``xdd`` of the reduced coordinates, and a dead-point mask.
+        Returns ``(z, x, C, S, converged)``.  Once the corrections are below
+        1e-4 rad the cosines and sines are turned by them (series to fourth
+        order) instead of recomputed.
+        """
+        x = self.coordinates(dq, z)
+        C, S = self.trig(x) if CS is None else CS
+        Nn = x.shape[1]
+        if self.dz == 0:
+            return z, x, C, S, np.ones(Nn, dtype=bool)
+        tol = 1e-13 * self.L
+        sel, zl, Nz = self.sel, self.zlinks, self.N[self.zlinks]
+        z = z.copy()
+        for _ in range(max_iter):
+            G = self.residual(x, C, S)
+            with np.errstate(invalid="ignore"):
+                if not np.any(np.abs(G[sel]) > tol):
+                    break
+            J = self.jz(x, C, S)[sel]
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                dz = self._solve_small(J, G[sel])
+            z -= dz
+            x = self.coordinates(dq, z)
+            d = -(Nz @ dz)
+            with np.errstate(invalid="ignore"):
+                big = not np.all(np.abs(d) <= 1e-4)
+            if big:
+                Cz, Sz = np.cos(x[zl]), np.sin(x[zl])
+            else:
+                d2 = d * d
+                cd, sd = 1.0 - d2 * (0.5 - d2 / 24.0), d * (1.0 - d2 / 6.0)
+                Cz, Sz = C[zl] * cd - S[zl] * sd, S[zl] * cd + C[zl] * sd
+            C, S = C.copy(), S.copy()
+            C[zl], S[zl] = Cz, Sz
+        else:
+            G = self.residual(x, C, S)
+        with np.errstate(invalid="ignore"):
+            conv = np.all(np.abs(G) <= 1e-9 * self.L, axis=0)
+        return z, x, C, S, conv
+
+    def derivatives(self, x, qd, qdd, CS=None):
+        """Velocities ``xd`` and accelerations ``xdd`` (nx, N) of the reduced coordinates, and a dead-point mask.
 
         Parameters
         ----------
-        x : ndarray (N, nx)
-        qd, qdd : ndarray (N, W)
+        x : ndarray (nx, N)
+        qd, qdd : ndarray (W, N)
             Input velocities and accelerations.
 
         Notes
@@ -429,56 +448,59 @@ class KinematicSystem:
         (Nikravesh, *Computer-Aided Analysis of Mechanical Systems*, 1988,
         eqs. 3.15 and 3.17).
         """
-        xd = qd @ self.Xp.T
-        xdd = qdd @ self.Xp.T
-        Nn = x.shape[0]
+        xd = self.Xp @ qd
+        xdd = self.Xp @ qdd
+        Nn = x.shape[1]
         if self.dz == 0:
-            return xd, xdd, np.zeros(Nn, dtype=bool), np.ones(Nn)
-        c, s = self._trig(x)
-        J = self._jz(x, c, s)[:, self.sel]
-        ratio, sgn = self._hadamard(J)
+            return xd, xdd, np.zeros(Nn, dtype=bool)
+        C, S = self.trig(x) if CS is None else CS
+        J = self.jz(x, C, S)[self.sel]
+        ratio, _ = self._hadamard(J)
         dead = ~(ratio > SINGULAR_TOL)
-        Jg = np.where(dead[:, None, None], np.eye(self.dz), J)
-        (_, _), (VX, VY), (AX, AY) = self.eval_forms(self.closure, x, c, s, xd, xdd)
-        b = np.empty((Nn, 2 * VX.shape[1]))
-        b[:, 0::2], b[:, 1::2] = VX, VY
-        zd = self._solve_small(Jg, -b[:, self.sel])
-        xd = xd + zd @ self.N.T
-        (_, _), (_, _), (AX, AY) = self.eval_forms(self.closure, x, c, s, xd, xdd)
-        b[:, 0::2], b[:, 1::2] = AX, AY
-        zdd = self._solve_small(Jg, -b[:, self.sel])
-        xdd = xdd + zdd @ self.N.T
-        xd[dead] = np.nan
-        xdd[dead] = np.nan
-        return xd, xdd, dead, sgn
+        if np.any(dead):
+            J = np.where(dead, np.eye(self.dz)[:, :, None], J)
+        sel = self.sel
+        (_, _), (VX, VY) = self.eval_forms(self.closure, x, C, S, xd)
+        b = np.empty((2 * VX.shape[0], Nn))
+        b[0::2], b[1::2] = VX, VY
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            xd += self.N @ self._solve_small(J, -b[sel])
+        (_, _), (_, _), (AX, AY) = self.eval_forms(self.closure, x, C, S, xd, xdd)
+        b[0::2], b[1::2] = AX, AY
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            xdd += self.N @ self._solve_small(J, -b[sel])
+        if np.any(dead):
+            xd[:, dead] = np.nan
+            xdd[:, dead] = np.nan
+        return xd, xdd, dead
 
     # ------------------------------------------------------------- continuation
     def _walk(self, dq0, z0, target, h):
-        """Sequential continuation from ``(dq0, z0)`` to the input ``target``; None if it cannot get there."""
+        """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,); None if it cannot get there."""
         cur_dq, cur_z = dq0.copy(), z0.copy()
         step = h
+        zeros = np.zeros((self.W, 1))
         while True:
             delta = target - cur_dq
             dist = float(np.max(np.abs(delta / self.qscale)))
             if dist == 0.0:
                 return cur_z
             t = min(step, dist) / dist
-            x = self.coordinates(cur_dq[None], cur_z[None])
-            xd, xdd, dead, _ = self.derivatives(x, delta[None], np.zeros((1, self.W)))
+            x = self.coordinates(cur_dq[:, None], cur_z[:, None])
+            xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
             if dead[0]:
                 return None
-            zd, zdd = xd[0] @ self.N, xdd[0] @ self.N  # N has orthonormal columns, orthogonal to X_p
+            zd, zdd = self.N.T @ xd[:, 0], self.N.T @ xdd[:, 0]  # N: orthonormal columns, orthogonal to X_p
             pred = cur_z + zd * t + 0.5 * zdd * t * t
             new_dq = target.copy() if t >= 1.0 else cur_dq + t * delta
-            z, xn, conv = self.newton(new_dq[None], pred[None])
+            z, xn, C, S, conv = self.newton(new_dq[:, None], pred[:, None])
             ok = bool(conv[0])
             if ok:
-                J = self._jz(xn, *self._trig(xn))[:, self.sel]
-                ratio, sgn = self._hadamard(J)
+                ratio, sgn = self._hadamard(self.jz(xn, C, S)[self.sel])
                 trust = 0.2 * t * (1.0 + float(np.max(np.abs(zd)))) + 1e-12
-                ok = ratio[0] > SINGULAR_TOL and sgn[0] == self.sgn0 and float(np.max(np.abs(z[0] - pred))) <= trust
+                ok = ratio[0] > SINGULAR_TOL and sgn[0] == self.sgn0 and float(np.max(np.abs(z[:, 0] - pred))) <= trust
             if ok:
-                cur_dq, cur_z = new_dq, z[0]
+                cur_dq, cur_z = new_dq, z[:, 0]
                 step = min(2 * step, h)
             else:
                 step /= 2
@@ -486,123 +508,219 @@ class KinematicSystem:
                     return None
 
     def solve(self, q, qd, qdd):
-        """Reduced coordinates and their rates over the input rows ``q`` (N, W); see :func:`solve`."""
-        Nn = q.shape[0]
-        dq = q - self.q0
-        x = np.full((Nn, self.nx), np.nan)
-        closed = np.zeros(Nn, dtype=bool)
+        """Reduced coordinates and rates over the input rows; arrays (nx, N), see :func:`solve`.
+
+        Parameters
+        ----------
+        q, qd, qdd : ndarray (W, N)
+        """
+        Nn = q.shape[1]
+        dq = q - self.q0[:, None]
+        CS = None
         if self.dz == 0:
-            x = self.coordinates(dq, np.zeros((Nn, 0)))
-            closed[:] = True
+            x = self.coordinates(dq, np.zeros((0, Nn)))
+            closed = np.ones(Nn, dtype=bool)
+            if self.closure is not None:
+                C, S = self.trig(x)
+                closed = np.all(np.abs(self.residual(x, C, S)) <= 1e-9 * self.L, axis=0)
         else:
-            self._positions(dq, x, closed)
-        xs = np.where(closed[:, None], x, 0.0)
-        xd, xdd, dead, _ = self.derivatives(xs, qd, qdd)
+            x = np.full((self.nx, Nn), np.nan)
+            closed = np.zeros(Nn, dtype=bool)
+            CS = self._positions(dq, x, closed)
+        if closed.all():
+            xs = x
+        else:
+            xs = np.where(closed, x, 0.0)
+            CS = None
+        xd, xdd, dead = self.derivatives(xs, qd, qdd, CS)
         reason = np.full(Nn, "", dtype=object)
         reason[closed & dead] = REASON_DEAD
         reason[~closed] = REASON_UNREACHED
-        xd[~closed] = np.nan
-        xdd[~closed] = np.nan
-        return x, xd, xdd, closed, reason
+        if not closed.all():
+            xd[:, ~closed] = np.nan
+            xdd[:, ~closed] = np.nan
+        return x, xd, xdd, closed, reason, CS
 
-    def _positions(self, dq, x_out, closed):
-        Nn, h = dq.shape[0], COARSE_STEP
-        qs = dq / self.qscale
-        step = np.concatenate([[np.max(np.abs(qs[0]))], np.max(np.abs(np.diff(qs, axis=0)), axis=1)])
-        cum = np.cumsum(step)
-        bins = np.floor(cum / h)
-        starts = np.concatenate([[0], np.flatnonzero(np.diff(bins)) + 1])
-        bid = np.concatenate([[0], np.cumsum(np.diff(bins) != 0)])
-        nb = starts.size
-        # sequential continuation through the coarse points
-        cz = np.full((nb, self.dz), np.nan)
-        cok = np.zeros(nb, dtype=bool)
-        last_dq, last_z = np.zeros(self.W), np.zeros(self.dz)
+    def _state(self, dq, z):
+        """Derivatives of ``z`` at one point: first per input (dz, W) and, for one input, second (dz,)."""
+        x = self.coordinates(dq[:, None], z[:, None])
+        Zp = np.zeros((self.dz, self.W))
+        Zpp = np.zeros(self.dz)
+        for w in range(self.W):
+            e = np.zeros((self.W, 1))
+            e[w] = 1.0
+            xd, xdd, dead = self.derivatives(x, e, np.zeros_like(e))
+            if dead[0]:
+                return None
+            Zp[:, w] = self.N.T @ xd[:, 0]
+            if self.W == 1:
+                Zpp = self.N.T @ xdd[:, 0]
+        return Zp, Zpp
+
+    def _coarse(self, cdq, cz, cok, h, block: int = 8):
+        """Continuation through the coarse points ``cdq`` (W, nb) from the sketch, in batched blocks.
+
+        From the last accepted state the next ``block`` coarse points are
+        predicted (Taylor, second order for one input), corrected together by
+        batched Newton, and the longest prefix that passes the checks
+        (converged, same sign of det J, correction within the trust radius)
+        is accepted; when none passes, the next point is walked to in small
+        sequential steps (:meth:`_walk`).
+        """
+        nb = cdq.shape[1]
+        st_dq, st_z = np.zeros(self.W), np.zeros(self.dz)
+        st = self._state(st_dq, st_z)
         blocked = None  # (from, at) input values of a failed walk (one input only)
-        for k, i in enumerate(starts):
-            target = dq[i]
+        k = 0
+        while k < nb:
             if blocked is not None and self.W == 1:
                 q_from, q_at = blocked
-                if (target[0] - q_from) * (q_at - q_from) > 0 and abs(target[0] - q_from) >= abs(q_at - q_from):
+                t0 = cdq[0, k]
+                if (t0 - q_from) * (q_at - q_from) > 0 and abs(t0 - q_from) >= abs(q_at - q_from):
+                    k += 1
                     continue
-            z = self._walk(last_dq, last_z, target, h)
-            if z is None:
-                blocked = (last_dq[0], target[0])
-                continue
-            blocked = None
-            cz[k], cok[k] = z, True
-            last_dq, last_z = target.copy(), z
-        # derivatives at the coarse points (per input direction)
+            m = 0
+            if st is not None:
+                ks = np.arange(k, min(k + block, nb))
+                d = cdq[:, ks] - st_dq[:, None]
+                Zp, Zpp = st
+                pred = st_z[:, None] + Zp @ d
+                if self.W == 1:
+                    pred += 0.5 * Zpp[:, None] * d[0] ** 2
+                z, x, C, S, conv = self.newton(cdq[:, ks], pred)
+                ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
+                dist = np.max(np.abs(d / self.qscale[:, None]), axis=0)
+                trust = 0.2 * np.maximum(dist, 1e-3) * (1.0 + np.max(np.abs(Zp * self.qscale[None, :])))
+                with np.errstate(invalid="ignore"):
+                    good = (
+                        conv & (ratio > SINGULAR_TOL) & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=0) <= trust)
+                    )
+                m = int(np.argmin(good)) if not good.all() else good.size
+                if m:
+                    cz[:, ks[:m]] = z[:, :m]
+                    cok[ks[:m]] = True
+                    nst = self._state(cdq[:, ks[m - 1]], z[:, m - 1])
+                    if nst is None:  # a dead point exactly at the accepted point: keep the older state
+                        m = 0
+                    else:
+                        st_dq, st_z, st = cdq[:, ks[m - 1]].copy(), z[:, m - 1].copy(), nst
+                        blocked = None
+                        k += m
+                        continue
+            zk = self._walk(st_dq, st_z, cdq[:, k], h)
+            if zk is None:
+                blocked = (st_dq[0], cdq[0, k])
+            else:
+                nst = self._state(cdq[:, k], zk)
+                cz[:, k], cok[k] = zk, True
+                if nst is not None:
+                    st_dq, st_z, st = cdq[:, k].copy(), zk, nst
+                blocked = None
+            k += 1
+
+    def _positions(self, dq, x_out, closed):
+        """Fill ``x_out`` (nx, N) and ``closed`` by continuation; return (C, S) of the points when all closed."""
+        Nn, h = dq.shape[1], COARSE_STEP
+        qs = np.abs(dq / self.qscale[:, None])
+        step = np.empty(Nn)
+        step[0] = np.max(qs[:, 0])
+        if Nn > 1:
+            step[1:] = np.max(np.abs(np.diff(dq / self.qscale[:, None], axis=1)), axis=0)
+        bins = np.floor(np.cumsum(step) / h)
+        newbin = np.diff(bins) != 0
+        starts = np.concatenate([[0], np.flatnonzero(newbin) + 1])
+        nb = starts.size
+        counts = np.diff(np.concatenate([starts, [Nn]]))
+        cz = np.full((self.dz, nb), np.nan)
+        cok = np.zeros(nb, dtype=bool)
+        cdq = dq[:, starts]
+        self._coarse(cdq, cz, cok, h)
+        if not cok.any():
+            return None
+        # first (per input) and, for one input, second derivatives of z at the coarse points
         good = np.flatnonzero(cok)
-        if good.size == 0:
-            return
-        cdq = dq[starts]
-        xc = self.coordinates(cdq[good], cz[good])
-        Zp = np.zeros((nb, self.dz, self.W))
-        Zpp = np.zeros((nb, self.dz))
+        xc = self.coordinates(cdq[:, good], cz[:, good])
+        Zp = np.zeros((self.dz, self.W, nb))
+        Zpp = np.zeros((self.dz, nb))
         for w in range(self.W):
-            e = np.zeros((good.size, self.W))
-            e[:, w] = 1.0
-            xd, xdd, _, _ = self.derivatives(xc, e, np.zeros_like(e))
-            Zp[good, :, w] = xd @ self.N
+            e = np.zeros((self.W, good.size))
+            e[w] = 1.0
+            xd, xdd, _ = self.derivatives(xc, e, np.zeros_like(e))
+            Zp[:, w, good] = self.N.T @ xd
             if self.W == 1:
-                Zpp[good] = xdd @ self.N
-        # batched Newton on every point whose coarse point was reached
-        ptsok = cok[bid]
-        idx = np.flatnonzero(ptsok)
-        b = bid[idx]
-        d = dq[idx] - cdq[b]
-        pred = cz[b] + np.einsum("ndw,nw->nd", Zp[b], d)
+                Zpp[:, good] = self.N.T @ xdd
+        Zp = np.nan_to_num(Zp)
+        Zpp = np.nan_to_num(Zpp)
+        # start of every point from its coarse point: cubic Hermite (one input) or Taylor
+        allok = bool(cok.all())
+        if allok:
+            idx = None
+            b = np.repeat(np.arange(nb), counts)
+            d = dq - np.repeat(cdq, counts, axis=1)
+        else:
+            bid = np.repeat(np.arange(nb), counts)
+            idx = np.flatnonzero(cok[bid])
+            b = bid[idx]
+            d = dq[:, idx] - cdq[:, b]
         if self.W == 1:
-            h1 = d[:, 0]
-            pred += 0.5 * Zpp[b] * (h1 * h1)[:, None]
-            # cubic Hermite towards the next coarse point where both ends are known
-            nxt = np.minimum(b + 1, nb - 1)
-            span = cdq[nxt, 0] - cdq[b, 0]
-            use = (nxt > b) & cok[nxt] & (np.abs(span / self.qscale[0]) > 1e-3)
+            # per-bin cubic in the local input offset d: a0 + a1 d + a2 d^2 + a3 d^3
+            nxt = np.minimum(np.arange(nb) + 1, nb - 1)
+            span = cdq[0, nxt] - cdq[0]
+            use = (nxt > np.arange(nb)) & cok & cok[nxt] & (np.abs(span / self.qscale[0]) > 1e-3)
+            a0, a1 = cz.copy(), Zp[:, 0].copy()
+            a2, a3 = 0.5 * Zpp, np.zeros_like(Zpp)
             if np.any(use):
                 u = np.flatnonzero(use)
-                t = h1[u] / span[u]
-                tt = t * t
-                h00, h10, h01, h11 = 2 * tt * t - 3 * tt + 1, tt * t - 2 * tt + t, -2 * tt * t + 3 * tt, tt * t - tt
-                pred[u] = (
-                    h00[:, None] * cz[b[u]]
-                    + (h10 * span[u])[:, None] * Zp[b[u], :, 0]
-                    + h01[:, None] * cz[nxt[u]]
-                    + (h11 * span[u])[:, None] * Zp[nxt[u], :, 0]
-                )
-        z, x, conv = self.newton(dq[idx], pred)
-        J = self._jz(x, *self._trig(x))[:, self.sel]
-        ratio, sgn = self._hadamard(J)
-        trust = 0.2 * h * (1.0 + np.max(np.abs(Zp[b] * self.qscale), axis=(1, 2)))
+                hs = span[u]
+                dz_ = cz[:, nxt[u]] - cz[:, u]
+                m0, m1 = Zp[:, 0, u], Zp[:, 0, nxt[u]]
+                a2[:, u] = (3 * dz_ / hs - 2 * m0 - m1) / hs
+                a3[:, u] = (m0 + m1 - 2 * dz_ / hs) / (hs * hs)
+            coef = np.stack([a0, a1, a2, a3])  # (4, dz, nb)
+            cb = np.repeat(coef, counts, axis=2) if allok else coef[:, :, b]
+            t = d[0]
+            pred = cb[0] + t * (cb[1] + t * (cb[2] + t * cb[3]))
+        else:
+            zb = np.repeat(cz, counts, axis=1) if allok else cz[:, b]
+            Zb = np.repeat(Zp, counts, axis=2) if allok else Zp[:, :, b]
+            pred = zb + np.einsum("dwn,wn->dn", Zb, d)
+        dqi = dq if allok else dq[:, idx]
+        z, x, C, S, conv = self.newton(dqi, pred)
+        ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
+        zpb = np.max(np.abs(Zp * self.qscale[None, :, None]), axis=(0, 1))
+        trust = 0.2 * h * (1.0 + (np.repeat(zpb, counts) if allok else zpb[b]))
         with np.errstate(invalid="ignore"):
-            ok = conv & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=1) <= trust)
-        x_out[idx[ok]] = x[ok]
-        closed[idx[ok]] = True
+            ok = conv & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=0) <= trust)
+        if allok and ok.all():
+            x_out[:] = x
+            closed[:] = True
+            return C, S
+        ii = np.arange(Nn) if allok else idx
+        x_out[:, ii[ok]] = x[:, ok]
+        closed[ii[ok]] = True
         # repair the points that failed: sequential continuation from the previous point that closed
-        bad = idx[~ok]
-        if bad.size == 0:
-            return
-        zfull = np.full((Nn, self.dz), np.nan)
-        zfull[idx[ok]] = z[ok]
+        zfull = np.full((self.dz, Nn), np.nan)
+        zfull[:, ii[ok]] = z[:, ok]
+        bid = np.repeat(np.arange(nb), counts)
         skip_bin = -1
-        for i in bad:
+        for i in ii[~ok]:
             if bid[i] == skip_bin:
                 continue
             prev = i - 1
             while prev >= 0 and not closed[prev]:
                 prev -= 1
             if prev >= 0 and bid[prev] == bid[i]:
-                src_dq, src_z = dq[prev], zfull[prev]
+                src_dq, src_z = dq[:, prev], zfull[:, prev]
             else:
-                src_dq, src_z = cdq[bid[i]], cz[bid[i]]
-            zi = self._walk(src_dq, src_z, dq[i], h)
+                src_dq, src_z = cdq[:, bid[i]], cz[:, bid[i]]
+            zi = self._walk(src_dq, src_z, dq[:, i], h)
             if zi is None:
                 skip_bin = bid[i]
                 continue
-            zfull[i] = zi
-            x_out[i] = self.coordinates(dq[i][None], zi[None])[0]
+            zfull[:, i] = zi
+            x_out[:, i] = self.coordinates(dq[:, i : i + 1], zi[:, None])[:, 0]
             closed[i] = True
+        return None
 
 
 def _as_rows(name, v, N, W):
@@ -670,8 +788,10 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     N = qa.shape[0]
     qd = np.ones((N, W)) if qdot is None else _as_rows("qdot", qdot, N, W)
     qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
-    x, xd, xdd, closed, reason = system.solve(qa, qd, qdd)
-    return MechanismResult(qa, qd, qdd, x, xd, xdd, closed, reason, system)
+    x, xd, xdd, closed, reason, CS = system.solve(qa.T, qd.T, qdd.T)
+    r = MechanismResult(qa, qd, qdd, x.T, xd.T, xdd.T, closed, reason, system)
+    object.__setattr__(r, "_cs", CS)
+    return r
 
 
 @dataclass(frozen=True)
@@ -749,18 +869,24 @@ class MechanismResult(Result):
     def _point_kinematics(self):
         ks = self.system
         names, f = _point_forms(ks)
-        ok = np.isfinite(self.x).all(axis=1)
-        x = np.where(ok[:, None], self.x, 0.0)
-        c, s = ks._trig(x)
-        (X, Y), (VX, VY), (AX, AY) = ks.eval_forms(f, x, c, s, self.xdot, self.xddot)
-        P = np.stack([X, Y], axis=-1)
-        P[~ok] = np.nan
-        return names, P, np.stack([VX, VY], axis=-1), np.stack([AX, AY], axis=-1)
+        ok = self.closed
+        allok = bool(ok.all())
+        x = self.x.T if allok else np.where(ok, self.x.T, 0.0)
+        CS = self.__dict__.get("_cs") if allok else None
+        C, S = ks.trig(x) if CS is None else CS
+        (X, Y), (VX, VY), (AX, AY) = ks.eval_forms(f, x, C, S, self.xdot.T, self.xddot.T)
+        if not allok:
+            X[:, ~ok] = np.nan
+            Y[:, ~ok] = np.nan
+        return names, (X, Y), (VX, VY), (AX, AY)
 
     def _pdict(self, which):
         names, *arrs = self._point_kinematics
-        a = arrs[which]
-        return {p: a[:, i] for i, p in enumerate(names) if not p.startswith("\0")}
+        X, Y = arrs[which]
+        return _LazyDict(
+            [p for p in names if not p.startswith("\0")],
+            lambda p: np.stack([X[names.index(p)], Y[names.index(p)]], axis=1),
+        )
 
     @cached_property
     def point(self) -> dict:
@@ -798,12 +924,13 @@ class MechanismResult(Result):
 
     def _pose(self, which):
         names, *arrs = self._point_kinematics
-        a = arrs[which]
+        X, Y = arrs[which]
         m = self.model
-        out = np.empty((a.shape[0], len(m.moving), 3))
+        out = np.empty((X.shape[1], len(m.moving), 3))
         base = [self.x, self.xdot, self.xddot][which]
         for i, k in enumerate(m.moving):
-            out[:, i, :2] = a[:, names.index("\0" + k)]
+            j = names.index("\0" + k)
+            out[:, i, 0], out[:, i, 1] = X[j], Y[j]
             out[:, i, 2] = base[:, i] + (m.links[k].angle0 if which == 0 else 0.0)
         return out
 
@@ -848,6 +975,31 @@ class MechanismResult(Result):
         cols["closed"] = self.closed
         cols["reason"] = self.reason
         return cols
+
+
+class _LazyDict(Mapping):
+    """A read-only mapping whose values are computed on first access."""
+
+    def __init__(self, keys, compute):
+        self._keys = list(keys)
+        self._compute = compute
+        self._cache = {}
+
+    def __getitem__(self, key):
+        if key not in self._cache:
+            if key not in self._keys:
+                raise KeyError(key)
+            self._cache[key] = self._compute(key)
+        return self._cache[key]
+
+    def __iter__(self):
+        return iter(self._keys)
+
+    def __len__(self):
+        return len(self._keys)
+
+    def __repr__(self):
+        return f"<{len(self._keys)} arrays: {', '.join(self._keys)}>"
 
 
 def _point_forms(ks: KinematicSystem):
