@@ -48,6 +48,7 @@ __all__ = [
 #: Name of the frame link.
 GROUND = "ground"
 
+NEWLINE = b"\n"
 _TOP = ("mechanism", "points", "links", "sliders", "gears", "meshes", "inputs")
 _KEPT_TABLES = ("masses", "loads")
 _MECH_KEYS = ("name", "units", "module")
@@ -304,7 +305,10 @@ def load_model(path) -> MechanismModel:
     except UnicodeDecodeError:
         raise GearleverError(f"{p}: the model file is not UTF-8 text") from None
     except tomllib.TOMLDecodeError as exc:
-        raise GearleverError(f"{p}: TOML syntax error: {exc}") from None
+        msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
+        if "line" not in msg:
+            msg += f" (line {raw.count(NEWLINE) + 1})"
+        raise GearleverError(f"{p}: TOML syntax error: {msg}") from None
     try:
         return model_from_dict(data)
     except GearleverError as exc:
