@@ -17,7 +17,6 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.mechanism.constraints import constraint_jacobian, constraint_labels, sketch_pose
 from gearlever.mechanism.model import MechanismModel
-from gearlever.mechanism.structure import mobility
 
 __all__ = ["MechanismStructure", "analyze_structure", "scaled_jacobian", "numeric_rank"]
 
@@ -157,6 +156,4 @@ def analyze_structure(model: MechanismModel) -> MechanismStructure:
     w_formula = 3 * n - 2 * p5 - p4
     dof = 3 * n - rank
     redundant = 2 * p5 + p4 - rank
-    if redundant >= 0 and dof >= 0:
-        assert mobility(n, p5, p4, redundant) == dof
     return MechanismStructure(n, p5, p4, w_formula, rank, dof, redundant, red_rows, len(model.inputs))
