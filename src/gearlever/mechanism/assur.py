@@ -123,11 +123,12 @@ class DyadPlan:
     def run(self, dq, qd=None, qdd=None):
         """Closed-form kinematics at the input offsets ``dq`` (W, N) from the sketch.
 
-        Returns ``(phi, C, S, w, al, slider, pts, margin)``: per moving link its
-        wrapped rotation, cosine, sine, angular velocity and acceleration;
-        per slider ``(s, sd, sdd)``; the point kinematics computed on the way;
-        and the smallest dyad margin of each row (``(N,)``, NaN where a dyad
-        does not assemble).  Without ``qd`` only positions are computed.
+        Returns ``(phi, state, slider, pts, margin)``: per moving link its
+        wrapped rotation; per link ``(cos, sin, omega, alpha, reference point)``
+        of its rotation; per slider index ``(s, sd, sdd)``; the point
+        kinematics ``(X, Y, VX, VY, AX, AY)`` computed on the way; and the
+        smallest dyad margin of each row (``(N,)``, NaN where a dyad does not
+        assemble).  Without ``qd`` only positions are computed.
         """
         model, P = self.model, self.model.points
         rates = qd is not None

@@ -775,6 +775,11 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     of ``det J`` differs from the sketch's (the other assembly branch), is
     re-walked sequentially and otherwise left NaN with ``closed`` False.
 
+    A mechanism made of drivers and RRR/RRP dyads is first offered to the
+    closed-form path (:mod:`gearlever.mechanism.assur`); it answers (equal to
+    the continuation to rounding) only away from dead points and for rows
+    at most :data:`COARSE_STEP` apart, otherwise the continuation answers.
+
     Examples
     --------
     >>> from gearlever.mechanism.model import model_from_dict
