@@ -276,6 +276,15 @@ class KinematicSystem:
             self._B1 = np.ascontiguousarray(np.einsum("Kj,jm->Kmj", f.W, Ns).reshape(K * dz, S))
             self._B2 = np.ascontiguousarray(np.einsum("Kj,jm->Kmj", f.W, No).reshape(K * dz, S))
 
+    @property
+    def dyad_plan(self):
+        """Closed-form decomposition into drivers and dyads (:func:`~gearlever.mechanism.assur.plan_dyads`) or None."""
+        if not hasattr(self, "_dyad_plan"):
+            from gearlever.mechanism.assur import plan_dyads
+
+            self._dyad_plan = plan_dyads(self)
+        return self._dyad_plan
+
     # ------------------------------------------------------------- evaluation
     # Arrays are laid out feature-major: x (nx, N), C = cos(phi), S = sin(phi) (n, N),
     # so that every sum over links is one small-by-long matrix product.
@@ -766,6 +775,11 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     of ``det J`` differs from the sketch's (the other assembly branch), is
     re-walked sequentially and otherwise left NaN with ``closed`` False.
 
+    A mechanism made of drivers and RRR/RRP dyads is first offered to the
+    closed-form path (:mod:`gearlever.mechanism.assur`); it answers (equal to
+    the continuation to rounding) only away from dead points and for rows
+    at most :data:`COARSE_STEP` apart, otherwise the continuation answers.
+
     Examples
     --------
     >>> from gearlever.mechanism.model import model_from_dict
@@ -788,9 +802,19 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     N = qa.shape[0]
     qd = np.ones((N, W)) if qdot is None else _as_rows("qdot", qdot, N, W)
     qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
-    x, xd, xdd, closed, reason, CS = system.solve(qa.T, qd.T, qdd.T)
+    plan = system.dyad_plan
+    fast = plan.solve(qa.T, qd.T, qdd.T) if plan is not None else None
+    if fast is not None:
+        x, xd, xdd, CS, points = fast
+        closed = np.ones(N, dtype=bool)
+        reason = np.full(N, "", dtype=object)
+    else:
+        x, xd, xdd, closed, reason, CS = system.solve(qa.T, qd.T, qdd.T)
+        points = None
     r = MechanismResult(qa, qd, qdd, x.T, xd.T, xdd.T, closed, reason, system)
     object.__setattr__(r, "_cs", CS)
+    if points is not None:
+        object.__setattr__(r, "_fast_points", points)
     return r
 
 
@@ -881,12 +905,18 @@ class MechanismResult(Result):
         return names, (X, Y), (VX, VY), (AX, AY)
 
     def _pdict(self, which):
-        names, *arrs = self._point_kinematics
-        X, Y = arrs[which]
-        return _LazyDict(
-            [p for p in names if not p.startswith("\0")],
-            lambda p: np.stack([X[names.index(p)], Y[names.index(p)]], axis=1),
-        )
+        fast = self.__dict__.get("_fast_points") or {}
+        names = _point_forms(self.system)[0]
+
+        def compute(p):
+            got = fast.get(p)
+            if got is not None and isinstance(got[2 * which], np.ndarray):
+                return np.stack([got[2 * which], got[2 * which + 1]], axis=1)
+            names, *arrs = self._point_kinematics
+            X, Y = arrs[which]
+            return np.stack([X[names.index(p)], Y[names.index(p)]], axis=1)
+
+        return _LazyDict([p for p in names if not p.startswith("\0")], compute)
 
     @cached_property
     def point(self) -> dict:

@@ -1,0 +1,452 @@
+"""Closed-form fast path: a mechanism decomposed into drivers and class-II Assur groups (dyads).
+
+A mechanism whose links are all found, one group at a time, as
+
+- a *driver*: an input link pinned to ground (its angle is the input), or
+- an *RRR dyad*: two unknown links joined by a pin, each pinned to an
+  already known link (circle-circle intersection), or
+- an *RRP dyad*: an unknown link pinned to a known link and, at its other
+  pin, to a block that slides on a known link (circle-line intersection),
+
+with every pin and slider of the model used exactly once, is solved here in
+closed form, batched over all input rows: positions by the intersections,
+velocities and accelerations by 2x2 linear solves (Cramer's rule) on the
+analytic Jacobian of each dyad.  Anything else (gear meshes, slider inputs,
+higher Assur groups, redundant joints) returns no plan and is solved by the
+general reduced-coordinate Newton of :mod:`gearlever.mechanism.solve`.
+
+The fast path only answers when every row is safely away from a dead point
+(see :data:`DYAD_MARGIN`) and the inputs move in steps of at most
+:data:`~gearlever.mechanism.solve.COARSE_STEP`; otherwise it declines and the
+general path answers, with its NaN rows, ``closed`` flags and reasons.
+
+Pure numpy; no solver call per point.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearlever.mechanism.model import GROUND, MechanismModel
+
+__all__ = ["DYAD_MARGIN", "DyadPlan", "plan_dyads"]
+
+#: Smallest ``|sin|`` of the angle between the two members of a dyad (RRR), or between
+#: the link and the guide normal (RRP), for which the closed form answers; below it the
+#: general continuation decides (dead points, branch changes).
+DYAD_MARGIN = 0.1
+
+TAU = 2.0 * math.pi
+
+
+@dataclass(frozen=True)
+class _Driver:
+    w: int  # input column
+    link: str
+    pivot: str  # pin with ground
+
+
+@dataclass(frozen=True)
+class _RRR:
+    l1: str
+    l2: str
+    p: str  # pin joining l1 and l2
+    p1: str  # pin of l1 with a known link k1
+    k1: str
+    p2: str  # pin of l2 with a known link k2
+    k2: str
+    r1: float
+    r2: float
+    sigma: float  # assembly branch: sign of cross(P2 - P1, P - P1) in the sketch
+    e1: tuple  # sketch unit vectors P - P1, P - P2
+    e2: tuple
+
+
+@dataclass(frozen=True)
+class _RRP:
+    l1: str  # link pinned to known k1 at p1 and to the block l2 at p
+    l2: str  # block: slides on the known link k2 (same rotation as k2)
+    p: str
+    p1: str
+    k1: str
+    k2: str
+    slider: int  # index into model.sliders
+    sgn_s: float  # slider coordinate = sgn_s * t (t: travel of p along the guide)
+    u: tuple  # unit guide direction (sketch)
+    r1: float
+    sigma: float  # branch: sign of u . (P - P1) in the sketch
+    e1: tuple
+
+
+class DyadPlan:
+    """The order in which drivers and dyads determine a mechanism (see :func:`plan_dyads`).
+
+    Attributes
+    ----------
+    steps : tuple
+        Drivers, then dyads, in solving order.
+    """
+
+    def __init__(self, model: MechanismModel, ks, steps: tuple):
+        self.model = model
+        self.ks = ks
+        self.steps = steps
+
+    # ---------------------------------------------------------------- evaluation
+    def _point(self, st, pts, link, name, keep=True):
+        """Kinematics ``(X, Y, VX, VY, AX, AY)`` of the sketch location ``name`` carried by the known ``link``."""
+        got = pts.get(name) if keep else None
+        if got is not None:
+            return got
+        C, S, w, al, ref = st[link]
+        P = self.model.points
+        vx, vy = P[name][0] - P[ref][0], P[name][1] - P[ref][1]
+        OX, OY, OVX, OVY, OAX, OAY = pts[ref]
+        rx = C * vx - S * vy
+        ry = S * vx + C * vy
+        X, Y = OX + rx, OY + ry
+        if w is None:
+            out = (X, Y, None, None, None, None)
+        else:
+            VX, VY = OVX - w * ry, OVY + w * rx
+            w2 = w * w
+            AX = OAX - al * ry - w2 * rx
+            AY = OAY + al * rx - w2 * ry
+            out = (X, Y, VX, VY, AX, AY)
+        if keep and link != GROUND:
+            pts[name] = out
+        return out
+
+    def run(self, dq, qd=None, qdd=None):
+        """Closed-form kinematics at the input offsets ``dq`` (W, N) from the sketch.
+
+        Returns ``(phi, state, slider, pts, margin)``: per moving link its
+        wrapped rotation; per link ``(cos, sin, omega, alpha, reference point)``
+        of its rotation; per slider index ``(s, sd, sdd)``; the point
+        kinematics ``(X, Y, VX, VY, AX, AY)`` computed on the way; and the
+        smallest dyad margin of each row (``(N,)``, NaN where a dyad does not
+        assemble).  Without ``qd`` only positions are computed.
+        """
+        model, P = self.model, self.model.points
+        rates = qd is not None
+        st = {GROUND: (1.0, 0.0, 0.0 if rates else None, 0.0, None)}
+        pts = {}
+        for name in P:
+            if GROUND in model.carriers(name):
+                x, y = P[name]
+                pts[name] = (x, y, 0.0, 0.0, 0.0, 0.0)
+        phi, slider = {}, {}
+        margin = None
+        for step in self.steps:
+            if isinstance(step, _Driver):
+                a = dq[step.w]
+                C, S = np.cos(a), np.sin(a)
+                w = qd[step.w] if rates else None
+                al = qdd[step.w] if rates else None
+                phi[step.link] = a
+                st[step.link] = (C, S, w, al, step.pivot)
+                continue
+            if isinstance(step, _RRR):
+                m = self._rrr(step, st, pts, phi, rates)
+            else:
+                m = self._rrp(step, st, pts, phi, slider, rates)
+            margin = m if margin is None else np.fmin(margin, m)
+        return phi, st, slider, pts, margin
+
+    def _rrr(self, s: _RRR, st, pts, phi, rates):
+        X1, Y1, VX1, VY1, AX1, AY1 = self._point(st, pts, s.k1, s.p1)
+        X2, Y2, VX2, VY2, AX2, AY2 = self._point(st, pts, s.k2, s.p2)
+        dx, dy = X2 - X1, Y2 - Y1
+        d2 = dx * dx + dy * dy
+        a = 0.5 + (s.r1 * s.r1 - s.r2 * s.r2) * 0.5 / d2
+        h2 = (s.r1 * s.r1) / d2 - a * a
+        with np.errstate(invalid="ignore"):
+            h = np.sqrt(h2)
+        margin = h * d2 * (1.0 / (s.r1 * s.r2))  # |sin| of the angle between the members
+        sh = s.sigma * h
+        r1x = a * dx - sh * dy  # P - P1
+        r1y = a * dy + sh * dx
+        X, Y = X1 + r1x, Y1 + r1y
+        r2x, r2y = X - X2, Y - Y2
+        # rotations from the sketch: cos = e . e0, sin = e0 x e  (e = r / |r|, |r| = r_i)
+        i1, i2 = 1.0 / s.r1, 1.0 / s.r2
+        C1 = (r1x * s.e1[0] + r1y * s.e1[1]) * i1
+        S1 = (r1y * s.e1[0] - r1x * s.e1[1]) * i1
+        C2 = (r2x * s.e2[0] + r2y * s.e2[1]) * i2
+        S2 = (r2y * s.e2[0] - r2x * s.e2[1]) * i2
+        phi[s.l1] = np.arctan2(S1, C1)
+        phi[s.l2] = np.arctan2(S2, C2)
+        if not rates:
+            st[s.l1] = (C1, S1, None, None, s.p)
+            st[s.l2] = (C2, S2, None, None, s.p)
+            pts[s.p] = (X, Y, None, None, None, None)
+            return margin
+        # w1 perp(r1) - w2 perp(r2) = vP2 - vP1 =: b;  w1 = b.r2 / (r1 x r2), w2 = b.r1 / (r1 x r2)
+        icr = 1.0 / (r1x * r2y - r1y * r2x)
+        bx, by = VX2 - VX1, VY2 - VY1
+        w1 = (bx * r2x + by * r2y) * icr
+        w2 = (bx * r1x + by * r1y) * icr
+        VX, VY = VX1 - w1 * r1y, VY1 + w1 * r1x
+        q1, q2 = w1 * w1, w2 * w2
+        cx = AX2 - AX1 + q1 * r1x - q2 * r2x
+        cy = AY2 - AY1 + q1 * r1y - q2 * r2y
+        al1 = (cx * r2x + cy * r2y) * icr
+        al2 = (cx * r1x + cy * r1y) * icr
+        AX = AX1 - al1 * r1y - q1 * r1x
+        AY = AY1 + al1 * r1x - q1 * r1y
+        st[s.l1] = (C1, S1, w1, al1, s.p)
+        st[s.l2] = (C2, S2, w2, al2, s.p)
+        pts[s.p] = (X, Y, VX, VY, AX, AY)
+        return margin
+
+    def _rrp(self, s: _RRP, st, pts, phi, slider, rates):
+        X1, Y1, VX1, VY1, AX1, AY1 = self._point(st, pts, s.k1, s.p1)
+        CK, SK, wK, alK, _ = st[s.k2]
+        ground = s.k2 == GROUND
+        # Q: the sketch location of P carried by k2; the guide through Q turns with k2
+        if ground:
+            QX, QY = self.model.points[s.p]
+            QVX = QVY = QAX = QAY = 0.0
+            ux, uy = s.u
+        else:
+            QX, QY, QVX, QVY, QAX, QAY = self._point(st, pts, s.k2, s.p, keep=False)
+            ux, uy = CK * s.u[0] - SK * s.u[1], SK * s.u[0] + CK * s.u[1]
+        wx, wy = QX - X1, QY - Y1
+        uw = ux * wx + uy * wy
+        disc = uw * uw - (wx * wx + wy * wy - s.r1 * s.r1)
+        with np.errstate(invalid="ignore"):
+            root = np.sqrt(disc)
+        margin = root * (1.0 / s.r1)  # |u . e1|: the link is not normal to the guide
+        t = s.sigma * root - uw
+        X, Y = QX + t * ux, QY + t * uy
+        r1x, r1y = X - X1, Y - Y1
+        i1 = 1.0 / s.r1
+        C1 = (r1x * s.e1[0] + r1y * s.e1[1]) * i1
+        S1 = (r1y * s.e1[0] - r1x * s.e1[1]) * i1
+        phi[s.l1] = np.arctan2(S1, C1)
+        phi[s.l2] = phi[s.k2] if not ground else np.zeros_like(t)
+        if not rates:
+            st[s.l1] = (C1, S1, None, None, s.p)
+            st[s.l2] = (CK, SK, None, None, s.p)
+            pts[s.p] = (X, Y, None, None, None, None)
+            slider[s.slider] = (s.sgn_s * t, None, None)
+            return margin
+        # w1 perp(r1) - td u = vQ + t wK perp(u) - vP1 =: b
+        iru = 1.0 / (r1x * ux + r1y * uy)
+        bx, by = QVX - VX1, QVY - VY1
+        if not ground:
+            bx = bx - t * wK * uy
+            by = by + t * wK * ux
+        w1 = (by * ux - bx * uy) * iru  # b . perp(u) / (r1 . u)
+        td = -(bx * r1x + by * r1y) * iru
+        VX, VY = VX1 - w1 * r1y, VY1 + w1 * r1x
+        q1 = w1 * w1
+        # al1 perp(r1) - tdd u = aQ + 2 td wK perp(u) + t (alK perp(u) - wK^2 u) - aP1 + w1^2 r1 =: c
+        cx = QAX - AX1 + q1 * r1x
+        cy = QAY - AY1 + q1 * r1y
+        if not ground:
+            k = 2.0 * td * wK + t * alK
+            wk2t = t * wK * wK
+            cx = cx - k * uy - wk2t * ux
+            cy = cy + k * ux - wk2t * uy
+        al1 = (cy * ux - cx * uy) * iru
+        tdd = -(cx * r1x + cy * r1y) * iru
+        AX = AX1 - al1 * r1y - q1 * r1x
+        AY = AY1 + al1 * r1x - q1 * r1y
+        st[s.l1] = (C1, S1, w1, al1, s.p)
+        st[s.l2] = (CK, SK, wK if not ground else np.zeros_like(t), alK if not ground else np.zeros_like(t), s.p)
+        pts[s.p] = (X, Y, VX, VY, AX, AY)
+        slider[s.slider] = (s.sgn_s * t, s.sgn_s * td, s.sgn_s * tdd)
+        return margin
+
+    # ---------------------------------------------------------------- solve
+    def solve(self, q, qd, qdd):
+        """Reduced coordinates and rates ``x, xd, xdd`` (nx, N), ``(C, S)`` and point kinematics, or None.
+
+        ``None`` (the general path must answer) when an input step exceeds
+        :data:`~gearlever.mechanism.solve.COARSE_STEP`, or a dyad comes within
+        :data:`DYAD_MARGIN` of a dead point at some row or on the way from the
+        sketch to the first row.
+
+        Notes
+        -----
+        The rotations are unwrapped along the input rows, starting from the
+        sketch (rotation 0) through the straight path to the first row in
+        steps of at most ``COARSE_STEP``, so that they equal the ones found
+        by continuation.
+        """
+        from gearlever.mechanism.solve import COARSE_STEP
+
+        ks = self.ks
+        Nn = q.shape[1]
+        dq = q - ks.q0[:, None]
+        # input steps: the rows must follow each other closely (the continuation's coarse step)
+        if Nn > 1:
+            step = np.max(np.abs(np.diff(dq, axis=1)), axis=0) if ks.W > 1 else np.abs(np.diff(dq[0]))
+            if not step.max() <= COARSE_STEP:
+                return None
+        # lead-in from the sketch to the first row
+        d0 = dq[:, 0]
+        m = max(1, math.ceil(float(np.max(np.abs(d0))) / COARSE_STEP))
+        lead = d0[:, None] * (np.arange(m + 1) / m)[None, :]
+        lphi, _, _, _, lmargin = self.run(lead)
+        if lmargin is not None and not np.all(lmargin >= DYAD_MARGIN):
+            return None
+        phi, st, slider, pts, margin = self.run(dq, qd, qdd)
+        if margin is not None and not np.all(margin >= DYAD_MARGIN):
+            return None
+        n, model = ks.n, self.model
+        x = np.empty((ks.nx, Nn))
+        xd = np.empty((ks.nx, Nn))
+        xdd = np.empty((ks.nx, Nn))
+        C = np.empty((n, Nn))
+        S = np.empty((n, Nn))
+        drivers = {s.link for s in self.steps if isinstance(s, _Driver)}
+        for k in model.moving:
+            i = ks.idx[k]
+            Ck, Sk, w, al, _ = st[k]
+            C[i], S[i], xd[i], xdd[i] = Ck, Sk, w, al
+            p = phi[k]
+            if k in drivers:
+                x[i] = p
+                continue
+            lp = np.unwrap(lphi[k])
+            x[i] = _unwrap_from(p, float(lp[-1]))
+        for j in range(ks.S):
+            x[n + j], xd[n + j], xdd[n + j] = slider[j]
+        return x, xd, xdd, (C, S), pts
+
+
+def _unwrap_from(p: np.ndarray, start: float) -> np.ndarray:
+    """``p`` (wrapped angles along the rows) made continuous, its first value the one nearest ``start``."""
+    k0 = round((start - float(p[0])) / TAU)
+    out = p
+    if p.size > 1:
+        d = np.diff(p)
+        if np.abs(d).max() > math.pi:
+            out = p.copy()
+            out[1:] -= TAU * np.cumsum(np.round(d / TAU))
+    if k0:
+        out = out + TAU * k0
+    return out
+
+
+def plan_dyads(ks) -> DyadPlan | None:
+    """Decompose a compiled mechanism into drivers and dyads; None if it does not decompose.
+
+    Parameters
+    ----------
+    ks : KinematicSystem
+        The compiled model (its inputs, sketch values and coordinate order).
+
+    Returns
+    -------
+    DyadPlan or None
+        None for gear meshes, slider inputs, inputs not pinned to ground or
+        relative to a moving link, groups other than RRR and RRP dyads, and
+        joints left over (redundant constraints).
+
+    Notes
+    -----
+    Structural decomposition into Assur groups (L. V. Assur, 1914): starting
+    from the frame and the driving links, repeatedly find two unknown links
+    that form a class-II group with known links; the position of each group
+    is the intersection of two circles (RRR) or of a circle and a line (RRP),
+    its velocities and accelerations the solution of a 2x2 linear system
+    (J. J. Uicker, G. R. Pennock and J. E. Shigley, *Theory of Machines and
+    Mechanisms*, Oxford University Press, ch. 3-4).  The assembly branch is
+    the one of the sketch: the sign of the cross product (RRR) or of the
+    projection on the guide (RRP) there.
+    """
+    model = ks.model
+    P = model.points
+    if model.meshes:
+        return None
+    pins = list(model.joints)  # (point, a, b)
+    used_pin = [False] * len(pins)
+    used_sl = [False] * len(model.sliders)
+    known = {GROUND}
+    steps = []
+    for w, spec in enumerate(model.inputs):
+        if spec.kind != "link" or spec.relative_to not in (None, GROUND) or spec.name in known:
+            return None
+        piv = None
+        for e, (p, a, b) in enumerate(pins):
+            if not used_pin[e] and {a, b} == {spec.name, GROUND}:
+                piv = (e, p)
+                break
+        if piv is None:
+            return None
+        used_pin[piv[0]] = True
+        known.add(spec.name)
+        steps.append(_Driver(w, spec.name, piv[1]))
+
+    def free_pins(link):
+        return [(e, p, b if a == link else a) for e, (p, a, b) in enumerate(pins) if not used_pin[e] and link in (a, b)]
+
+    def arr(name):
+        return np.array(P[name], dtype=float)
+
+    unknown = [k for k in model.moving if k not in known]
+    while unknown:
+        found = None
+        for e, (p, a, b) in enumerate(pins):
+            if used_pin[e] or a in known or b in known or a == b:
+                continue
+            for l1, l2 in ((a, b), (b, a)):
+                g1 = [(e1, p1, k1) for e1, p1, k1 in free_pins(l1) if k1 in known and e1 != e and p1 != p]
+                if not g1:
+                    continue
+                e1, p1, k1 = g1[0]
+                g2 = [(e2, p2, k2) for e2, p2, k2 in free_pins(l2) if k2 in known and e2 != e and p2 != p]
+                if g2:
+                    e2, p2, k2 = g2[0]
+                    v1, v2 = arr(p) - arr(p1), arr(p) - arr(p2)
+                    r1, r2 = float(np.hypot(*v1)), float(np.hypot(*v2))
+                    dd = arr(p2) - arr(p1)
+                    cr = float(dd[0] * v1[1] - dd[1] * v1[0])
+                    if r1 == 0.0 or r2 == 0.0 or cr == 0.0:
+                        continue
+                    found = _RRR(
+                        l1, l2, p, p1, k1, p2, k2, r1, r2, math.copysign(1.0, cr), tuple(v1 / r1), tuple(v2 / r2)
+                    )
+                    marks = ([e, e1, e2], [])
+                    break
+                for j, sl in enumerate(model.sliders):
+                    if used_sl[j] or l2 not in (sl.link, sl.on):
+                        continue
+                    k2 = sl.on if sl.link == l2 else sl.link
+                    if k2 not in known:
+                        continue
+                    u = np.array(sl.direction, dtype=float)
+                    u /= np.hypot(*u)
+                    v1 = arr(p) - arr(p1)
+                    r1 = float(np.hypot(*v1))
+                    proj = float(u @ v1)
+                    if r1 == 0.0 or proj == 0.0:
+                        continue
+                    found = _RRP(
+                        l1, l2, p, p1, k1, k2, j, 1.0 if sl.link == l2 else -1.0, tuple(u), r1,
+                        math.copysign(1.0, proj), tuple(v1 / r1),
+                    )  # fmt: skip
+                    marks = ([e, e1], [j])
+                    break
+                if found is not None:
+                    break
+            if found is not None:
+                break
+        if found is None:
+            return None
+        for e in marks[0]:
+            used_pin[e] = True
+        for j in marks[1]:
+            used_sl[j] = True
+        known.update((found.l1, found.l2))
+        steps.append(found)
+        unknown = [k for k in model.moving if k not in known]
+    if not all(used_pin) or not all(used_sl):
+        return None
+    return DyadPlan(model, ks, tuple(steps))
