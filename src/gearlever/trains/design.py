@@ -35,6 +35,9 @@ __all__ = [
     "factorizations",
 ]
 
+#: Trial divisions a design may spend in all its factorizations (about 2 s);
+#: beyond them :func:`design_train` refuses, naming ``pairs``.
+MAX_DESIGN_STEPS = 5_000_000
 #: Most semiconvergents tried per partial quotient by :func:`design_train`
 #: (the most accurate of each run; a quotient of 10**9 would otherwise give 10**9).
 MAX_RUN = 10_000
@@ -67,23 +70,45 @@ def factorizations(n: int, k: int, lo: int, hi: int) -> list[tuple[int, ...]]:
     >>> factorizations(144, 2, 2, 20)
     [(8, 18), (9, 16), (12, 12)]
     """
+    return _factorizations(int(n), int(k), int(lo), int(hi), None)
+
+
+def _factorizations(n, k, lo, hi, budget) -> list[tuple[int, ...]]:
     out: list[tuple[int, ...]] = []
-    _factor_rec(int(n), int(k), int(lo), int(hi), (), out)
+    _factor_rec(n, k, lo, hi, (), out, budget)
     return out
 
 
-def _factor_rec(n, k, lo, hi, prefix, out) -> None:
+class _Budget:
+    """Trial divisions left to a design (shared by every factorization it tries)."""
+
+    def __init__(self, steps: int):
+        self.cap = steps
+        self.left = steps
+
+    def spend(self, steps: int) -> None:
+        self.left -= steps
+        if self.left < 0:
+            raise GearleverError(
+                f"pairs: the design gave up after {self.cap:,} trial divisions (its work cap); "
+                "use fewer pairs, a narrower tooth range (min_teeth to max_teeth), "
+                "or the exhaustive search (search_best, gearlever train search)"
+            )
+
+
+def _factor_rec(n, k, lo, hi, prefix, out, budget) -> None:
     if k == 1:
         if lo <= n <= hi:
             out.append(prefix + (n,))
         return
     if n < lo**k or n > hi**k:
         return
-    d = lo
-    while d <= hi and d**k <= n:
-        if n % d == 0:
-            _factor_rec(n // d, k - 1, d, hi, prefix + (d,), out)
-        d += 1
+    top = min(hi, math.isqrt(n) if k == 2 else int(round(n ** (1.0 / k))) + 1)
+    if budget is not None:
+        budget.spend(top - lo + 1)
+    for d in range(lo, top + 1):
+        if n % d == 0 and d**k <= n:
+            _factor_rec(n // d, k - 1, d, hi, prefix + (d,), out, budget)
 
 
 def best_pairing(drivers, followers) -> tuple[tuple[int, int], ...]:
@@ -216,6 +241,8 @@ def exact_trains(
     prefer: str = "teeth",
     max_hits: int = 20,
     per_side: int = 12,
+    max_steps: int = MAX_DESIGN_STEPS,
+    _budget: _Budget | None = None,
 ) -> list[TrainDesign]:
     """Trains of exactly ``ratio`` with ``pairs`` pairs, teeth in [min_teeth, max_teeth].
 
@@ -235,6 +262,9 @@ def exact_trains(
         with the fewest teeth that are combined (at most this many each).
     keep : int
         How many designs are returned.
+    max_steps : int
+        Trial divisions allowed (default and cap :data:`MAX_DESIGN_STEPS`,
+        a few seconds); beyond them the design is refused, naming ``pairs``.
     prefer : {"teeth", "wear"}
         "teeth": least total number of teeth first (Young's criterion), then
         least gcd; "wear": least largest gcd of a pair first (the text's even
@@ -261,6 +291,7 @@ def exact_trains(
     ((36, 48), (12, 12), Fraction(12, 1))
     """
     frac = parse_ratio(ratio)
+    budget = _budget if _budget is not None else _Budget(capped_int("max_steps", max_steps, MAX_DESIGN_STEPS))
     k = capped_int("pairs", pairs, MAX_PAIRS)
     lo, hi = teeth_range(min_teeth, max_teeth)
     keep = capped_int("keep", keep, MAX_KEEP)
@@ -276,9 +307,10 @@ def exact_trains(
     small, large = (c, b) if c <= b else (b, c)
     while lam <= lam_max and tried < max_multipliers and hits < max_hits:
         tried += 1
-        f_small = factorizations(lam * small, k, lo, hi)
+        budget.spend(1)
+        f_small = _factorizations(lam * small, k, lo, hi, budget)
         if f_small:
-            f_large = factorizations(lam * large, k, lo, hi)
+            f_large = _factorizations(lam * large, k, lo, hi, budget)
             if f_large:
                 hits += 1
                 f_b, f_c = (f_large, f_small) if c <= b else (f_small, f_large)
@@ -420,6 +452,7 @@ def design_train(
     frac = parse_ratio(ratio)
     prefer = _check_prefer(prefer)
     keep = capped_int("keep", keep, MAX_KEEP)
+    budget = _Budget(MAX_DESIGN_STEPS)
     if min_teeth is None:
         t = min_teeth_for_form(tooth_form)
     else:
@@ -437,7 +470,7 @@ def design_train(
                 f"at most {MAX_PAIRS} pairs are designed"
             )
     for k in ks:
-        designs = exact_trains(frac, k, lo, hi, keep=keep, prefer=prefer)
+        designs = exact_trains(frac, k, lo, hi, keep=keep, prefer=prefer, _budget=budget)
         if designs:
             return DesignResult(frac, lo, hi, bounds, "exact", frac, tuple(designs), ())
     candidates = [a for a in approximants(frac, max_term=hi ** max(ks), max_per_term=MAX_RUN) if a.fraction != frac]
@@ -450,7 +483,7 @@ def design_train(
             if max(p, q) > hi**k:
                 tried.append((approx, k, False))
                 continue
-            designs = exact_trains(approx.fraction, k, lo, hi, keep=keep, prefer=prefer)
+            designs = exact_trains(approx.fraction, k, lo, hi, keep=keep, prefer=prefer, _budget=budget)
             tried.append((approx, k, bool(designs)))
             if designs:
                 designs = tuple(TrainDesign(d.drivers, d.followers, d.ratio, frac, d.multiplier) for d in designs)

@@ -461,7 +461,10 @@ class HookeJoint:
             if deg is not _UNSET:
                 if deg is None:
                     return None
-                return math.radians(_validate.finite(f"{name}_deg", deg))
+                value = _validate.finite(f"{name}_deg", deg)
+                if name != "phase" and not 0.0 <= value < 90.0:
+                    raise GearleverError(f"{name}_deg must be at least 0 and below 90 degrees, got {deg!r}")
+                return math.radians(value)
             return default if rad is _UNSET else rad
 
         if shaft_angle is _UNSET and shaft_angle_deg is _UNSET:

@@ -101,7 +101,7 @@ def _check_space(k: int, lo: int, hi: int, max_space: int) -> int:
         raise GearleverError(
             f"max_space: search space too large: {size:,} tooth multisets per side for {k} pairs "
             f"of teeth in [{lo}, {hi}] (limit max_space={max_space:,}, at most {MAX_SPACE_CAP:,}); "
-            "use fewer pairs or a narrower tooth range"
+            "use fewer pairs, a narrower tooth range (min_teeth to max_teeth) or a larger max_space"
         )
     if hi**k >= 2**52:
         raise GearleverError(
