@@ -72,7 +72,7 @@ def test_mean_velocity_ratio_is_one_over_a_turn():
 @settings(max_examples=40, deadline=None)
 @given(betas, phis)
 def test_double_equal_angles_in_phase_is_uniform(beta, phi):
-    # seed 004, section 70: alpha3 = alpha1 at each instant
+    # the classic text on trains of wheelwork, section 70: first and last shafts turn alike
     assert float(double_output_angle(phi, beta)) == pytest.approx(phi, abs=1e-9)
     assert float(double_velocity_ratio(phi, beta, beta, 0.0)) == pytest.approx(1.0, abs=1e-9)
     assert float(double_acceleration_ratio(phi, beta, beta, 0.0)) == pytest.approx(0.0, abs=1e-7 / math.cos(beta) ** 6)
