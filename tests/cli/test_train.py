@@ -1,4 +1,4 @@
-"""CLI tests: gearlever train ratio|design|search and gearlever hooke."""
+"""CLI tests: gearlever train ratio|design|search."""
 
 import json
 
@@ -117,66 +117,72 @@ def test_train_search_all_flag_and_out_file(capsys, tmp_path):
     ]
     short = _json(capsys, argv)
     full = _json(capsys, argv + ["--all"])
-    assert len(short["solutions"]) == 10 < len(full["solutions"]) == full["n_solutions"]
+    assert len(short["solutions"]) == 20 < len(full["solutions"]) == full["n_solutions"] == full["count"]
     out = tmp_path / "s.json"
     assert main(argv + ["--out", str(out)]) == 0
     assert json.loads(out.read_text())["n_solutions"] == full["n_solutions"]
     assert main(argv[:-2]) == 0
-    assert "more (use --all)" in capsys.readouterr().out
+    assert "more, counted but not listed" in capsys.readouterr().out
 
 
-def test_hooke_json_single_and_double(capsys):
-    recs = _json(capsys, ["hooke", "--shaft-angle", "60", "--input-angle", "0", "90", "--format", "json"])
-    assert [r["input_deg"] for r in recs] == [0.0, 90.0]
-    assert recs[0]["ratio"] == pytest.approx(2.0) and recs[1]["ratio"] == pytest.approx(0.5)
-    recs = _json(capsys, ["hooke", "--shaft-angle", "30", "--second-angle", "30", "--format", "json"])
-    assert len(recs) == 25 and all(r["ratio"] == pytest.approx(1.0) for r in recs)
-    assert all(r["output_deg"] == pytest.approx(r["input_deg"], abs=1e-9) for r in recs)
-
-
-def test_hooke_table(capsys):
-    assert main(["hooke", "--shaft-angle", "30", "--second-angle", "20", "--phase", "90", "--input-angle", "0"]) == 0
-    assert "double coupling" in capsys.readouterr().out
+S = ["train", "search", "--pairs", "2", "--min-teeth", "12", "--max-teeth", "60", "--ratio"]
 
 
 @pytest.mark.parametrize(
     "argv, word",
     [
+        (S + ["0"], "--ratio"),
+        (S + ["-3"], "--ratio"),
+        (S + ["nan"], "--ratio"),
+        (S + ["1/3/4"], "--ratio"),
+        (S + ["1e99999"], "--ratio"),
+        (S + ["1" * 65], "--ratio must be at most 64 characters"),
+        (["train", "search", "--ratio", "2", "--pairs", "2", "--min-teeth", "61", "--max-teeth", "60"], "--min-teeth"),
+        (["train", "search", "--ratio", "2", "--pairs", "0"], "--pairs"),
+        (["train", "search", "--ratio", "2", "--pairs", "13"], "--pairs: must be at most 12"),
         (
-            ["train", "search", "--ratio", "0", "--pairs", "2", "--min-teeth", "12", "--max-teeth", "60"],
-            "ratio",
+            ["train", "search", "--ratio", "2", "--pairs", "2", "--max-teeth", "10001"],
+            "--max-teeth: must be at most 10,000",
         ),
+        (["train", "search", "--ratio", "2", "--pairs", "2", "--limit", "1001"], "--limit: must be at most 1,000"),
         (
-            ["train", "search", "--ratio", "-3", "--pairs", "2", "--min-teeth", "12", "--max-teeth", "60"],
-            "ratio",
+            ["train", "search", "--ratio", "2", "--pairs", "2", "--max-space", "20000001"],
+            "--max-space: must be at most",
         ),
-        (
-            ["train", "search", "--ratio", "nan", "--pairs", "2", "--min-teeth", "12", "--max-teeth", "60"],
-            "ratio",
-        ),
-        (
-            ["train", "search", "--ratio", "2", "--pairs", "2", "--min-teeth", "61", "--max-teeth", "60"],
-            "min_teeth",
-        ),
-        (
-            ["train", "search", "--ratio", "2", "--pairs", "0", "--min-teeth", "12", "--max-teeth", "60"],
-            "--pairs",
-        ),
-        (
-            ["train", "search", "--ratio", "2", "--pairs", "6", "--min-teeth", "12", "--max-teeth", "60"],
-            "search space too large: 25,827,165",
-        ),
-        (["train", "design", "--ratio", "0"], "ratio"),
-        (["train", "design", "--ratio", "2", "--min-teeth", "30", "--max-teeth", "20"], "min_teeth"),
+        (["train", "search", "--ratio", "2", "--pairs", "6"], "--max-space: search space too large: 25,827,165"),
+        (["train", "search", "--ratio", "2", "--pairs", "12", "--min-teeth", "30", "--max-teeth", "30"], "--max-teeth"),
+        (["train", "design", "--ratio", "0"], "--ratio"),
+        (["train", "design", "--ratio", "1/3/4"], "--ratio"),
+        (["train", "design", "--ratio", "2", "--min-teeth", "30", "--max-teeth", "20"], "--min-teeth"),
         (["train", "design", "--ratio", "2", "--pairs", "0"], "--pairs"),
-        (["train", "ratio", "--drivers", "20", "--followers", "60", "45"], "followers"),
-        (["hooke", "--shaft-angle", "90"], "shaft_angle"),
-        (["hooke", "--shaft-angle", "30", "--second-angle", "120"], "second_angle"),
-        (["hooke", "--shaft-angle", "nan"], "--shaft-angle"),
-        (["hooke", "--shaft-angle", "30", "--phase", "10"], "phase"),
+        (["train", "design", "--ratio", "2", "--keep", "1001"], "--keep: must be at most 1,000"),
+        (["train", "design", "--ratio", "1e-20"], "--ratio"),
+        (["train", "ratio", "--drivers", "20", "--followers", "60", "45"], "--followers"),
     ],
 )
-def test_bad_input_exits_2_with_one_line(capsys, argv, word):
+def test_bad_input_exits_2_with_one_line_naming_the_flag(capsys, argv, word):
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and word in err
+    assert err.count("\n") == 1 and word in err and "Traceback" not in err
+    assert "max_teeth" not in err and "min_teeth" not in err and "max_space" not in err
+
+
+def test_search_counts_without_listing_and_defaults(capsys):
+    # --min-teeth 12 and --max-teeth 60 by default; 78 million sets counted, 20 listed
+    rec = _json(capsys, ["train", "search", "--ratio", "3", "--pairs", "5", "--format", "json"])
+    assert (rec["min_teeth"], rec["max_teeth"], rec["listed"], rec["limit"]) == (12, 60, 20, 20)
+    assert rec["count"] == 78477517 and rec["n_ordered"] == 845740940215
+    rec = _json(capsys, ["train", "search", "--ratio", "3", "--pairs", "2", "--limit", "3", "--format", "json"])
+    assert len(rec["solutions"]) == 3 and rec["count"] > 3
+
+
+def test_search_design_ratio_forms_agree(capsys):
+    # "1/6.931", "1000/6931" and "0.144279324773..." name different targets only in the last
+    a = _json(
+        capsys, ["train", "design", "--ratio", "1/6.931", "--min-teeth", "12", "--max-teeth", "60", "--format", "json"]
+    )
+    b = _json(
+        capsys,
+        ["train", "design", "--ratio", "1000/6931", "--min-teeth", "12", "--max-teeth", "60", "--format", "json"],
+    )
+    assert a["target"] == b["target"] == "1000/6931" and a["designs"] == b["designs"]

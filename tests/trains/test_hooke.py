@@ -72,7 +72,7 @@ def test_mean_velocity_ratio_is_one_over_a_turn():
 @settings(max_examples=40, deadline=None)
 @given(betas, phis)
 def test_double_equal_angles_in_phase_is_uniform(beta, phi):
-    # seed 004, section 70: alpha3 = alpha1 at each instant
+    # the classic text on trains of wheelwork, section 70: first and last shafts turn alike
     assert float(double_output_angle(phi, beta)) == pytest.approx(phi, abs=1e-9)
     assert float(double_velocity_ratio(phi, beta, beta, 0.0)) == pytest.approx(1.0, abs=1e-9)
     assert float(double_acceleration_ratio(phi, beta, beta, 0.0)) == pytest.approx(0.0, abs=1e-7 / math.cos(beta) ** 6)
@@ -120,17 +120,50 @@ def test_arrays_keep_their_shape():
         assert fn(phi, 0.3, 0.2, 0.1).shape == (3, 4)
 
 
-def test_hooke_joint_in_degrees():
-    j = HookeJoint(30.0)
+def test_hooke_joint_works_in_radians():
+    j = HookeJoint(math.radians(30.0))
+    c = math.cos(math.radians(30.0))
+    np.testing.assert_allclose(j.velocity_ratio([0.0, np.pi / 2]), [1 / c, c])  # sections 66 and 70: 1/cos, cos
+    np.testing.assert_allclose(j.output_angle([0.7]), output_angle(0.7, math.radians(30.0)))
+    d = HookeJoint(0.5, 0.5, 0.0)
+    np.testing.assert_allclose(d.velocity_ratio(np.linspace(0, 2 * np.pi, 37)), 1.0, atol=1e-12)
+    np.testing.assert_allclose(d.acceleration_ratio([0.2, 1.2]), 0.0, atol=1e-12)
+    turn = j.turn(np.linspace(0.0, np.pi, 5))
+    assert turn.to_frame().shape == (5, 4) and list(turn.as_dict()) == [
+        "phi",
+        "psi",
+        "velocity_ratio",
+        "acceleration_ratio",
+    ]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0.0, 89.0), st.one_of(st.none(), st.floats(0.0, 89.0)), st.floats(-360.0, 360.0), phis)
+def test_hooke_joint_radians_agree_with_degrees(b1, b2, phase, phi):
+    rad = HookeJoint(math.radians(b1), None if b2 is None else math.radians(b2), math.radians(phase))
+    deg = HookeJoint.from_degrees(b1, b2, phase)
+    kw = HookeJoint(shaft_angle_deg=b1, second_angle_deg=b2, phase_deg=phase)
+    assert deg == kw
+    assert deg.shaft_angle == pytest.approx(rad.shaft_angle, abs=0) and deg.shaft_angle_deg == pytest.approx(b1)
+    phi_deg = math.degrees(phi)
+    np.testing.assert_allclose(deg.velocity_ratio_deg([phi_deg]), rad.velocity_ratio([phi]), rtol=1e-12)
     np.testing.assert_allclose(
-        j.velocity_ratio([0.0, 90.0]), [1 / math.cos(math.radians(30)), math.cos(math.radians(30))]
+        deg.acceleration_ratio_deg([phi_deg]), rad.acceleration_ratio([phi]), rtol=1e-9, atol=1e-12
     )
     np.testing.assert_allclose(
-        j.output_angle_deg([45.0]), np.degrees(output_angle(math.radians(45.0), math.radians(30.0)))
+        deg.output_angle_deg([phi_deg]), np.degrees(rad.output_angle([phi])), rtol=1e-12, atol=1e-9
     )
-    d = HookeJoint(30.0, 30.0, 0.0)
-    np.testing.assert_allclose(d.velocity_ratio(np.arange(0, 360, 10.0)), 1.0, atol=1e-12)
-    np.testing.assert_allclose(d.acceleration_ratio([10.0, 70.0]), 0.0, atol=1e-12)
+
+
+def test_hooke_joint_degree_keywords_checked_in_degrees():
+    with pytest.raises(ValueError, match="^shaft_angle_deg must be at least 0 and below 90 degrees"):
+        HookeJoint.from_degrees(90.0)
+    with pytest.raises(ValueError, match="^second_angle_deg"):
+        HookeJoint(shaft_angle_deg=10.0, second_angle_deg=95.0)
+    with pytest.raises(ValueError, match="^shaft_angle is given twice"):
+        HookeJoint(0.1, shaft_angle_deg=10.0)
+    with pytest.raises(ValueError, match="^shaft_angle is required"):
+        HookeJoint()
 
 
 @pytest.mark.parametrize("beta", [math.pi / 2, 2.0, -0.1, float("nan"), float("inf")])
@@ -147,8 +180,10 @@ def test_bad_inputs_named():
     with pytest.raises(ValueError, match="^phase"):
         double_output_angle(0.0, 0.2, 0.2, float("nan"))
     with pytest.raises(ValueError, match="^shaft_angle"):
-        HookeJoint(90.0)
+        HookeJoint(math.pi / 2)  # radians: 90 deg is refused
+    with pytest.raises(ValueError, match="^shaft_angle"):
+        HookeJoint(30.0)  # 30 rad, not 30 deg
     with pytest.raises(ValueError, match="^second_angle"):
-        HookeJoint(10.0, 95.0)
+        HookeJoint(0.1, 1.6)
     with pytest.raises(ValueError, match="^samples"):
         double_fluctuation(0.2, samples=0)

@@ -20,7 +20,7 @@ def test_ratio_is_product_of_drivers_over_followers():
 
 @pytest.mark.parametrize("meshes, sense", [(1, -1), (2, 1), (3, -1), (4, 1)])
 def test_all_external_sense_alternates_with_number_of_axes(meshes, sense):
-    # m axes, m - 1 external meshes: m odd keeps the sense (seed 004, page (41)).
+    # m axes, m - 1 external meshes: m odd keeps the sense (the classic text on trains of wheelwork, page marked (41)).
     res = train_ratio([20] * meshes, [40] * meshes)
     assert res.sense == sense
     assert res.external_meshes == meshes

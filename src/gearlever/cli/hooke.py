@@ -1,18 +1,48 @@
-"""``gearlever hooke``: velocity ratio of a single or double Hooke's coupling."""
+"""``gearlever hooke``: velocity ratio of a single or double Hooke's coupling.
+
+Angles are in degrees here (the library works in radians).  ``--input-angle``
+takes at most 10,000 angles; the default is 0, 15, ..., 360.  Errors name the
+flags; JSON output is strict (no NaN).
+"""
 
 from __future__ import annotations
+
+import argparse
 
 import numpy as np
 
 from gearlever.cli._common import emit, finite_float, to_json
 from gearlever.errors import GearleverError
 
+#: Most input angles accepted by ``--input-angle``.
+MAX_INPUT_ANGLES = 10_000
+
+# Library parameter names (radians or degrees) -> the flags that set them.
+_FLAGS = {
+    "shaft_angle": "--shaft-angle",
+    "shaft_angle_deg": "--shaft-angle",
+    "second_angle": "--second-angle",
+    "second_angle_deg": "--second-angle",
+    "phase": "--phase",
+    "phase_deg": "--phase",
+    "phi": "--input-angle",
+    "input_deg": "--input-angle",
+}
+
+
+def _shaft_deg(text: str) -> float:
+    """argparse type: a shaft angle in degrees, 0 <= angle < 90."""
+    value = finite_float(text)
+    if not 0.0 <= value < 90.0:
+        raise argparse.ArgumentTypeError(f"must be at least 0 and below 90 degrees, got {text!r}")
+    return value
+
 
 def register(sub) -> None:
     p = sub.add_parser("hooke", help="output angle and velocity ratio of a Hooke's coupling (angles in degrees)")
     p.add_argument(
         "--shaft-angle",
-        type=finite_float,
+        type=_shaft_deg,
         required=True,
         help="angle between the shafts (of the first joint), degrees, 0 <= angle < 90",
     )
@@ -21,11 +51,12 @@ def register(sub) -> None:
         type=finite_float,
         nargs="+",
         default=None,
-        help="input angles, degrees (default 0, 15, ..., 360); 0 = input fork in the plane of the shafts",
+        help="input angles, degrees (default 0, 15, ..., 360; at most 10,000 angles); "
+        "0 = input fork in the plane of the shafts",
     )
     p.add_argument(
         "--second-angle",
-        type=finite_float,
+        type=_shaft_deg,
         default=None,
         help="double coupling: angle between intermediate and last shafts, degrees",
     )
@@ -41,25 +72,21 @@ def register(sub) -> None:
 
 
 def _run(args) -> int:
+    from gearlever.cli.train import flagged
     from gearlever.trains.hooke import HookeJoint
 
     if args.phase != 0.0 and args.second_angle is None:
-        raise GearleverError("phase needs --second-angle (a double coupling)")
-    joint = HookeJoint(args.shaft_angle, args.second_angle, args.phase)
-    phi = np.arange(0.0, 360.0 + 1e-9, 15.0) if args.input_angle is None else np.asarray(args.input_angle)
-    out = joint.output_angle_deg(phi)
-    ratio = joint.velocity_ratio(phi)
-    acc = joint.acceleration_ratio(phi)
-    records = [
-        # "+ 0.0" turns a negative zero into 0.0 so that no "-0.000" is printed
-        {
-            "input_deg": float(a) + 0.0,
-            "output_deg": float(b) + 0.0,
-            "ratio": float(c) + 0.0,
-            "acceleration_ratio": float(d) + 0.0,
-        }
-        for a, b, c, d in zip(phi, out, ratio, acc)
-    ]
+        raise GearleverError("--phase needs --second-angle (a double coupling)")
+    if args.input_angle is not None and len(args.input_angle) > MAX_INPUT_ANGLES:
+        raise GearleverError(f"--input-angle takes at most {MAX_INPUT_ANGLES:,} angles, got {len(args.input_angle):,}")
+    phi_deg = np.arange(0.0, 360.0 + 1e-9, 15.0) if args.input_angle is None else np.asarray(args.input_angle)
+    try:
+        joint = HookeJoint.from_degrees(args.shaft_angle, args.second_angle, args.phase)
+        records = joint.turn(np.radians(phi_deg)).as_records_deg()
+    except GearleverError as exc:
+        raise flagged(exc, _FLAGS) from None
+    for rec, a in zip(records, phi_deg):
+        rec["input_deg"] = float(a) + 0.0  # the angle as given, not a round trip through radians
     if args.format == "json":
         emit(to_json(records), args.out)
         return 0

@@ -1,11 +1,101 @@
-"""``gearlever train ratio|design|search``: trains of wheels."""
+"""``gearlever train ratio|design|search``: trains of wheels.
+
+Every size flag has a cap (refused above it, with the cap named): ``--pairs``
+at most 12, ``--min-teeth``/``--max-teeth`` at most 10,000, ``--limit`` at
+most 1,000 (``--all`` lists up to that cap), ``--keep`` at most 1,000,
+``--max-space`` at most 20,000,000 tooth multisets per side.  Errors from
+the library are reported with the user's flag names.
+"""
 
 from __future__ import annotations
 
-from gearlever.cli._common import emit, positive_int, to_json
+import argparse
+import re
+import sys
 
-#: Solutions listed by ``train search`` without ``--all``.
-DEFAULT_LISTED = 10
+from gearlever.cli._common import emit, positive_int, to_json
+from gearlever.errors import GearleverError
+from gearlever.trains._caps import (
+    DEFAULT_LIMIT,
+    DEFAULT_MAX_SPACE,
+    MAX_KEEP,
+    MAX_LIMIT,
+    MAX_PAIRS,
+    MAX_SPACE_CAP,
+    MAX_TEETH,
+)
+
+#: Solutions listed by ``train search`` without ``--limit`` or ``--all``.
+DEFAULT_LISTED = DEFAULT_LIMIT
+#: Tooth range of ``train search`` when not given: the text's least pinion for
+#: epicycloidal teeth (12) to 60, the range of Sandgren's gear-train problem.
+SEARCH_MIN_TEETH, SEARCH_MAX_TEETH = 12, 60
+
+# Library parameter names -> the flags that set them.
+_FLAGS = {
+    "ratio": "--ratio",
+    "pairs": "--pairs",
+    "min_teeth": "--min-teeth",
+    "max_teeth": "--max-teeth",
+    "max_space": "--max-space",
+    "limit": "--limit",
+    "keep": "--keep",
+    "prefer": "--prefer",
+    "tooth_form": "--tooth-form",
+    "metric": "--metric",
+    "drivers": "--drivers",
+    "followers": "--followers",
+    "internal": "--internal",
+    "idlers": "--idlers",
+}
+
+
+def flagged(exc: Exception, flags: dict[str, str]) -> GearleverError:
+    """The library's error with its parameter names replaced by the CLI flags (one line).
+
+    The leading name (``"max_teeth must ..."``) and any ``snake_case`` name
+    in the message are replaced; plain words such as "pairs" inside the
+    sentence are left alone.
+    """
+    text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    lead = re.match(r"[a-z_]+", text)
+    if lead and lead.group(0) in flags:
+        text = flags[lead.group(0)] + text[lead.end() :]
+    text = re.sub(r"\b[a-z]+(?:_[a-z]+)+\b", lambda m: flags.get(m.group(0), m.group(0)), text)
+    return GearleverError(text)
+
+
+def capped(cap: int):
+    """argparse type: an integer from 1 to ``cap`` (argparse names the flag)."""
+
+    def parse(text: str) -> int:
+        value = positive_int(text)
+        if value > cap:
+            raise argparse.ArgumentTypeError(f"must be at most {cap:,}, got {value:,}")
+        return value
+
+    parse.__name__ = f"integer 1..{cap}"
+    return parse
+
+
+class StderrProgress:
+    """Progress of long work on one stderr line, only when stderr is a terminal."""
+
+    def __init__(self, label: str):
+        self.label = label
+        self.active = sys.stderr.isatty()
+        self.shown = False
+
+    def __call__(self, stage: str, done: int, total: int) -> None:
+        if self.active:
+            sys.stderr.write(f"\r{self.label}: {stage} {done}/{total}\033[K")
+            sys.stderr.flush()
+            self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            sys.stderr.write("\r\033[K")
+            sys.stderr.flush()
 
 
 def register(sub) -> None:
@@ -23,7 +113,11 @@ def register(sub) -> None:
     r.set_defaults(func=_ratio)
 
     d = tsub.add_parser("design", help="tooth numbers for a wanted ratio by the classic rules")
-    d.add_argument("--ratio", required=True, help="wanted ratio: a number or B/C (decimals allowed, e.g. 1/6.931)")
+    d.add_argument(
+        "--ratio",
+        required=True,
+        help="wanted ratio: a positive number or B/C, B and C positive integers or decimals (e.g. 1/6.931)",
+    )
     g = d.add_mutually_exclusive_group()
     g.add_argument(
         "--tooth-form",
@@ -31,10 +125,14 @@ def register(sub) -> None:
         default="involute",
         help="sets the least tooth number: 24, 12, 15 (default involute)",
     )
-    g.add_argument("--min-teeth", type=positive_int, help="least tooth number t")
-    d.add_argument("--max-teeth", type=positive_int, help="largest tooth number (default 6t)")
-    d.add_argument("--pairs", type=positive_int, help="number of pairs (default: the text's bounds)")
-    d.add_argument("--keep", type=positive_int, default=5, help="designs listed (default 5)")
+    g.add_argument("--min-teeth", type=capped(MAX_TEETH), help=f"least tooth number t (at most {MAX_TEETH:,})")
+    d.add_argument(
+        "--max-teeth", type=capped(MAX_TEETH), help=f"largest tooth number (default 6t, at most {MAX_TEETH:,})"
+    )
+    d.add_argument(
+        "--pairs", type=capped(MAX_PAIRS), help=f"number of pairs (default: the text's bounds; at most {MAX_PAIRS})"
+    )
+    d.add_argument("--keep", type=capped(MAX_KEEP), default=5, help=f"designs listed (default 5, at most {MAX_KEEP:,})")
     d.add_argument(
         "--prefer",
         choices=("teeth", "wear"),
@@ -45,18 +143,39 @@ def register(sub) -> None:
     d.add_argument("--out", help="write to this file instead of stdout")
     d.set_defaults(func=_design)
 
-    s = tsub.add_parser("search", help="every train closest to a ratio, proven by exhaustive search")
-    s.add_argument("--ratio", required=True, help="target ratio: a number or B/C (decimals allowed)")
-    s.add_argument("--pairs", type=positive_int, required=True, help="number of pairs K")
-    s.add_argument("--min-teeth", type=positive_int, required=True)
-    s.add_argument("--max-teeth", type=positive_int, required=True)
+    s = tsub.add_parser("search", help="the trains closest to a ratio, proven by exhaustive search, with exact counts")
+    s.add_argument(
+        "--ratio",
+        required=True,
+        help="target ratio: a positive number or B/C, B and C positive integers or decimals",
+    )
+    s.add_argument("--pairs", type=capped(MAX_PAIRS), required=True, help=f"number of pairs K (at most {MAX_PAIRS})")
+    s.add_argument(
+        "--min-teeth",
+        type=capped(MAX_TEETH),
+        default=SEARCH_MIN_TEETH,
+        help=f"least tooth number (default {SEARCH_MIN_TEETH})",
+    )
+    s.add_argument(
+        "--max-teeth",
+        type=capped(MAX_TEETH),
+        default=SEARCH_MAX_TEETH,
+        help=f"largest tooth number (default {SEARCH_MAX_TEETH}, at most {MAX_TEETH:,})",
+    )
     s.add_argument("--metric", choices=("absolute", "relative"), default="absolute")
-    s.add_argument("--all", action="store_true", help=f"list every optimal train (default: the first {DEFAULT_LISTED})")
+    s.add_argument(
+        "--limit",
+        type=capped(MAX_LIMIT),
+        default=None,
+        help=f"optimal sets listed (default {DEFAULT_LISTED}, at most {MAX_LIMIT:,}); the count is always complete",
+    )
+    s.add_argument("--all", action="store_true", help=f"list optimal sets up to the cap of {MAX_LIMIT:,}")
     s.add_argument(
         "--max-space",
-        type=positive_int,
+        type=capped(MAX_SPACE_CAP),
         default=None,
-        help="refuse searches with more tooth multisets per side than this",
+        help=f"refuse searches with more tooth multisets per side than this "
+        f"(default {DEFAULT_MAX_SPACE:,}, at most {MAX_SPACE_CAP:,})",
     )
     s.add_argument("--format", choices=("table", "json"), default="table")
     s.add_argument("--out", help="write to this file instead of stdout")
@@ -66,7 +185,10 @@ def register(sub) -> None:
 def _ratio(args) -> int:
     from gearlever.trains import train_ratio
 
-    res = train_ratio(args.drivers, args.followers, internal=args.internal, idlers=args.idlers)
+    try:
+        res = train_ratio(args.drivers, args.followers, internal=args.internal, idlers=args.idlers)
+    except GearleverError as exc:
+        raise flagged(exc, _FLAGS) from None
     rec = res.as_dict()
     if args.format == "json":
         emit(to_json(rec), args.out)
@@ -96,17 +218,21 @@ def _design_lines(d) -> str:
 
 
 def _design(args) -> int:
-    from gearlever.trains.synthesis import design_train
+    from gearlever.trains.continued import parse_ratio
+    from gearlever.trains.design import design_train
 
-    res = design_train(
-        args.ratio,
-        min_teeth=args.min_teeth,
-        max_teeth=args.max_teeth,
-        pairs=args.pairs,
-        tooth_form=args.tooth_form,
-        keep=args.keep,
-        prefer=args.prefer,
-    )
+    try:
+        res = design_train(
+            parse_ratio(args.ratio),
+            min_teeth=args.min_teeth,
+            max_teeth=args.max_teeth,
+            pairs=args.pairs,
+            tooth_form=args.tooth_form,
+            keep=args.keep,
+            prefer=args.prefer,
+        )
+    except GearleverError as exc:
+        raise flagged(exc, _FLAGS) from None
     if args.format == "json":
         emit(to_json(res.as_dict()), args.out)
         return 0
@@ -124,17 +250,26 @@ def _design(args) -> int:
 
 
 def _search(args) -> int:
-    from gearlever.trains.synthesis import DEFAULT_MAX_SPACE, search_best
+    from gearlever.trains.continued import parse_ratio
+    from gearlever.trains.search import search_best
 
-    res = search_best(
-        args.ratio,
-        args.pairs,
-        args.min_teeth,
-        args.max_teeth,
-        metric=args.metric,
-        max_space=args.max_space or DEFAULT_MAX_SPACE,
-        limit=None if args.all else DEFAULT_LISTED,
-    )
+    limit = MAX_LIMIT if args.all else (args.limit or DEFAULT_LISTED)
+    progress = StderrProgress("train search")
+    try:
+        res = search_best(
+            parse_ratio(args.ratio),
+            args.pairs,
+            args.min_teeth,
+            args.max_teeth,
+            metric=args.metric,
+            max_space=args.max_space or DEFAULT_MAX_SPACE,
+            limit=limit,
+            progress=progress,
+        )
+    except GearleverError as exc:
+        raise flagged(exc, _FLAGS) from None
+    finally:
+        progress.close()
     if args.format == "json":
         emit(to_json(res.as_dict()), args.out)
         return 0
@@ -143,13 +278,19 @@ def _search(args) -> int:
         f"pairs            {res.pairs}, teeth {res.min_teeth} .. {res.max_teeth}",
         f"best error       {float(res.best_error):.6e} ({res.metric})",
         f"best ratio       {', '.join(f'{r} = {float(r):.12g}' for r in res.best_ratios)}",
-        f"optimal sets     {res.n_solutions} up to order ({res.n_ordered} ordered tuples)",
-        f"searched         {res.n_products} distinct products per side",
+        f"optimal sets     {res.n_solutions:,} up to order ({res.n_ordered:,} ordered tuples), "
+        f"from {res.n_product_pairs:,} pair(s) of products",
+        f"searched         {res.n_products:,} distinct products per side, {res.n_candidates:,} candidate pairs "
+        "(every product against the 4 around its best partner: proven optimal)",
     ]
     for s in res.solutions:
         pairing = ", ".join(f"{a}:{b}" for a, b in s.pairing)
         lines.append(f"  drivers {list(s.drivers)} followers {list(s.followers)}  pairs {pairing}")
     if len(res.solutions) < res.n_solutions:
-        lines.append(f"  ... {res.n_solutions - len(res.solutions)} more (use --all)")
+        more = res.n_solutions - len(res.solutions)
+        hint = (
+            f"--limit up to {MAX_LIMIT:,}" if len(res.solutions) < MAX_LIMIT else f"listing is capped at {MAX_LIMIT:,}"
+        )
+        lines.append(f"  ... {more:,} more, counted but not listed ({hint}; use --all for the cap)")
     emit("\n".join(lines), args.out)
     return 0

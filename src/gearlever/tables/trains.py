@@ -8,7 +8,8 @@ import numpy as np
 import pandas as pd
 
 from gearlever.trains import hooke
-from gearlever.trains.synthesis import design_train, search_best
+from gearlever.trains.design import design_train
+from gearlever.trains.search import search_best
 
 #: Shaft angles (deg) of the single-joint columns of :func:`hooke_table`.
 SINGLE_ANGLES_DEG = (10.0, 20.0, 30.0, 45.0)

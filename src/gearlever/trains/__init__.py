@@ -2,16 +2,33 @@
 
 - :mod:`~gearlever.trains.ratio`: velocity ratio and sense of a simple or
   compound train.
-- :mod:`~gearlever.trains.synthesis`: tooth numbers for a wanted ratio by the
-  classical rules, continued fractions, and an exhaustive best search.
-- :mod:`~gearlever.trains.hooke`: Hooke's (cardan) coupling, single and double.
+- :mod:`~gearlever.trains.rules`: the classical rules and their data.
+- :mod:`~gearlever.trains.continued`: exact ratios and continued fractions.
+- :mod:`~gearlever.trains.design`: tooth numbers by the classical rules.
+- :mod:`~gearlever.trains.search`: the exhaustive best search, with exact counts.
+- :mod:`~gearlever.trains.synthesis`: the four above under one name.
+- :mod:`~gearlever.trains.hooke`: Hooke's (cardan) coupling, single and double
+  (radians; ``HookeJoint.from_degrees`` for degrees).
 
 Numeric core: may import numpy, scipy, :mod:`fractions`, :mod:`gearlever.errors`,
 :mod:`gearlever._validate`, :mod:`gearlever.data`; never pandas or matplotlib.
 """
 
-from gearlever.trains.hooke import HookeJoint
+from gearlever.trains.continued import parse_ratio
+from gearlever.trains.design import DesignResult, design_train
+from gearlever.trains.hooke import HookeJoint, HookeTurn
 from gearlever.trains.ratio import TrainRatio, train_ratio
-from gearlever.trains.synthesis import design_train, search_best
+from gearlever.trains.search import SearchResult, factorization_counts, search_best
 
-__all__ = ["HookeJoint", "TrainRatio", "design_train", "search_best", "train_ratio"]
+__all__ = [
+    "DesignResult",
+    "HookeJoint",
+    "HookeTurn",
+    "SearchResult",
+    "TrainRatio",
+    "design_train",
+    "factorization_counts",
+    "parse_ratio",
+    "search_best",
+    "train_ratio",
+]

@@ -12,8 +12,8 @@ psi = phi at phi = 0, pi/2, pi, ...  Then (c = cos beta)
 and psi is taken continuous in phi (psi - phi stays within (-pi/2, pi/2)),
 so angles over several turns are handled.  The angular velocity ratio
 omega_out / omega_in = dpsi/dphi lies between cos beta (at phi = pi/2) and
-1 / cos beta (at phi = 0), the limits stated in the text (seed 004, section
-70, quoting its section 66).  The angular acceleration ratio is d2psi/dphi2:
+1 / cos beta (at phi = 0), the limits given by the classic text on trains of
+wheelwork, section 70 "Double Hooke's Coupling", from its section 66.  The angular acceleration ratio is d2psi/dphi2:
 the output's angular acceleration divided by omega_in**2 for a uniformly
 turning input.
 
@@ -36,11 +36,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearlever import _validate
+from gearlever._result import Result
 from gearlever.errors import GearleverError
 
 __all__ = [
     "DoubleFluctuation",
     "HookeJoint",
+    "HookeTurn",
     "acceleration_ratio",
     "d2psi_dphi2",
     "double_acceleration_ratio",
@@ -96,7 +98,7 @@ def output_angle(phi, shaft_angle):
     Notes
     -----
     tan psi = tan phi / cos beta (module docstring for the convention;
-    the joint of seed 004, section 70, and its section 66).  Written as
+    the classic text on trains of wheelwork, sections 66 and 70).  Written as
     psi = phi + atan2(sin phi cos phi (1 - c), c cos^2 phi + sin^2 phi), whose
     denominator stays positive, so psi is continuous over any number of turns.
 
@@ -130,8 +132,8 @@ def velocity_ratio(phi, shaft_angle):
     dpsi/dphi = cos beta / (1 - sin^2 beta cos^2 phi)
     = c / (c^2 cos^2 phi + sin^2 phi), from differentiating
     tan psi = tan phi / c.  Extremes 1/c at phi = 0 and c at phi = pi/2
-    (seed 004, section 70: "fluctuates between the limits cos theta and
-    1/cos theta").
+    (the classic text on trains of wheelwork, section 70: the ratio swings
+    between cos theta and 1/cos theta).
 
     Examples
     --------
@@ -179,7 +181,7 @@ def ratio_extremes(shaft_angle) -> tuple[float, float]:
 
     Notes
     -----
-    Seed 004, section 70 (quoting its section 66).
+    The classic text on trains of wheelwork, section 70 (from its section 66).
 
     Examples
     --------
@@ -225,7 +227,9 @@ def double_output_angle(phi, shaft_angle, second_angle=None, phase=0.0):
     psi2 = h(phi; c1), psi3 = delta + h(psi2 - delta; 1/c2), with
     tan h(x; c) = tan x / c and c_i = cos beta_i.  The second joint is driven
     by a fork of the "output" kind, hence 1/c2.  With delta = 0 and
-    beta1 = beta2, psi3 = phi (seed 004, section 70).
+    beta1 = beta2, psi3 = phi (the classic text on trains of wheelwork,
+    section 70: the intermediate shaft at equal angles, its forks in one
+    plane, makes the last shaft turn with the first).
 
     Examples
     --------
@@ -254,7 +258,8 @@ def double_velocity_ratio(phi, shaft_angle, second_angle=None, phase=0.0):
     -----
     dpsi3/dphi = h'(psi2 - delta; 1/c2) h'(phi; c1), with
     h'(x; c) = c / (c^2 cos^2 x + sin^2 x).  Equal to 1 for every phi when
-    beta1 = beta2 and delta = 0 (seed 004, section 70).
+    beta1 = beta2 and delta = 0 (the classic text on trains of wheelwork,
+    section 70).
 
     Examples
     --------
@@ -288,7 +293,7 @@ def double_acceleration_ratio(phi, shaft_angle, second_angle=None, phase=0.0):
 
 
 @dataclass(frozen=True)
-class DoubleFluctuation:
+class DoubleFluctuation(Result):
     """Residual fluctuation of a double coupling over a turn.
 
     Attributes
@@ -363,64 +368,174 @@ def double_fluctuation(shaft_angle, second_angle=None, phase=0.0, samples: int =
 
 
 @dataclass(frozen=True)
-class HookeJoint:
-    """A single or double Hooke's coupling as a parameter object (angles in degrees).
+class HookeTurn(Result):
+    """Angles and ratios of a Hooke's coupling at given input angles (all angles in radians).
 
     Attributes
     ----------
-    shaft_angle_deg : float
-        beta1.
-    second_angle_deg : float or None
-        beta2 for a double coupling; None for a single joint.
-    phase_deg : float
-        delta of the double coupling.
+    phi : ndarray
+        Input (first-shaft) angles, rad.
+    psi : ndarray
+        Output (last-shaft) angles, rad.
+    velocity_ratio : ndarray
+        omega_out / omega_in.
+    acceleration_ratio : ndarray
+        d2psi/dphi2.
+    """
+
+    phi: np.ndarray
+    psi: np.ndarray
+    velocity_ratio: np.ndarray
+    acceleration_ratio: np.ndarray
+
+    def as_records_deg(self) -> list[dict]:
+        """One dict per input angle, angles in degrees (input_deg, output_deg, ratio, acceleration_ratio)."""
+        # "+ 0.0" turns a negative zero into 0.0
+        return [
+            {
+                "input_deg": float(a) + 0.0,
+                "output_deg": float(b) + 0.0,
+                "ratio": float(c) + 0.0,
+                "acceleration_ratio": float(d) + 0.0,
+            }
+            for a, b, c, d in zip(
+                np.degrees(self.phi).ravel(),
+                np.degrees(self.psi).ravel(),
+                self.velocity_ratio.ravel(),
+                self.acceleration_ratio.ravel(),
+            )
+        ]
+
+
+_UNSET = object()
+
+
+@dataclass(frozen=True, init=False)
+class HookeJoint:
+    """A single or double Hooke's coupling as a parameter object (angles in radians).
+
+    Parameters
+    ----------
+    shaft_angle : float
+        beta1, rad, 0 <= beta1 < pi/2.
+    second_angle : float or None
+        beta2, rad, for a double coupling; None for a single joint.
+    phase : float
+        delta of the double coupling, rad.
+    shaft_angle_deg, second_angle_deg, phase_deg : float, optional
+        The same in degrees (keyword only; give each angle once, in one unit).
+        :meth:`from_degrees` does the same.
+
+    Notes
+    -----
+    The coupling of the classic text on trains of wheelwork, its section 70
+    ("Double Hooke's Coupling"), which cites its section 66 for the single
+    joint; the equations are those of :func:`output_angle` and
+    :func:`double_output_angle`.
 
     Examples
     --------
-    >>> HookeJoint(30.0).velocity_ratio([90.0]).round(6).tolist()
+    >>> HookeJoint(np.radians(30.0)).velocity_ratio([np.pi / 2]).round(6).tolist()
     [0.866025]
+    >>> HookeJoint.from_degrees(30.0) == HookeJoint(shaft_angle_deg=30.0)
+    True
     """
 
-    shaft_angle_deg: float
-    second_angle_deg: float | None = None
-    phase_deg: float = 0.0
+    shaft_angle: float
+    second_angle: float | None
+    phase: float
 
-    def __post_init__(self):
-        for name, value in (("shaft_angle", self.shaft_angle_deg), ("second_angle", self.second_angle_deg)):
-            if value is None and name == "second_angle":
-                continue
-            deg = _validate.finite(name, value)
-            if not 0.0 <= deg < 90.0:
-                raise GearleverError(f"{name} must be at least 0 and below 90 degrees, got {value!r}")
-        _validate.finite("phase", self.phase_deg)
+    def __init__(
+        self,
+        shaft_angle=_UNSET,
+        second_angle=_UNSET,
+        phase=_UNSET,
+        *,
+        shaft_angle_deg=_UNSET,
+        second_angle_deg=_UNSET,
+        phase_deg=_UNSET,
+    ):
+        def pick(name, rad, deg, default):
+            if rad is not _UNSET and deg is not _UNSET:
+                raise GearleverError(f"{name} is given twice: give {name} (rad) or {name}_deg, not both")
+            if deg is not _UNSET:
+                if deg is None:
+                    return None
+                value = _validate.finite(f"{name}_deg", deg)
+                if name != "phase" and not 0.0 <= value < 90.0:
+                    raise GearleverError(f"{name}_deg must be at least 0 and below 90 degrees, got {deg!r}")
+                return math.radians(value)
+            return default if rad is _UNSET else rad
+
+        if shaft_angle is _UNSET and shaft_angle_deg is _UNSET:
+            raise GearleverError("shaft_angle is required (rad; or shaft_angle_deg in degrees)")
+        b1 = pick("shaft_angle", shaft_angle, shaft_angle_deg, None)
+        b2 = pick("second_angle", second_angle, second_angle_deg, None)
+        delta = pick("phase", phase, phase_deg, 0.0)
+        b1 = _shaft_angle("shaft_angle", b1)
+        b2 = None if b2 is None else _shaft_angle("second_angle", b2)
+        delta = _validate.finite("phase", delta)
+        object.__setattr__(self, "shaft_angle", b1)
+        object.__setattr__(self, "second_angle", b2)
+        object.__setattr__(self, "phase", delta)
+
+    @classmethod
+    def from_degrees(cls, shaft_angle_deg, second_angle_deg=None, phase_deg=0.0) -> HookeJoint:
+        """The coupling with its angles given in degrees."""
+        return cls(shaft_angle_deg=shaft_angle_deg, second_angle_deg=second_angle_deg, phase_deg=phase_deg)
 
     @property
     def double(self) -> bool:
-        return self.second_angle_deg is not None
+        """True for a double coupling."""
+        return self.second_angle is not None
 
-    def _args(self):
-        b1 = math.radians(self.shaft_angle_deg)
-        b2 = None if self.second_angle_deg is None else math.radians(self.second_angle_deg)
-        return b1, b2, math.radians(self.phase_deg)
+    @property
+    def shaft_angle_deg(self) -> float:
+        return math.degrees(self.shaft_angle)
+
+    @property
+    def second_angle_deg(self) -> float | None:
+        return None if self.second_angle is None else math.degrees(self.second_angle)
+
+    @property
+    def phase_deg(self) -> float:
+        return math.degrees(self.phase)
+
+    def output_angle(self, phi):
+        """Output angle(s) psi, rad, for input angle(s) phi, rad."""
+        if self.double:
+            return double_output_angle(phi, self.shaft_angle, self.second_angle, self.phase)
+        return output_angle(phi, self.shaft_angle)
+
+    def velocity_ratio(self, phi):
+        """omega_out / omega_in at input angle(s) phi, rad."""
+        if self.double:
+            return double_velocity_ratio(phi, self.shaft_angle, self.second_angle, self.phase)
+        return velocity_ratio(phi, self.shaft_angle)
+
+    def acceleration_ratio(self, phi):
+        """d2psi/dphi2 at input angle(s) phi, rad."""
+        if self.double:
+            return double_acceleration_ratio(phi, self.shaft_angle, self.second_angle, self.phase)
+        return acceleration_ratio(phi, self.shaft_angle)
+
+    def turn(self, phi) -> HookeTurn:
+        """Output angle, velocity and acceleration ratio at input angle(s) phi, rad."""
+        phi = _validate.finite_array("phi", phi)
+        return HookeTurn(phi, self.output_angle(phi), self.velocity_ratio(phi), self.acceleration_ratio(phi))
 
     def output_angle_deg(self, input_deg):
         """Output angle(s), degrees, for input angle(s) in degrees."""
         phi = np.radians(_validate.finite_array("input_deg", input_deg))
-        b1, b2, d = self._args()
-        out = double_output_angle(phi, b1, b2, d) if self.double else output_angle(phi, b1)
-        return np.degrees(out)
+        return np.degrees(self.output_angle(phi))
 
-    def velocity_ratio(self, input_deg):
-        """omega_out / omega_in at input angle(s) in degrees."""
-        phi = np.radians(_validate.finite_array("input_deg", input_deg))
-        b1, b2, d = self._args()
-        return double_velocity_ratio(phi, b1, b2, d) if self.double else velocity_ratio(phi, b1)
+    def velocity_ratio_deg(self, input_deg):
+        """omega_out / omega_in at input angle(s) given in degrees."""
+        return self.velocity_ratio(np.radians(_validate.finite_array("input_deg", input_deg)))
 
-    def acceleration_ratio(self, input_deg):
-        """d2psi/dphi2 at input angle(s) in degrees."""
-        phi = np.radians(_validate.finite_array("input_deg", input_deg))
-        b1, b2, d = self._args()
-        return double_acceleration_ratio(phi, b1, b2, d) if self.double else acceleration_ratio(phi, b1)
+    def acceleration_ratio_deg(self, input_deg):
+        """d2psi/dphi2 at input angle(s) given in degrees."""
+        return self.acceleration_ratio(np.radians(_validate.finite_array("input_deg", input_deg)))
 
 
 #: Alias of :func:`velocity_ratio` named by what it is, dpsi/dphi.

@@ -4,8 +4,8 @@ A simple or compound train is a chain of meshes.  Mesh ``i`` (counted from 1)
 joins a driver of ``drivers[i-1]`` teeth to a follower of ``followers[i-1]``
 teeth; the follower of one mesh turns on the same axis as the driver of the
 next.  The velocity ratio of the last axis to the first is the product of the
-drivers' teeth over the product of the followers' teeth (seed 004, page marked
-(41)).  An external mesh reverses the sense of rotation, an internal one (a
+drivers' teeth over the product of the followers' teeth (the classic text on
+trains of wheelwork, page marked (41)).  An external mesh reverses the sense of rotation, an internal one (a
 pinion inside an annulus) keeps it.
 
 An idler is a single wheel that is the follower of one mesh and the driver of
@@ -109,7 +109,8 @@ def train_ratio(drivers, followers, internal=(), idlers=()) -> TrainRatio:
     Notes
     -----
     omega_last / omega_first = (-1)**e * prod(N_drivers) / prod(n_followers),
-    with e the number of external meshes (seed 004, page marked (41): the
+    with e the number of external meshes (the classic text on trains of
+    wheelwork, page marked (41): the
     ratio is the product of the drivers' teeth over that of the followers';
     with all gearing outside, each mesh reverses the sense, so m axes keep it
     when m is odd).
