@@ -142,9 +142,9 @@ S = ["train", "search", "--pairs", "2", "--min-teeth", "12", "--max-teeth", "60"
         (["train", "search", "--ratio", "2", "--pairs", "13"], "--pairs: must be at most 12"),
         (
             ["train", "search", "--ratio", "2", "--pairs", "2", "--max-teeth", "10001"],
-            "--max-teeth: must be at most 10,000",
+            "--max-teeth: must be at most 10^4",
         ),
-        (["train", "search", "--ratio", "2", "--pairs", "2", "--limit", "1001"], "--limit: must be at most 1,000"),
+        (["train", "search", "--ratio", "2", "--pairs", "2", "--limit", "1001"], "--limit: must be at most 10^3"),
         (
             ["train", "search", "--ratio", "2", "--pairs", "2", "--max-space", "20000001"],
             "--max-space: must be at most",
@@ -155,7 +155,7 @@ S = ["train", "search", "--pairs", "2", "--min-teeth", "12", "--max-teeth", "60"
         (["train", "design", "--ratio", "1/3/4"], "--ratio"),
         (["train", "design", "--ratio", "2", "--min-teeth", "30", "--max-teeth", "20"], "--min-teeth"),
         (["train", "design", "--ratio", "2", "--pairs", "0"], "--pairs"),
-        (["train", "design", "--ratio", "2", "--keep", "1001"], "--keep: must be at most 1,000"),
+        (["train", "design", "--ratio", "2", "--keep", "1001"], "--keep: must be at most 10^3"),
         (["train", "design", "--ratio", "1e-20"], "--ratio"),
         (["train", "ratio", "--drivers", "20", "--followers", "60", "45"], "--followers"),
     ],

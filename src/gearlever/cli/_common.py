@@ -30,6 +30,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import math
+import re
 import sys
 import threading
 import time
@@ -257,3 +258,38 @@ def progress(label: str, stream=None, delay: float = PROGRESS_DELAY, interval: f
             with contextlib.suppress(OSError, ValueError):
                 stream.write("\r\033[K")
                 stream.flush()
+
+
+def flagged(exc: Exception, flags: dict[str, str]) -> GearleverError:
+    """The library's error with its parameter names replaced by the CLI flags (one line).
+
+    The leading name (``"max_teeth must ..."``) and any ``snake_case`` name
+    in the message are replaced; plain words such as "pairs" inside the
+    sentence are left alone.
+    """
+    text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    lead = re.match(r"[a-z_]+", text)
+    if lead and lead.group(0) in flags:
+        text = flags[lead.group(0)] + text[lead.end() :]
+    text = re.sub(r"\b[a-z]+(?:_[a-z]+)+\b", lambda m: flags.get(m.group(0), m.group(0)), text)
+    return GearleverError(text)
+
+
+class StderrProgress:
+    """Progress of long work on one stderr line, only when stderr is a terminal."""
+
+    def __init__(self, label: str):
+        self.label = label
+        self.active = sys.stderr.isatty()
+        self.shown = False
+
+    def __call__(self, stage: str, done: int, total: int) -> None:
+        if self.active:
+            sys.stderr.write(f"\r{self.label}: {stage} {done}/{total}\033[K")
+            sys.stderr.flush()
+            self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            sys.stderr.write("\r\033[K")
+            sys.stderr.flush()

@@ -11,7 +11,7 @@ import argparse
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, to_json
+from gearlever.cli._common import emit, finite_float, flagged, to_json
 from gearlever.errors import GearleverError
 
 #: Most input angles accepted by ``--input-angle``.
@@ -72,7 +72,6 @@ def register(sub) -> None:
 
 
 def _run(args) -> int:
-    from gearlever.cli.train import flagged
     from gearlever.trains.hooke import HookeJoint
 
     if args.phase != 0.0 and args.second_angle is None:

@@ -9,11 +9,7 @@ the library are reported with the user's flag names.
 
 from __future__ import annotations
 
-import argparse
-import re
-import sys
-
-from gearlever.cli._common import emit, positive_int, to_json
+from gearlever.cli._common import StderrProgress, capped_int, emit, flagged, to_json
 from gearlever.errors import GearleverError
 from gearlever.trains._caps import (
     DEFAULT_LIMIT,
@@ -50,54 +46,6 @@ _FLAGS = {
 }
 
 
-def flagged(exc: Exception, flags: dict[str, str]) -> GearleverError:
-    """The library's error with its parameter names replaced by the CLI flags (one line).
-
-    The leading name (``"max_teeth must ..."``) and any ``snake_case`` name
-    in the message are replaced; plain words such as "pairs" inside the
-    sentence are left alone.
-    """
-    text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-    lead = re.match(r"[a-z_]+", text)
-    if lead and lead.group(0) in flags:
-        text = flags[lead.group(0)] + text[lead.end() :]
-    text = re.sub(r"\b[a-z]+(?:_[a-z]+)+\b", lambda m: flags.get(m.group(0), m.group(0)), text)
-    return GearleverError(text)
-
-
-def capped(cap: int):
-    """argparse type: an integer from 1 to ``cap`` (argparse names the flag)."""
-
-    def parse(text: str) -> int:
-        value = positive_int(text)
-        if value > cap:
-            raise argparse.ArgumentTypeError(f"must be at most {cap:,}, got {value:,}")
-        return value
-
-    parse.__name__ = f"integer 1..{cap}"
-    return parse
-
-
-class StderrProgress:
-    """Progress of long work on one stderr line, only when stderr is a terminal."""
-
-    def __init__(self, label: str):
-        self.label = label
-        self.active = sys.stderr.isatty()
-        self.shown = False
-
-    def __call__(self, stage: str, done: int, total: int) -> None:
-        if self.active:
-            sys.stderr.write(f"\r{self.label}: {stage} {done}/{total}\033[K")
-            sys.stderr.flush()
-            self.shown = True
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\r\033[K")
-            sys.stderr.flush()
-
-
 def register(sub) -> None:
     p = sub.add_parser("train", help="velocity ratio, rule-based design and exact best search of trains of wheels")
     tsub = p.add_subparsers(dest="train_command", metavar="ACTION")
@@ -125,14 +73,16 @@ def register(sub) -> None:
         default="involute",
         help="sets the least tooth number: 24, 12, 15 (default involute)",
     )
-    g.add_argument("--min-teeth", type=capped(MAX_TEETH), help=f"least tooth number t (at most {MAX_TEETH:,})")
+    g.add_argument("--min-teeth", type=capped_int(MAX_TEETH), help=f"least tooth number t (at most {MAX_TEETH:,})")
     d.add_argument(
-        "--max-teeth", type=capped(MAX_TEETH), help=f"largest tooth number (default 6t, at most {MAX_TEETH:,})"
+        "--max-teeth", type=capped_int(MAX_TEETH), help=f"largest tooth number (default 6t, at most {MAX_TEETH:,})"
     )
     d.add_argument(
-        "--pairs", type=capped(MAX_PAIRS), help=f"number of pairs (default: the text's bounds; at most {MAX_PAIRS})"
+        "--pairs", type=capped_int(MAX_PAIRS), help=f"number of pairs (default: the text's bounds; at most {MAX_PAIRS})"
     )
-    d.add_argument("--keep", type=capped(MAX_KEEP), default=5, help=f"designs listed (default 5, at most {MAX_KEEP:,})")
+    d.add_argument(
+        "--keep", type=capped_int(MAX_KEEP), default=5, help=f"designs listed (default 5, at most {MAX_KEEP:,})"
+    )
     d.add_argument(
         "--prefer",
         choices=("teeth", "wear"),
@@ -149,30 +99,32 @@ def register(sub) -> None:
         required=True,
         help="target ratio: a positive number or B/C, B and C positive integers or decimals",
     )
-    s.add_argument("--pairs", type=capped(MAX_PAIRS), required=True, help=f"number of pairs K (at most {MAX_PAIRS})")
+    s.add_argument(
+        "--pairs", type=capped_int(MAX_PAIRS), required=True, help=f"number of pairs K (at most {MAX_PAIRS})"
+    )
     s.add_argument(
         "--min-teeth",
-        type=capped(MAX_TEETH),
+        type=capped_int(MAX_TEETH),
         default=SEARCH_MIN_TEETH,
         help=f"least tooth number (default {SEARCH_MIN_TEETH})",
     )
     s.add_argument(
         "--max-teeth",
-        type=capped(MAX_TEETH),
+        type=capped_int(MAX_TEETH),
         default=SEARCH_MAX_TEETH,
         help=f"largest tooth number (default {SEARCH_MAX_TEETH}, at most {MAX_TEETH:,})",
     )
     s.add_argument("--metric", choices=("absolute", "relative"), default="absolute")
     s.add_argument(
         "--limit",
-        type=capped(MAX_LIMIT),
+        type=capped_int(MAX_LIMIT),
         default=None,
         help=f"optimal sets listed (default {DEFAULT_LISTED}, at most {MAX_LIMIT:,}); the count is always complete",
     )
     s.add_argument("--all", action="store_true", help=f"list optimal sets up to the cap of {MAX_LIMIT:,}")
     s.add_argument(
         "--max-space",
-        type=capped(MAX_SPACE_CAP),
+        type=capped_int(MAX_SPACE_CAP),
         default=None,
         help=f"refuse searches with more tooth multisets per side than this "
         f"(default {DEFAULT_MAX_SPACE:,}, at most {MAX_SPACE_CAP:,})",
