@@ -563,7 +563,7 @@ class Network:
     Rows: mesh ``z_p (rot_p - rot_c) + sign z_q (rot_q - rot_c) = 0`` (Willis'
     equation; ``rot_c = 0`` on fixed axes), differential
     ``n_a rot_a + n_b rot_b - (n_a+n_b) rot_c = 0``, same shaft ``rot_p = rot_q``
-    (reference README, "The generic differential"; Nuttall (a)-(i)).
+    (the generic differential of the Nuttall chariot page, constraints (a)-(i)).
     """
 
     gears: tuple[Gear, ...]
