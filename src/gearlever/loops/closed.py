@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from gearlever._validate import finite, finite_array, positive
-from gearlever.errors import GearleverError
+from gearlever.errors import ClosureError, GearleverError
 from gearlever.loops import vector_loop
 from gearlever.loops.engine import INPUT, Input, LoopSolution, LoopSystem, Unknown, Vector
 
@@ -46,7 +46,7 @@ def _finish(system, phi, x, closed, strict, singular_tol, what):
     valid = closed & ~bad
     if strict and not valid.all():
         first = phi.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
-        raise GearleverError(
+        raise ClosureError(
             f"theta2: the {what} cannot close or is at a dead point at {first!r} "
             f"({int((~valid).sum())} of {valid.size} points)"
         )

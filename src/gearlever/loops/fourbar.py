@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearlever._validate import finite_array, positive
-from gearlever.errors import GearleverError
+from gearlever.errors import ClosureError, GearleverError
 from gearlever.loops.engine import INPUT, LoopSystem, Vector
 
 __all__ = [
@@ -105,7 +105,7 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
     branch : {"open", "crossed"}
         Assembly branch, kept for every point.
     strict : bool
-        Raise ``ValueError`` if any point cannot close or is at a dead point,
+        Raise :class:`~gearlever.errors.ClosureError` if any point cannot close or is at a dead point,
         instead of returning NaN there with ``valid`` False.
     singular_tol : float
         A point is a dead point where ``|sin(theta3 - theta4)|`` is below this.
@@ -169,7 +169,7 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
         e4 = -(kx * c3 + ky * s3) / (c * S)
     if strict and not valid.all():
         first = th2.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
-        raise GearleverError(
+        raise ClosureError(
             f"theta2: the four-bar cannot close or is at a dead point at theta2 = {first!r} rad "
             f"({int((~valid).sum())} of {valid.size} points)"
         )

@@ -84,10 +84,12 @@ class ZrdpmContour:
         the default 10 cm is ours.
     r : float
         Offset ``r1`` (``r2``) of the y guide (positions only).
-    r_a, r_b : float
+    r_a, r_b : float or None
         Radii at which the two sliders act on the lever (``rA``, ``rB``;
-        ``rE``, ``rD``), > 0.  Default ``l/2`` each, so ``l = rA + rB`` and
-        eq. 9 holds as printed (``u_1 = sin + cos``).
+        ``rE``, ``rD``), > 0.  None (the default) means ``l/2``, so that
+        ``l = rA + rB`` and eq. 9 holds as printed (``u_1 = sin + cos``).
+        The default is resolved at construction: ``dataclasses.replace(p,
+        l=...)`` keeps the radii of ``p``.
     r_lead, r_driven : float
         Pitch radii of the leading and the driven gear (``r9, r8`` or
         ``r6, r7``), > 0.  Stated default: 2 and 4 cm, ratio 0.5.
@@ -101,13 +103,15 @@ class ZrdpmContour:
     >>> p = ZrdpmContour(contour=2)
     >>> p.ratio, p.x_sign
     (0.5, 1.0)
+    >>> ZrdpmContour(l=20.0).r_a, ZrdpmContour(l=20.0).lever_gain
+    (10.0, 1.0)
     """
 
     contour: int = 1
     l: float = 10.0
     r: float = 0.0
-    r_a: float = 5.0
-    r_b: float = 5.0
+    r_a: float | None = None
+    r_b: float | None = None
     r_lead: float = 2.0
     r_driven: float = 4.0
     mesh: str = "external"
@@ -115,6 +119,10 @@ class ZrdpmContour:
 
     def __post_init__(self):
         object.__setattr__(self, "contour", _check_contour(self.contour))
+        ell = positive("l", self.l)
+        for name in ("r_a", "r_b"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, ell / 2)
         for name in ("l", "r_a", "r_b", "r_lead", "r_driven"):
             object.__setattr__(self, name, positive(name, getattr(self, name)))
         for name in ("r", "lever_angle0_deg"):
