@@ -775,7 +775,7 @@ class TablesFit:
     rms, max_abs : float
         Over all values of the table, cm.
     success : bool
-        scipy's convergence flag.
+        True when the design matrix has full rank (both constants identified).
     """
 
     constants: TablesConstants
@@ -791,8 +791,16 @@ def _residual_stats(rx, ry):
     return float(np.sqrt(np.mean(r * r))), float(np.max(np.abs(r)))
 
 
+def _tables_design(contour, phi, lever_angle0):
+    """The 2N x 2 matrix ``M`` of the tables model, linear in ``(l u**2, l e)``: ``[a_x; a_y] = M @ (L, E)``."""
+    theta = phi + lever_angle0
+    c, s = np.cos(theta), np.sin(theta)
+    sgn = x_sign(contour)
+    return np.concatenate([np.stack([-sgn * c, -sgn * s], axis=-1), np.stack([-s, c], axis=-1)])
+
+
 def identify_tables_constants(table: PublishedTable, lever_angle0_deg=-90.0) -> TablesFit:
-    """Identify ``l u**2`` and ``l e`` of a published table by least squares.
+    """Identify ``l u**2`` and ``l e`` of a published table by linear least squares.
 
     Parameters
     ----------
@@ -808,10 +816,14 @@ def identify_tables_constants(table: PublishedTable, lever_angle0_deg=-90.0) -> 
 
     Notes
     -----
-    ``scipy.optimize.least_squares`` on the 24 residuals of
-    :func:`tables_point_accelerations` against the table, ``l u**2 >= 0``.
-    zrdpm-paper.md section 5 reads ``A = 21.00``, ``B = 2.24`` cm off the
-    tables, i.e. ``l u**2 = 21``, ``l e = -2.24``.
+    The tables model (paper eq. 16 / 35 with constant analogues) is linear
+    in ``(l u**2, l e)``, so the fit is one linear least-squares solve
+    (``numpy.linalg.lstsq``, an SVD of the 24 x 2 design matrix), with
+    ``l u**2 >= 0`` enforced by refitting ``l e`` alone in the (never met)
+    case of a negative solution.  No iteration and no tolerances: the same
+    numbers to rounding on any machine.  zrdpm-paper.md section 5 reads
+    ``A = 21.00``, ``B = 2.24`` cm off the tables, i.e. ``l u**2 = 21``,
+    ``l e = -2.24``.
 
     Examples
     --------
@@ -819,31 +831,20 @@ def identify_tables_constants(table: PublishedTable, lever_angle0_deg=-90.0) -> 
     >>> round(fit.constants.l_u2, 2), round(fit.constants.l_e, 2), fit.max_abs < 0.005
     (21.0, -2.24, True)
     """
-    from scipy.optimize import least_squares
-
     if not isinstance(table, PublishedTable):
         raise GearleverError(f"table must be a PublishedTable, got {type(table).__name__}")
+    th0 = math.radians(finite("lever_angle0_deg", lever_angle0_deg))
     phi = table.phi
-
-    def resid(x):
-        k = TablesConstants(table.contour, float(x[0]), float(x[1]), lever_angle0_deg)
-        ax, ay = tables_point_accelerations(k, phi)
-        return np.concatenate([ax - table.a_x, ay - table.a_y])
-
-    sol = least_squares(
-        resid,
-        x0=[1.0, 0.0],
-        bounds=([0.0, -np.inf], [np.inf, np.inf]),
-        x_scale=1.0,
-        xtol=1e-14,
-        ftol=1e-14,
-        gtol=1e-14,
-    )
-    k = TablesConstants(table.contour, float(sol.x[0]), float(sol.x[1]), lever_angle0_deg)
+    M = _tables_design(table.contour, phi, th0)
+    y = np.concatenate([table.a_x, table.a_y])
+    (L, E), _, rank, _ = np.linalg.lstsq(M, y, rcond=None)
+    if L < 0:  # the bound l u**2 >= 0 is active: best l e with l u**2 = 0
+        L, E = 0.0, float(M[:, 1] @ y / (M[:, 1] @ M[:, 1]))
+    k = TablesConstants(table.contour, float(L), float(E), lever_angle0_deg)
     ax, ay = tables_point_accelerations(k, phi)
     rx, ry = ax - table.a_x, ay - table.a_y
     rms, mx = _residual_stats(rx, ry)
-    return TablesFit(k, rx, ry, rms, mx, bool(sol.success))
+    return TablesFit(k, rx, ry, rms, mx, bool(rank == 2))
 
 
 @dataclass(frozen=True)
@@ -881,8 +882,10 @@ def fit_self_consistent(table: PublishedTable, base: ZrdpmContour | None = None)
 
     Notes
     -----
-    ``l = r_a + r_b`` as in eq. 9; ``scipy.optimize.least_squares`` from eight
-    starting phases, the best kept.  Its residuals measure how far the tables
+    ``l = r_a + r_b`` as in eq. 9; the model is nonlinear in ``l`` and the
+    phase, so ``scipy.optimize.least_squares`` (tolerances 1e-12) runs from
+    eight starting phases and the best is kept.  Converged to ~1e-9, its
+    results are written with 4 decimals (cm) and 3 (degrees).  Its residuals measure how far the tables
     are from the paper's own section-2 formulas.
 
     Examples
@@ -914,6 +917,9 @@ def fit_self_consistent(table: PublishedTable, base: ZrdpmContour | None = None)
             x0=[scale, float(start_deg)],
             bounds=([1e-6, -720.0], [np.inf, 720.0]),
             x_scale=[scale, 90.0],
+            xtol=1e-12,
+            ftol=1e-12,
+            gtol=1e-12,
         )
         if best is None or sol.cost < best.cost - 1e-12:
             best = sol
