@@ -16,6 +16,7 @@ Pure numpy.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,6 +35,7 @@ __all__ = [
     "LimitPositions",
     "limit_positions",
     "transmission_angle",
+    "change_points",
 ]
 
 _BRANCH = {"open": 1.0, "crossed": -1.0}
@@ -53,10 +55,13 @@ def _lengths(ground, crank, coupler, rocker):
     c = positive("rocker", rocker)
     links = {"ground": d, "crank": a, "coupler": b, "rocker": c}
     name, longest = max(links.items(), key=lambda kv: kv[1])
-    if longest >= sum(links.values()) - longest:
+    # the sum of the three others, added directly (not total - longest, which
+    # loses them entirely beside a huge link: 1e308 + 3 - 1e308 = 0)
+    others = sum(sorted(v for k, v in links.items() if k != name))  # inf beside huge links: still >
+    if longest >= others:
         raise GearleverError(
             f"{name} must be shorter than the sum of the other three links "
-            f"({sum(links.values()) - longest:g}) for the linkage to assemble, got {longest:g}"
+            f"({others:.6g}) for the linkage to assemble, got {longest:.6g}"
         )
     return d, a, b, c
 
@@ -80,6 +85,13 @@ class FourBarResult:
         Closes and is not at a dead point (all six arrays finite).
     closed : ndarray of bool
         Closes (positions finite).
+    change_point : ndarray of bool
+        The linkage is folded flat here (all four joints on the ground line,
+        within ``singular_tol``): a change point of a Grashof change-point
+        linkage (``s + l = p + q``), where it can switch assembly.  The
+        closed form's branch sign is kept, so past such a point the same
+        ``branch`` names a different assembly (the parallelogram 4/2/4/2
+        becomes the antiparallelogram); see :func:`change_points`.
     """
 
     theta2: np.ndarray
@@ -91,6 +103,15 @@ class FourBarResult:
     d2theta4_dphi2: np.ndarray
     valid: np.ndarray
     closed: np.ndarray
+    change_point: np.ndarray
+
+
+def _scaled(ground, crank, coupler, rocker):
+    """Checked lengths divided by the longest: angles and analogues are scale-free, and
+    huge (1e308) or tiny lengths then neither overflow nor underflow."""
+    d, a, b, c = _lengths(ground, crank, coupler, rocker)
+    m = max(d, a, b, c)
+    return d / m, a / m, b / m, c / m
 
 
 def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=False, singular_tol=1e-7) -> FourBarResult:
@@ -137,7 +158,7 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
     >>> bool(r.valid.all())
     True
     """
-    d, a, b, c = _lengths(ground, crank, coupler, rocker)
+    d, a, b, c = _scaled(ground, crank, coupler, rocker)
     sigma = _branch(branch)
     th2 = finite_array("theta2", theta2)
     c2, s2 = np.cos(th2), np.sin(th2)
@@ -167,13 +188,15 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
         ky = a * s2 + b * w3 * w3 * s3 - c * w4 * w4 * s4
         e3 = -(kx * c4 + ky * s4) / (b * S)
         e4 = -(kx * c3 + ky * s3) / (c * S)
+        # folded flat: A and B on the ground line (the change point of s + l = p + q)
+        change_point = closed & (np.abs(s2) <= singular_tol) & (np.abs(a * s2 + b * s3) <= singular_tol)
     if strict and not valid.all():
         first = th2.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
         raise ClosureError(
             f"theta2: the four-bar cannot close or is at a dead point at theta2 = {first!r} rad "
             f"({int((~valid).sum())} of {valid.size} points)"
         )
-    return FourBarResult(th2, theta3, theta4, w3, w4, e3, e4, valid, closed)
+    return FourBarResult(th2, theta3, theta4, w3, w4, e3, e4, valid, closed, change_point)
 
 
 def fourbar_system(ground, crank, coupler, rocker) -> LoopSystem:
@@ -341,6 +364,49 @@ def limit_positions(ground, crank, coupler, rocker, branch="open") -> LimitPosit
     )
 
 
+def change_points(ground, crank, coupler, rocker) -> np.ndarray:
+    """Crank angles where a four-bar folds flat (all joints on the ground line), radians.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : float
+        Link lengths (> 0, the longest shorter than the sum of the others).
+
+    Returns
+    -------
+    ndarray
+        Sorted angles in ``[0, pi]`` (of 0 and pi) where the linkage is flat;
+        empty unless the linkage is a Grashof change-point linkage
+        (``s + l = p + q``).
+
+    Notes
+    -----
+    Flat means the crank lies on the ground line (``theta2 = 0`` or ``pi``)
+    and the triangle A-B-O4 is degenerate: ``|O4 - A| = |d - a cos(theta2)|``
+    equals ``b + c`` or ``|b - c|``.  That happens only when
+    ``s + l = p + q`` (Norton, *Design of Machinery*, sec. 2.12, the
+    change-point or "special Grashof" case): there the linkage can switch
+    between two assemblies (parallelogram and antiparallelogram for
+    ``d = b``, ``a = c``).  :func:`fourbar` keeps its branch sign through
+    the point, so it follows the switch; ``FourBarResult.change_point``
+    marks the samples at the fold.
+
+    Examples
+    --------
+    >>> np.degrees(change_points(4, 2, 4, 2)).tolist()
+    [0.0, 180.0]
+    >>> change_points(9, 5, 8, 8).size
+    0
+    """
+    d, a, b, c = _scaled(ground, crank, coupler, rocker)
+    out = []
+    for th in (0.0, math.pi):
+        f = abs(d - a * math.cos(th))
+        if min(abs(f - (b + c)), abs(f - abs(b - c))) <= 1e-12:
+            out.append(th)
+    return np.array(out, dtype=float)
+
+
 def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:
     """Transmission angle (between coupler and rocker), radians in ``[0, pi]``.
 
@@ -356,7 +422,7 @@ def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:
     >>> float(np.degrees(transmission_angle(9, 5, 8, 8, 0.0)).round(6))
     28.955024
     """
-    d, a, b, c = _lengths(ground, crank, coupler, rocker)
+    d, a, b, c = _scaled(ground, crank, coupler, rocker)
     th2 = finite_array("theta2", theta2)
     f2 = a * a + d * d - 2 * a * d * np.cos(th2)
     cm = (b * b + c * c - f2) / (2 * b * c)
@@ -417,3 +483,7 @@ class FourBar:
     def transmission_angle(self, theta2) -> np.ndarray:
         """:func:`transmission_angle` of this linkage."""
         return transmission_angle(*self.links, theta2)
+
+    def change_points(self) -> np.ndarray:
+        """:func:`change_points` of this linkage."""
+        return change_points(*self.links)
