@@ -5,7 +5,6 @@ from __future__ import annotations
 from gearlever.cli._common import capped_int, positive_float, progress
 from gearlever.errors import GearleverError
 
-
 #: Most frames: matplotlib's Pillow writer keeps every frame in memory
 #: (~200 kB each at the default size) and draws one in ~50 ms, so 360 frames
 #: (one a degree) take ~70 MB and ~20 s.
