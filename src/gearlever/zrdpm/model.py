@@ -463,10 +463,12 @@ def _check_out(out, shape):
 def _fast(params: ZrdpmContour, phi, constants, block, out=None):
     """Fast evaluation of :func:`analogues` / :func:`tables_outputs` (same results to rounding).
 
-    Tables model: ``sin`` and ``cos`` once per angle (into two of the output
-    rows, used as scratch), then, block by block (``block`` angles, cache-sized), the six outputs as
-    one small matrix product: every output is ``alpha sin + beta cos (+ gamma)``
-    with the 6 x 2 coefficients of eqs. 9, 11, 14 and 16.  Self-consistent
+    Tables model: one pass over the angles, block by block (``block``
+    angles; ~32768 keeps the (3, block) buffer in a 1-2 MB L2 cache): ``sin``
+    and ``cos`` of the block into the buffer (whose third row is ones), then
+    the six outputs as one 6 x 3 matrix product, every output being
+    ``alpha sin + beta cos + gamma`` with the coefficients of eqs. 9, 11, 14
+    and 16.  Self-consistent
     model: per block, in-place ufuncs, with a second sin/cos pair for the lever
     angle.  The six outputs are rows of one ``(6, *phi.shape)`` array, which
     may be given as ``out`` to reuse memory.
@@ -487,28 +489,28 @@ def _fast(params: ZrdpmContour, phi, constants, block, out=None):
         th0 = math.radians(constants.lever_angle0_deg)
         c0, s0 = math.cos(th0), math.sin(th0)
         L, E = constants.l_u2, constants.l_e
-        # columns: coefficient of sin(phi), of cos(phi); cos(theta) = C c0 - S s0, sin(theta) = S c0 + C s0
+        # every output is alpha sin(phi) + beta cos(phi) + gamma; cos(theta) = C c0 - S s0,
+        # sin(theta) = S c0 + C s0.  Columns: coefficient of sin, of cos, constant.
         coef = np.array(
             [
-                [c, c],  # u_c = c (S + C)             eq. 9
-                [g * c, g * c],  # u_g = (1 - i) u_c + i       eq. 11
-                [-c, c],  # e_c = c (C - S)
-                [-g * c, g * c],  # e_g = (1 - i) e_c           eq. 14
-                [-sgn * (E * c0 - L * s0), -sgn * (L * c0 + E * s0)],  # a_x         eq. 16
-                [-(L * c0 + E * s0), E * c0 - L * s0],  # a_y
+                [c, c, 0.0],  # u_c = c (S + C)                     eq. 9
+                [g * c, g * c, i],  # u_g = (1 - i) u_c + i         eq. 11
+                [-c, c, 0.0],  # e_c = c (C - S)
+                [-g * c, g * c, 0.0],  # e_g = (1 - i) e_c          eq. 14
+                [-sgn * (E * c0 - L * s0), -sgn * (L * c0 + E * s0), 0.0],  # a_x   eq. 16
+                [-(L * c0 + E * s0), E * c0 - L * s0, 0.0],  # a_y
             ]
         )
-        # sin and cos go first into the rows of a_x and a_y (no extra scratch array);
-        # each block's pair is copied to a cache-sized buffer before the rows are overwritten
-        np.sin(flat, out=rows[4])
-        np.cos(flat, out=rows[5])
-        x = np.empty((2, bs))
+        # one pass over the angles: per block, sin and cos go into a cache-resident
+        # (3, block) buffer whose third row is ones, and one 6 x 3 matrix product writes
+        # the block of all six outputs (nothing is written twice, no full-size scratch)
+        x = np.ones((3, bs))
         for start in range(0, n, bs):
             stop = min(start + bs, n)
             xb = x[:, : stop - start]
-            np.copyto(xb, rows[4:6, start:stop])
+            np.sin(flat[start:stop], out=xb[0])
+            np.cos(flat[start:stop], out=xb[1])
             np.matmul(coef, xb, out=rows[:, start:stop])
-            rows[1, start:stop] += i
         return ContourKinematics(*out)
     u_c, u_g, e_c, e_g, a_x, a_y = rows
     th0 = math.radians(params.lever_angle0_deg)
