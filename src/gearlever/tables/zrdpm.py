@@ -71,7 +71,7 @@ def comparison_frame(rep: Reproduction) -> pd.DataFrame:
     phi = pub.phi
     ax, ay = zrdpm.tables_point_accelerations(fit.constants, phi)
     kin = zrdpm.analogues(sc.params, phi)
-    l_u2, l_e = zrdpm.recover_tables_constants(pub.contour, phi, pub.a_x, pub.a_y, fit.constants.lever_angle0_deg)
+    l_u2, l_e = zrdpm.recover_tables_constants(pub.contour, phi, pub.a_x, pub.a_y, fit.constants.lever_angle0)
     cx, cy = pub.columns
     uc, _, ec, _, _, _ = zrdpm.PAPER_NAMES[pub.contour]
     data = {"phi_deg": pub.phi_deg}
