@@ -39,7 +39,7 @@ def wrap(x):
 
 def closure(d, a, b, c, r):
     """Loop residual |a e^{i th2} + b e^{i th3} - c e^{i th4} - d| per point."""
-    z = a * np.exp(1j * r.theta2) + b * np.exp(1j * r.theta3) - c * np.exp(1j * r.theta4) - d
+    z = a * np.exp(1j * r.phi) + b * np.exp(1j * r.theta3) - c * np.exp(1j * r.theta4) - d
     return np.abs(z)
 
 
@@ -170,9 +170,9 @@ def test_fourbar_dead_point_is_masked_and_strict_raises():
     r = fourbar(9, 7, 8, 7, th)
     assert r.valid.tolist() == [True, False]
     assert r.closed[1] and np.isnan(r.dtheta3_dphi[1])
-    with pytest.raises(ValueError, match="theta2"):
+    with pytest.raises(ValueError, match="phi"):
         fourbar(9, 7, 8, 7, th, strict=True)
-    with pytest.raises(ValueError, match="theta2"):
+    with pytest.raises(ValueError, match="phi"):
         fourbar(9, 7, 8, 7, TURN, strict=True)
 
 
@@ -194,7 +194,7 @@ def test_fourbar_bad_lengths_raise_naming_the_link(args, match):
 def test_fourbar_bad_branch_and_angles_raise():
     with pytest.raises(ValueError, match="branch"):
         fourbar(9, 5, 8, 8, [0.0], branch="left")
-    with pytest.raises(ValueError, match="theta2"):
+    with pytest.raises(ValueError, match="phi"):
         fourbar(9, 5, 8, 8, [0.0, np.inf])
 
 
@@ -445,5 +445,5 @@ def test_newton_engine_strict_raises_closure_error():
     guess = {"theta3": float(r.theta3[0]), "theta4": float(r.theta4[0])}
     with pytest.raises(ClosureError, match="phi"):
         system.solve(np.linspace(0, 2 * np.pi, 50), guess, strict=True)
-    with pytest.raises(ClosureError, match="theta2"):
+    with pytest.raises(ClosureError, match="phi"):
         fourbar(9.0, 7.0, 8.0, 7.0, np.linspace(0, 2 * np.pi, 50), strict=True)

@@ -58,7 +58,7 @@ def _finish(system, phi, x, closed, strict, singular_tol, what):
     if strict and not valid.all():
         first = phi.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
         raise ClosureError(
-            f"theta2: the {what} cannot close or is at a dead point at {first!r} "
+            f"phi: the {what} cannot close or is at a dead point at {first!r} "
             f"({int((~valid).sum())} of {valid.size} points)"
         )
     return LoopSolution(system.unknowns, phi, x, dx, d2x, valid, closed)
@@ -90,14 +90,14 @@ def slider_crank_system(crank, rod, offset=0.0) -> LoopSystem:
     )
 
 
-def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7) -> LoopSolution:
+def slider_crank(crank, rod, phi, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7) -> LoopSolution:
     """Slider-crank positions (closed form) and analogues (linear solves).
 
     Parameters
     ----------
     crank, rod : float
         Crank and connecting-rod lengths (> 0).
-    theta2 : array_like
+    phi : array_like
         Crank angles, radians.
     offset : float
         Height of the slider's line above the crank pivot.
@@ -111,8 +111,8 @@ def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False,
 
     Notes
     -----
-    ``a sin(theta2) + b sin(theta3) = offset`` gives ``theta3``, and
-    ``x_B = a cos(theta2) + b cos(theta3)`` (Norton, eq. 4.16).  Dead points
+    ``a sin(phi) + b sin(theta3) = offset`` gives ``theta3``, and
+    ``x_B = a cos(phi) + b cos(theta3)`` (Norton, eq. 4.16).  Dead points
     where ``cos(theta3) = 0``.
 
     Examples
@@ -124,7 +124,7 @@ def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False,
     system = slider_crank_system(crank, rod, offset)
     a, b, e = float(crank), float(rod), float(offset)
     sigma = _sigma(branch)
-    th2 = finite_array("theta2", theta2)
+    th2 = finite_array("phi", phi)
     s3 = (e - a * np.sin(th2)) / b
     closed = np.abs(s3) <= 1.0
     s3c = np.clip(s3, -1.0, 1.0)
@@ -161,7 +161,7 @@ def inverted_slider_crank_system(ground, crank, offset=0.0) -> LoopSystem:
 
 
 def inverted_slider_crank(
-    ground, crank, theta2, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7
+    ground, crank, phi, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7
 ) -> LoopSolution:
     """Inverted slider-crank positions (closed form) and analogues (linear solves).
 
@@ -186,7 +186,7 @@ def inverted_slider_crank(
     system = inverted_slider_crank_system(ground, crank, offset)
     d, a, e = float(ground), float(crank), float(offset)
     sigma = _sigma(branch)
-    th2 = finite_array("theta2", theta2)
+    th2 = finite_array("phi", phi)
     px, py = a * np.cos(th2) - d, a * np.sin(th2)
     q = px * px + py * py - e * e
     closed = q >= 0

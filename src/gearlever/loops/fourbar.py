@@ -1,13 +1,13 @@
 """The four-bar linkage: closed-form positions and analogues, Grashof, limits, transmission.
 
 Conventions: ground pivot O2 at the origin, ground pivot O4 at ``(ground, 0)``;
-crank O2-A at angle ``theta2`` (the input), coupler A-B at ``theta3``, rocker
+crank O2-A at angle ``phi`` (the input), coupler A-B at ``theta3``, rocker
 O4-B at ``theta4``; angles in radians, counter-clockwise from +x, returned in
-``(-pi, pi]``.  The loop is ``crank e^{i theta2} + coupler e^{i theta3} -
+``(-pi, pi]``.  The loop is ``crank e^{i phi} + coupler e^{i theta3} -
 rocker e^{i theta4} - ground = 0``.
 
 Branches: ``"open"`` puts B on the left of the diagonal A->O4 (the convex
-quadrilateral of textbook drawings when ``0 < theta2 < pi``), ``"crossed"``
+quadrilateral of textbook drawings when ``0 < phi < pi``), ``"crossed"``
 on its right.  The branch is a fixed sign in the closed form, so it is kept
 along the whole motion and never jumps.
 
@@ -72,8 +72,9 @@ class FourBarResult:
 
     Attributes
     ----------
-    theta2 : ndarray
-        Input (crank) angles, radians.
+    phi : ndarray
+        Input (crank) angles, radians (also readable as ``theta2``, its old
+        name).
     theta3, theta4 : ndarray
         Coupler and rocker angles, radians in ``(-pi, pi]``; NaN where the
         loop cannot close.
@@ -94,7 +95,7 @@ class FourBarResult:
         becomes the antiparallelogram); see :func:`change_points`.
     """
 
-    theta2: np.ndarray
+    phi: np.ndarray
     theta3: np.ndarray
     theta4: np.ndarray
     dtheta3_dphi: np.ndarray
@@ -105,6 +106,11 @@ class FourBarResult:
     closed: np.ndarray
     change_point: np.ndarray
 
+    @property
+    def theta2(self) -> np.ndarray:
+        """:attr:`phi` under its old name (the crank angle)."""
+        return self.phi
+
 
 def _scaled(ground, crank, coupler, rocker):
     """Checked lengths divided by the longest: angles and analogues are scale-free, and
@@ -114,14 +120,14 @@ def _scaled(ground, crank, coupler, rocker):
     return d / m, a / m, b / m, c / m
 
 
-def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=False, singular_tol=1e-7) -> FourBarResult:
+def fourbar(ground, crank, coupler, rocker, phi, branch="open", *, strict=False, singular_tol=1e-7) -> FourBarResult:
     """Coupler and rocker angles of a four-bar and their analogues, closed form.
 
     Parameters
     ----------
     ground, crank, coupler, rocker : float
         Link lengths (> 0, the longest shorter than the sum of the others).
-    theta2 : array_like
+    phi : array_like
         Crank angles, radians, any shape.
     branch : {"open", "crossed"}
         Assembly branch, kept for every point.
@@ -145,8 +151,8 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
     *Design of Machinery*, eqs. 6.18 and 7.12, as analogues) solved by
     Cramer's rule::
 
-        dtheta3/dphi = a sin(theta4 - theta2) / (b sin(theta3 - theta4))
-        dtheta4/dphi = a sin(theta3 - theta2) / (c sin(theta3 - theta4))
+        dtheta3/dphi = a sin(theta4 - phi) / (b sin(theta3 - theta4))
+        dtheta4/dphi = a sin(theta3 - phi) / (c sin(theta3 - theta4))
 
     and the same 2x2 matrix for the acceleration analogues.
 
@@ -160,7 +166,7 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
     """
     d, a, b, c = _scaled(ground, crank, coupler, rocker)
     sigma = _branch(branch)
-    th2 = finite_array("theta2", theta2)
+    th2 = finite_array("phi", phi)
     c2, s2 = np.cos(th2), np.sin(th2)
     dx, dy = d - a * c2, -a * s2
     f2 = dx * dx + dy * dy
@@ -193,7 +199,7 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
     if strict and not valid.all():
         first = th2.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
         raise ClosureError(
-            f"theta2: the four-bar cannot close or is at a dead point at theta2 = {first!r} rad "
+            f"phi: the four-bar cannot close or is at a dead point at phi = {first!r} rad "
             f"({int((~valid).sum())} of {valid.size} points)"
         )
     return FourBarResult(th2, theta3, theta4, w3, w4, e3, e4, valid, closed, change_point)
@@ -318,7 +324,7 @@ def limit_positions(ground, crank, coupler, rocker, branch="open") -> LimitPosit
     Notes
     -----
     Toggle of the input: coupler and rocker collinear, ``|O4 A| = b +- c``,
-    so ``cos(theta2) = (a^2 + d^2 - (b +- c)^2) / (2 a d)``.  Rocker
+    so ``cos(phi) = (a^2 + d^2 - (b +- c)^2) / (2 a d)``.  Rocker
     extremes: crank and coupler collinear, ``|O2 B| = a + b`` (extended) or
     ``|a - b|`` (folded), and the triangle O2-O4-B gives B (Norton, sec. 3.3).
     Only the positions that lie on ``branch`` are kept.
@@ -381,8 +387,8 @@ def change_points(ground, crank, coupler, rocker) -> np.ndarray:
 
     Notes
     -----
-    Flat means the crank lies on the ground line (``theta2 = 0`` or ``pi``)
-    and the triangle A-B-O4 is degenerate: ``|O4 - A| = |d - a cos(theta2)|``
+    Flat means the crank lies on the ground line (``phi = 0`` or ``pi``)
+    and the triangle A-B-O4 is degenerate: ``|O4 - A| = |d - a cos(phi)|``
     equals ``b + c`` or ``|b - c|``.  That happens only when
     ``s + l = p + q`` (Norton, *Design of Machinery*, sec. 2.12, the
     change-point or "special Grashof" case): there the linkage can switch
@@ -407,7 +413,7 @@ def change_points(ground, crank, coupler, rocker) -> np.ndarray:
     return np.array(out, dtype=float)
 
 
-def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:
+def transmission_angle(ground, crank, coupler, rocker, phi) -> np.ndarray:
     """Transmission angle (between coupler and rocker), radians in ``[0, pi]``.
 
     Notes
@@ -423,7 +429,7 @@ def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:
     28.955024
     """
     d, a, b, c = _scaled(ground, crank, coupler, rocker)
-    th2 = finite_array("theta2", theta2)
+    th2 = finite_array("phi", phi)
     f2 = a * a + d * d - 2 * a * d * np.cos(th2)
     cm = (b * b + c * c - f2) / (2 * b * c)
     with np.errstate(invalid="ignore"):
@@ -464,9 +470,9 @@ class FourBar:
         """``(ground, crank, coupler, rocker)``."""
         return (self.ground, self.crank, self.coupler, self.rocker)
 
-    def solve(self, theta2, *, strict=False) -> FourBarResult:
+    def solve(self, phi, *, strict=False) -> FourBarResult:
         """:func:`fourbar` on this linkage and branch."""
-        return fourbar(*self.links, theta2, branch=self.branch, strict=strict)
+        return fourbar(*self.links, phi, branch=self.branch, strict=strict)
 
     def system(self) -> LoopSystem:
         """:func:`fourbar_system` of this linkage."""
@@ -480,9 +486,9 @@ class FourBar:
         """:func:`limit_positions` on this branch."""
         return limit_positions(*self.links, branch=self.branch)
 
-    def transmission_angle(self, theta2) -> np.ndarray:
+    def transmission_angle(self, phi) -> np.ndarray:
         """:func:`transmission_angle` of this linkage."""
-        return transmission_angle(*self.links, theta2)
+        return transmission_angle(*self.links, phi)
 
     def change_points(self) -> np.ndarray:
         """:func:`change_points` of this linkage."""
