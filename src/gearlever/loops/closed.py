@@ -335,6 +335,11 @@ def zrdpm_contour(
 ) -> LoopSolution:
     """Solve :func:`zrdpm_contour_system` over ``phi`` with the batched Newton engine.
 
+    Parameters are those of :func:`zrdpm_contour_system`; ``phi`` is the
+    leading gear's angle (radians, any shape, in path order).  ``strict``
+    raises :class:`~gearlever.errors.ClosureError` where the loops cannot
+    close (never, for this contour) instead of returning NaN.
+
     The seed at ``phi[0]`` is the sliders' position of eq. 6 with the lever at
     ``lever_angle0``; everything else (the lever's analogues ``u_1, e_1``, the
     point accelerations of eq. 16, the gear's ``u_8, e_8``) comes from the
@@ -347,6 +352,12 @@ def zrdpm_contour(
         ``sol.d2("p_x")``, ``sol.d2("p_y")`` are eq. 16's point accelerations
         (over ``omega9**2``), ``sol.d1("theta8")``, ``sol.d2("theta8")`` are
         ``u_8, e_8``.
+
+    Notes
+    -----
+    Paper eqs. 5-9 (the double slider turning the lever), 3 and 11-14
+    (Willis), 16 (the lever's point); :mod:`gearlever.zrdpm` gives the same
+    numbers in closed form, which the tests check.
 
     Examples
     --------
@@ -375,7 +386,7 @@ def zrdpm_contour(
 # closed forms of the ZRDPM contour (paper eqs. 6-9, 16-17, 25-28, 35-36)
 
 
-def double_slider_projections(l, r, phi):
+def double_slider_projections(l: float, r: float, phi) -> tuple[np.ndarray, ...]:
     """Projections of the double-slider contour O-A-B and their analogues.
 
     A link of length ``l`` at angle ``phi`` has its end B on the x axis and its
@@ -416,7 +427,7 @@ def double_slider_projections(l, r, phi):
     return l * c, l * s + r, -l * s, l * c, -l * c, -l * s
 
 
-def point_acceleration(l, theta, u, e):
+def point_acceleration(l: float, theta, u, e) -> tuple[np.ndarray, np.ndarray]:
     """Acceleration analogues of the end of a link turning about its other end.
 
     Parameters
@@ -457,7 +468,7 @@ def point_acceleration(l, theta, u, e):
     return -l * (c * u2 + s * e), l * (c * e - s * u2)
 
 
-def recover_analogues(l, theta, a_x, a_y):
+def recover_analogues(l: float, theta, a_x, a_y) -> tuple[np.ndarray, np.ndarray]:
     """Recover ``u**2`` and ``e`` of a link from both acceleration projections.
 
     Parameters
@@ -499,7 +510,7 @@ def recover_analogues(l, theta, a_x, a_y):
     return -(c * a_x + s * a_y) / l, (c * a_y - s * a_x) / l
 
 
-def slider_lever(l, r_a, r_b, phi):
+def slider_lever(l: float, r_a: float, r_b: float, phi) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Turn and analogues of a lever driven by the two sliders of the double-slider contour.
 
     The slider A (speed ``dy_A/dphi``) and the slider B (``dx_B/dphi``) push a

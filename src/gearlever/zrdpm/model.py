@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math  # noqa: F401  (used by the doctests)
 
-import numpy as np  # noqa: F401  (used by the doctests)
+import numpy as np
 
 from gearlever._validate import finite_array  # noqa: F401
 from gearlever.errors import GearleverError
@@ -60,7 +60,7 @@ from gearlever.zrdpm.parameters import (
 # the self-consistent model (paper section 2 as written)
 
 
-def lever_angle(params: ZrdpmContour, phi):
+def lever_angle(params: ZrdpmContour, phi) -> np.ndarray:
     """Angle of the lever (carrier 1 or 2) over the leading link's angle.
 
     Parameters
@@ -88,7 +88,7 @@ def lever_angle(params: ZrdpmContour, phi):
     return params.lever_angle0 + dtheta
 
 
-def analogues(params: ZrdpmContour, phi, *, block=None, out=None):
+def analogues(params: ZrdpmContour, phi, *, block: int | None = None, out=None) -> ContourKinematics:
     """All six outputs of a contour by the self-consistent model.
 
     Parameters
@@ -170,7 +170,7 @@ def contour2(params: ZrdpmContour | None, phi) -> dict:
 # the tables model (what Tables I and II were computed with)
 
 
-def tables_point_accelerations(constants: TablesConstants, phi):
+def tables_point_accelerations(constants: TablesConstants, phi) -> tuple[np.ndarray, np.ndarray]:
     """Point accelerations of the tables model: eq. 16/35 with constant analogues.
 
     Parameters
@@ -209,7 +209,9 @@ def tables_point_accelerations(constants: TablesConstants, phi):
     return x_sign(constants.contour) * a_x, a_y
 
 
-def tables_outputs(params: ZrdpmContour, constants: TablesConstants, phi, *, block=None, out=None):
+def tables_outputs(
+    params: ZrdpmContour, constants: TablesConstants, phi, *, block: int | None = None, out=None
+) -> ContourKinematics:
     """All six outputs of a contour as the paper computed them for its tables.
 
     The carrier's and the gear's analogues follow eqs. 9-14 (they vary with

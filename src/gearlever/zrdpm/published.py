@@ -52,7 +52,7 @@ def _lever_angle0(lever_angle0, lever_angle0_deg) -> float:
 # recovery of the lever's analogues from the point accelerations
 
 
-def recover_lever_analogues(params: ZrdpmContour, phi, a_x, a_y):
+def recover_lever_analogues(params: ZrdpmContour, phi, a_x, a_y) -> tuple[np.ndarray, np.ndarray]:
     """Lever's ``u**2`` and ``e`` from both point accelerations (self-consistent geometry).
 
     Parameters
@@ -88,7 +88,7 @@ def recover_lever_analogues(params: ZrdpmContour, phi, a_x, a_y):
     return closed.recover_analogues(params.l, theta, a_x, a_y)
 
 
-def gear_acceleration_from_points(params: ZrdpmContour, phi, a_x, a_y):
+def gear_acceleration_from_points(params: ZrdpmContour, phi, a_x, a_y) -> np.ndarray:
     """Driven gear's acceleration analogue from the point accelerations (eq. 18 / 37, regular).
 
     Parameters
@@ -121,7 +121,9 @@ def gear_acceleration_from_points(params: ZrdpmContour, phi, a_x, a_y):
     return willis.driven_analogues(0.0, e, params.ratio, params.mesh)[1]
 
 
-def recover_tables_constants(contour, phi, a_x, a_y, lever_angle0=-math.pi / 2, *, lever_angle0_deg=None):
+def recover_tables_constants(
+    contour: int, phi, a_x, a_y, lever_angle0: float = -math.pi / 2, *, lever_angle0_deg: float | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """``l u**2`` and ``l e`` at every angle from a table's two columns.
 
     Parameters
@@ -207,7 +209,7 @@ class PublishedTable:
         return int(self.a_x.size + self.a_y.size)
 
 
-def published_table(table) -> PublishedTable:
+def published_table(table: str) -> PublishedTable:
     """Read Table I or II from the package data file ``zrdpm_published.csv``.
 
     Parameters
