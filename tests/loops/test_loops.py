@@ -447,3 +447,12 @@ def test_newton_engine_strict_raises_closure_error():
         system.solve(np.linspace(0, 2 * np.pi, 50), guess, strict=True)
     with pytest.raises(ClosureError, match="phi"):
         fourbar(9.0, 7.0, 8.0, 7.0, np.linspace(0, 2 * np.pi, 50), strict=True)
+
+
+def test_fourbar_result_is_a_result_with_phi_and_the_theta2_alias():
+    from gearlever._result import Result
+
+    th = np.linspace(0.0, 1.0, 4)
+    r = fourbar(9, 5, 8, 8, th)
+    assert isinstance(r, Result) and r.to_frame().shape == (4, 10)
+    assert r.theta2 is r.phi and np.array_equal(r.phi, th)

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearlever._result import Result
 from gearlever._validate import finite_array, positive
 from gearlever.errors import ClosureError, GearleverError
 from gearlever.loops.engine import INPUT, LoopSystem, Vector
@@ -67,7 +68,7 @@ def _lengths(ground, crank, coupler, rocker):
 
 
 @dataclass(frozen=True)
-class FourBarResult:
+class FourBarResult(Result):
     """Positions and analogues of a four-bar over an array of crank angles.
 
     Attributes
