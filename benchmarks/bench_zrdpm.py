@@ -25,8 +25,8 @@ import numpy as np
 from gearlever.zrdpm import model as zrdpm
 
 N = 1_000_000
-REPEATS = 15
-BLOCK = 8192
+REPEATS = 21
+BLOCK = 32768  # the (3, BLOCK) sin/cos/ones buffer, 768 kB, stays in a 1-2 MB L2 cache
 
 
 def main() -> None:
@@ -71,7 +71,7 @@ def main() -> None:
     fresh = floor / best["tables model, fast"]
     reuse = floor_out / best["tables model, fast, out="]
     print(f"ratio, tables model fast path vs floor, both allocating their outputs: {fresh:.2f}")
-    print(f"ratio, tables model fast path vs floor, both writing into given arrays: {reuse:.2f}  (target >= 0.7)")
+    print(f"ratio, tables model fast path vs floor, both writing into given arrays: {reuse:.2f}  (target >= 0.8)")
 
 
 if __name__ == "__main__":

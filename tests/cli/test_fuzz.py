@@ -444,14 +444,8 @@ HOSTILE = {
 
 #: Hand-written cases that fail today in files outside this branch's area (strict: a fix flips them).
 KNOWN_HOSTILE = {
-    "zrdpm-many-angles": "cli/zrdpm.py: --step allows 10^7 angles, whose JSON records exceed the memory guard "
-    "(gearlever zrdpm --contour 1 --step 0.0001 --stop 999 --format json); its cap must come from memory",
     "network-zero-device": "cli/network.py: FILE is read whole with no size cap and devices are not refused "
     "(gearlever network /dev/zero reads until memory runs out)",
-    "fourbar-many-points": "cli/fourbar.py: --points has no cap "
-    "(gearlever fourbar --ground 9 --crank 5 --coupler 8 --rocker 8 --points 100000000 runs out of memory)",
-    "animate-many-frames": "cli/animate.py: --frames has no cap "
-    "(gearlever animate --fourbar 9 5 8 8 --out a.gif --frames 100000000 runs out of memory or hangs)",
 }
 
 

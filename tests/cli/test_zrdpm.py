@@ -85,3 +85,48 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, word, tmp_path):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and word in err and "Traceback" not in err
     assert not target.exists() and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "argv, needles",
+    [
+        (["--ratio", "1e308"], ["--ratio", "1e12"]),
+        (["--start=-1e308", "--stop=1e308"], ["--start", "--stop", "overflows"]),
+        (["--step", "1e-300"], ["--step", "cap 1,000,000"]),
+        (["--step", "0.0001", "--stop", "999", "--format", "json"], ["--step", "cap 100,000 with --format json"]),
+        (["--stop", "360", "--step", "0.0036", "--format", "json"], ["100001 angles", "cap 100,000"]),
+    ],
+)
+def test_zrdpm_refuses_sizes_and_overflows_naming_the_users_flags(capsys, argv, needles, tmp_path):
+    # known bugs: --ratio 1e308 spoke of the internal "r_lead"; the JSON output had no cap of its own
+    target = tmp_path / "never.json"
+    assert main(["zrdpm", "--contour", "1", *argv, "--out", str(target)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err and "r_lead" not in err
+    for needle in needles:
+        assert needle in err
+    assert not target.exists()
+
+
+def test_zrdpm_json_at_its_cap_is_written(capsys, tmp_path):
+    target = tmp_path / "a.json"
+    assert (
+        main(
+            [
+                "zrdpm",
+                "--contour",
+                "1",
+                "--stop",
+                "359.9964",
+                "--step",
+                "0.0036",
+                "--format",
+                "json",
+                "--out",
+                str(target),
+            ]
+        )
+        == 0
+    )
+    recs = json.loads(target.read_text())
+    assert len(recs) == 100_000 and recs[-1]["phi_deg"] == pytest.approx(359.9964)

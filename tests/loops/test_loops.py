@@ -39,7 +39,7 @@ def wrap(x):
 
 def closure(d, a, b, c, r):
     """Loop residual |a e^{i th2} + b e^{i th3} - c e^{i th4} - d| per point."""
-    z = a * np.exp(1j * r.theta2) + b * np.exp(1j * r.theta3) - c * np.exp(1j * r.theta4) - d
+    z = a * np.exp(1j * r.phi) + b * np.exp(1j * r.theta3) - c * np.exp(1j * r.theta4) - d
     return np.abs(z)
 
 
@@ -170,9 +170,9 @@ def test_fourbar_dead_point_is_masked_and_strict_raises():
     r = fourbar(9, 7, 8, 7, th)
     assert r.valid.tolist() == [True, False]
     assert r.closed[1] and np.isnan(r.dtheta3_dphi[1])
-    with pytest.raises(ValueError, match="theta2"):
+    with pytest.raises(ValueError, match="phi"):
         fourbar(9, 7, 8, 7, th, strict=True)
-    with pytest.raises(ValueError, match="theta2"):
+    with pytest.raises(ValueError, match="phi"):
         fourbar(9, 7, 8, 7, TURN, strict=True)
 
 
@@ -194,7 +194,7 @@ def test_fourbar_bad_lengths_raise_naming_the_link(args, match):
 def test_fourbar_bad_branch_and_angles_raise():
     with pytest.raises(ValueError, match="branch"):
         fourbar(9, 5, 8, 8, [0.0], branch="left")
-    with pytest.raises(ValueError, match="theta2"):
+    with pytest.raises(ValueError, match="phi"):
         fourbar(9, 5, 8, 8, [0.0, np.inf])
 
 
@@ -415,3 +415,44 @@ def test_input_with_coefficient_and_offset():
     sol = system.solve(phi, {"x_B": 2.0, "y_A": 0.0})
     assert np.allclose(sol["x_B"], 2 * np.cos(phi), atol=1e-12)
     assert np.allclose(sol.d2("y_A"), -2 * np.sin(phi), atol=1e-12)
+
+
+def test_newton_engine_sub_steps_never_exceed_max_step():
+    # Known bug: the sub-stepping doubled its step up to a fixed 0.1 rad, ignoring
+    # max_step.  Every Newton call is recorded; consecutive inputs on the path
+    # from 0 to 1 rad (one gap, so all of it is sub-stepped) must be <= max_step.
+    system = LoopSystem([[Vector("P", 2.0, "input"), Vector("x", "x", 0.0, -1), Vector("y", "y", math.pi / 2, -1)]])
+    seen = []
+    newton = system._newton
+
+    def spy(phi, x, *args, **kwargs):
+        seen.extend(np.asarray(phi).reshape(-1).tolist())
+        return newton(phi, x, *args, **kwargs)
+
+    system._newton = spy
+    max_step = 0.01
+    sol = system.solve([0.0, 1.0], {"x": 2.0, "y": 0.0}, max_step=max_step)
+    assert sol.valid.all() and np.allclose(sol["x"], 2 * np.cos([0.0, 1.0]))
+    steps = np.diff(seen)
+    assert steps.size > 50 and np.all(np.abs(steps) <= max_step * (1 + 1e-12))
+
+
+def test_newton_engine_strict_raises_closure_error():
+    from gearlever.errors import ClosureError
+
+    system = fourbar_system(9.0, 7.0, 8.0, 7.0)  # non-Grashof: the crank cannot turn fully
+    r = fourbar(9.0, 7.0, 8.0, 7.0, [0.0])
+    guess = {"theta3": float(r.theta3[0]), "theta4": float(r.theta4[0])}
+    with pytest.raises(ClosureError, match="phi"):
+        system.solve(np.linspace(0, 2 * np.pi, 50), guess, strict=True)
+    with pytest.raises(ClosureError, match="phi"):
+        fourbar(9.0, 7.0, 8.0, 7.0, np.linspace(0, 2 * np.pi, 50), strict=True)
+
+
+def test_fourbar_result_is_a_result_with_phi_and_the_theta2_alias():
+    from gearlever._result import Result
+
+    th = np.linspace(0.0, 1.0, 4)
+    r = fourbar(9, 5, 8, 8, th)
+    assert isinstance(r, Result) and r.to_frame().shape == (4, 10)
+    assert r.theta2 is r.phi and np.array_equal(r.phi, th)

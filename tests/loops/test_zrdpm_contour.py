@@ -100,3 +100,17 @@ def test_engine_contour_matches_gearlever_zrdpm(contour, kw):
     # point accelerations: eq. 16 / 35, x axis as the contour is tabulated (x_sign)
     assert np.allclose(params.x_sign * sol.d2("p_x"), ref.a_x, rtol=1e-10, atol=tol * params.l)
     assert np.allclose(sol.d2("p_y"), ref.a_y, rtol=1e-10, atol=tol * params.l)
+
+
+@pytest.mark.parametrize("l", [20.0, 7.5])
+def test_zrdpm_contour_default_radii_are_l_over_2_like_the_loops_contour(l):
+    # Known bug: ZrdpmContour defaulted r_a = r_b = 5 cm whatever l, so that
+    # ZrdpmContour(l=20) had u_1 twice the loops contour's (whose radii default
+    # to l/2, paper eq. 9 as printed: u_1 = sin(phi) + cos(phi) for l = rA + rB).
+    zrdpm = pytest.importorskip("gearlever.zrdpm")
+    params = zrdpm.ZrdpmContour(l=l)
+    assert params.r_a == params.r_b == l / 2
+    ref = zrdpm.analogues(params, PHI)
+    sol = zrdpm_contour(l, PHI)
+    assert np.allclose(sol.d1("theta1"), ref.u_carrier, rtol=1e-10, atol=1e-10)
+    assert np.allclose(ref.u_carrier, np.sin(PHI) + np.cos(PHI), atol=1e-14)  # eq. 9

@@ -88,3 +88,34 @@ def test_reproduced_csv_reads_back_and_is_byte_identical_on_rewrite(written, rep
     assert (tmp_path / "again.csv").read_bytes() == (tdir / "table1.csv").read_bytes()
     write_csv(tabs.constants_frame(reps), tmp_path / "c.csv")
     assert (tmp_path / "c.csv").read_bytes() == (tdir / "identified_constants.csv").read_bytes()
+
+
+def test_written_numbers_carry_the_decimals_their_data_support(written):
+    # Regeneration must be byte-identical on any machine: every float in the
+    # ZRDPM CSVs is rounded (5 decimals for closed forms and the linear fit,
+    # 4 / 3 for the nonlinear self-consistent fit in cm / degrees), so that
+    # last-bit differences of BLAS or scipy between machines cannot show.
+    tdir, _, _ = written
+    for name in ("table1.csv", "table2.csv", "identified_constants.csv"):
+        df = pd.read_csv(tdir / name)
+        for col in df.select_dtypes("float").columns:
+            v = df[col].to_numpy()
+            assert np.array_equal(v, np.round(v, tabs.DECIMALS_CM)), (name, col)
+    const = pd.read_csv(tdir / "identified_constants.csv")
+    sc = const[const["model"] == "self-consistent"]
+    assert np.array_equal(sc["value"], np.round(sc["value"], tabs.DECIMALS_SELF_CONSISTENT_CM))
+
+
+def test_tables_constants_come_from_a_linear_solve_equal_to_the_normal_equations(reps):
+    # the tables model is linear in (l u^2, l e): the fit equals the solution of
+    # the normal equations built independently from paper eq. 16 / 35
+    for rep in reps:
+        pub, k = rep.table, rep.fit.constants
+        th = pub.phi + np.radians(k.lever_angle0_deg)
+        sgn = -1.0 if pub.contour == 1 else 1.0
+        M = np.concatenate(
+            [np.stack([-sgn * np.cos(th), -sgn * np.sin(th)], 1), np.stack([-np.sin(th), np.cos(th)], 1)]
+        )
+        y = np.concatenate([pub.a_x, pub.a_y])
+        ref = np.linalg.solve(M.T @ M, M.T @ y)
+        np.testing.assert_allclose([k.l_u2, k.l_e], ref, rtol=1e-12)

@@ -7,6 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from gearlever.errors import GearleverError
 from gearlever.zrdpm import model as zrdpm
 from tests._zrdpm_fd import assert_rel, d1, d2
 
@@ -220,11 +221,12 @@ def test_gear_acceleration_from_points_is_eq14_with_the_recovered_lever_analogue
 # --- fast path -----------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("block", [1, 7, 4096])
+@pytest.mark.parametrize("block, size", [(1, (5, 11)), (7, (5, 11)), (4096, (5, 11)), (32768, (3, 30001))])
 @pytest.mark.parametrize("contour", [1, 2])
-def test_fast_path_gives_the_plain_results(block, contour):
+def test_fast_path_gives_the_plain_results(block, size, contour):
+    # the benchmark's block (32768) over several blocks and a ragged last one, to 1e-12
     rng = np.random.default_rng(3)
-    phi = rng.uniform(-10, 10, size=(5, 11))
+    phi = rng.uniform(-10, 10, size=size)
     p = zrdpm.ZrdpmContour(contour=contour, l=7.0, r_a=2.0, r_b=4.0, r_lead=3.0, r_driven=2.0, lever_angle0_deg=17.0)
     k = zrdpm.TablesConstants(contour, 21.0, -2.24, lever_angle0_deg=-90.0)
     for plain, fast in (
@@ -294,3 +296,52 @@ def test_fast_path_handles_an_empty_array():
 def test_bad_input_raises_value_error_naming_the_parameter(call, name):
     with pytest.raises(ValueError, match=f"^{name} must"):
         call()
+
+
+# --- units, module layout, one Willis helper -------------------------------------------------
+
+
+def test_lever_angle0_is_radians_and_the_degree_keyword_is_an_alias():
+    # Python API in radians; the old keyword lever_angle0_deg still builds the same object
+    p_rad = zrdpm.ZrdpmContour(contour=2, lever_angle0=math.radians(20.0))
+    p_deg = zrdpm.ZrdpmContour(contour=2, lever_angle0_deg=20.0)
+    assert p_rad == p_deg and p_deg.lever_angle0_deg == pytest.approx(20.0)
+    assert zrdpm.ZrdpmContour().lever_angle0 == -math.pi / 2
+    k_deg = zrdpm.TablesConstants(1, 21.0, -2.24, lever_angle0_deg=-90.0)
+    assert k_deg == zrdpm.TablesConstants(1, 21.0, -2.24) and k_deg.lever_angle0 == -math.pi / 2
+    with pytest.raises(GearleverError, match="not both"):
+        zrdpm.ZrdpmContour(lever_angle0=0.1, lever_angle0_deg=5.0)
+    table = zrdpm.published_table("I")
+    a = zrdpm.identify_tables_constants(table, -math.pi / 2).constants
+    b = zrdpm.identify_tables_constants(table, lever_angle0_deg=-90.0).constants
+    assert a == b
+    la, ea = zrdpm.recover_tables_constants(1, table.phi, table.a_x, table.a_y, -math.pi / 2)
+    lb, eb = zrdpm.recover_tables_constants(1, table.phi, table.a_x, table.a_y, lever_angle0_deg=-90.0)
+    assert np.array_equal(la, lb) and np.array_equal(ea, eb)
+
+
+def test_package_re_exports_every_name_from_the_modules_by_concern():
+    import gearlever.zrdpm as pkg
+    from gearlever.zrdpm import fast, model, parameters, published
+
+    for name in pkg.__all__:
+        assert getattr(pkg, name) is getattr(model, name)  # old single-module imports still work
+    assert pkg.ZrdpmContour is parameters.ZrdpmContour and pkg.published_table is published.published_table
+    assert callable(fast.fast_outputs)
+
+
+def test_willis_sign_rule_comes_from_gears_willis_everywhere():
+    # one helper (gears/willis.signed_ratio): the contour's Willis ratio and the
+    # loops contour's gear analogue both follow it for either mesh
+    from gearlever.gears import willis
+    from gearlever.loops import zrdpm_contour
+
+    for mesh in ("external", "internal"):
+        p = zrdpm.ZrdpmContour(mesh=mesh).with_ratio(0.7)
+        assert p.signed_ratio == willis.signed_ratio(0.7, mesh) == willis.basic_ratio(p.r_lead, p.r_driven, mesh)
+        phi = np.linspace(0, 6, 13)
+        u8 = zrdpm.analogues(p, phi).u_gear
+        i = willis.signed_ratio(0.7, mesh)
+        assert np.allclose(u8, (1 - i) * (np.sin(phi) + np.cos(phi)) + i, atol=1e-13)  # eq. 11
+        sol = zrdpm_contour(p.l, phi, ratio=0.7, mesh=mesh)
+        assert np.allclose(sol.d1("theta8"), u8, atol=1e-10)

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import math
+import sys
 
 import numpy as np
 
-from gearlever.cli._common import emit, positive_float, positive_int
+from gearlever.cli._common import capped_int, emit, positive_float, progress, to_json
 
 COLUMNS = (
     "theta2_deg",
@@ -19,7 +19,13 @@ COLUMNS = (
     "d2theta4_dphi2",
     "transmission_deg",
     "valid",
+    "change_point",
 )
+
+#: Most crank angles: a row is ~150 bytes of CSV (~300 of JSON) and ~1 kB of
+#: Python objects while the text is built, so 10^5 rows take ~130 MB and about
+#: a second; 10^5 points is a point every 0.0036 degrees.
+MAX_POINTS = 10**5
 
 
 def register(sub) -> None:
@@ -28,7 +34,10 @@ def register(sub) -> None:
         help="four-bar coupler/rocker angles and their analogues over a crank turn",
         description="Coupler and rocker angles (deg) and their velocity and acceleration "
         "analogues (omega/omega2, alpha/omega2^2) of a four-bar over a full turn "
-        "of the crank. Points where the linkage cannot close are nan, valid=0.",
+        "of the crank. Points where the linkage cannot close are nan, valid=0. "
+        "A change-point linkage (s + l = p + q) folds flat at some crank angles, where it "
+        "can switch assembly (parallelogram to antiparallelogram): those rows have "
+        "change_point=1 and a note on stderr names the angles.",
     )
     p.add_argument("--ground", type=positive_float, required=True, help="ground link length")
     p.add_argument("--crank", type=positive_float, required=True, help="crank (input) length")
@@ -36,9 +45,9 @@ def register(sub) -> None:
     p.add_argument("--rocker", type=positive_float, required=True, help="rocker (output) length")
     p.add_argument(
         "--points",
-        type=positive_int,
+        type=capped_int(MAX_POINTS),
         default=360,
-        help="crank angles over a turn, 0 <= theta2 < 360 deg (default 360)",
+        help=f"crank angles over a turn, 0 <= theta2 < 360 deg (default 360, at most {MAX_POINTS:,})",
     )
     p.add_argument("--branch", choices=("open", "crossed"), default="open", help="assembly branch")
     p.add_argument("--format", choices=("csv", "json"), default="csv", help="output format")
@@ -50,11 +59,11 @@ def rows(ground, crank, coupler, rocker, points, branch):
     """Table rows (tuples in :data:`COLUMNS` order) for the CLI."""
     from gearlever.loops import fourbar, transmission_angle
 
-    th2 = np.linspace(0.0, 2 * np.pi, points, endpoint=False)
-    r = fourbar(ground, crank, coupler, rocker, th2, branch=branch)
-    mu = transmission_angle(ground, crank, coupler, rocker, th2)
+    phi = np.linspace(0.0, 2 * np.pi, points, endpoint=False)
+    r = fourbar(ground, crank, coupler, rocker, phi, branch=branch)
+    mu = transmission_angle(ground, crank, coupler, rocker, phi)
     cols = (
-        np.degrees(th2),
+        np.degrees(phi),
         np.degrees(r.theta3),
         np.degrees(r.theta4),
         r.dtheta3_dphi,
@@ -63,7 +72,23 @@ def rows(ground, crank, coupler, rocker, points, branch):
         r.d2theta4_dphi2,
         np.degrees(mu),
     )
-    return [tuple(float(c[i]) for c in cols) + (bool(r.valid[i]),) for i in range(points)]
+    floats = zip(*(c.tolist() for c in cols))
+    return [(*f, bool(v), bool(cp)) for f, v, cp in zip(floats, r.valid.tolist(), r.change_point.tolist())]
+
+
+def change_point_note(ground, crank, coupler, rocker, branch) -> str | None:
+    """One line naming the crank angles where the linkage folds flat, or None if it never does."""
+    from gearlever.loops import change_points
+
+    cps = change_points(ground, crank, coupler, rocker)
+    if cps.size == 0:
+        return None
+    where = ", ".join(f"{math.degrees(t):g}" for t in cps)
+    return (
+        f"gearlever fourbar: note: change point at theta2 = {where} deg (the linkage folds flat and can "
+        f"switch assembly, e.g. parallelogram to antiparallelogram); the {branch} branch is followed "
+        "through it, rows there have change_point=1"
+    )
 
 
 def _fmt(v) -> str:
@@ -73,13 +98,15 @@ def _fmt(v) -> str:
 
 
 def _run(args) -> int:
-    table = rows(args.ground, args.crank, args.coupler, args.rocker, args.points, args.branch)
-    if args.format == "csv":
-        text = "\n".join([",".join(COLUMNS)] + [",".join(_fmt(v) for v in row) for row in table])
-    else:
-        recs = [
-            {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in zip(COLUMNS, row)} for row in table
-        ]
-        text = json.dumps(recs, indent=1)
+    links = (args.ground, args.crank, args.coupler, args.rocker)
+    with progress("solving the four-bar"):
+        table = rows(*links, args.points, args.branch)
+        if args.format == "csv":
+            text = "\n".join([",".join(COLUMNS)] + [",".join(_fmt(v) for v in row) for row in table])
+        else:
+            text = to_json([dict(zip(COLUMNS, row)) for row in table])
     emit(text, args.out)
+    note = change_point_note(*links, args.branch)
+    if note:
+        print(note, file=sys.stderr)
     return 0

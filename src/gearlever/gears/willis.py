@@ -55,17 +55,45 @@ def basic_ratio(r_lead, r_driven, mesh="external"):
     """
     r_lead = positive("r_lead", r_lead)
     r_driven = positive("r_driven", r_driven)
-    if mesh not in MESHES:
-        raise GearleverError(f"mesh must be 'external' or 'internal', got {mesh!r}")
-    k = r_lead / r_driven
-    return -k if mesh == "external" else k
+    return signed_ratio(r_lead / r_driven, mesh)
 
 
-def _signed(ratio, mesh):
+def signed_ratio(ratio, mesh="external") -> float:
+    """The Willis ratio ``i`` from the unsigned ``ratio = r_lead/r_driven`` and the mesh.
+
+    The one place where the sign rule lives: :func:`basic_ratio`,
+    :func:`driven_speed`, :func:`driven_analogues`, :mod:`gearlever.zrdpm` and
+    :func:`gearlever.loops.closed.zrdpm_contour_system` all use it.
+
+    Parameters
+    ----------
+    ratio : float
+        ``r_lead / r_driven`` (> 0).
+    mesh : {"external", "internal"}
+
+    Returns
+    -------
+    float
+        ``-ratio`` (external mesh: the pair turns in opposite senses) or
+        ``+ratio`` (internal).
+
+    Notes
+    -----
+    Paper eq. 2 (``(omega_8 - omega_1)/(omega_9 - omega_1) = -r9/r8``) and
+    eq. 21 for contour 2.
+
+    Examples
+    --------
+    >>> signed_ratio(0.5), signed_ratio(0.5, "internal")
+    (-0.5, 0.5)
+    """
     ratio = positive("ratio", ratio)
     if mesh not in MESHES:
         raise GearleverError(f"mesh must be 'external' or 'internal', got {mesh!r}")
     return -ratio if mesh == "external" else ratio
+
+
+_signed = signed_ratio
 
 
 def driven_speed(omega_lead, omega_carrier, ratio, mesh="external"):

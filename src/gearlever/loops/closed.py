@@ -1,4 +1,11 @@
-"""Closed-form loops: slider-crank, inverted slider-crank, double slider.
+"""Closed-form loops: slider-crank, inverted slider-crank, the ZRDPM double slider.
+
+The one home of the ZRDPM contour's closed forms (paper eqs. 6-9, 16-17):
+:func:`double_slider_projections`, :func:`slider_lever`,
+:func:`point_acceleration`, :func:`recover_analogues`; :func:`double_slider`,
+:func:`zrdpm_contour` and :mod:`gearlever.zrdpm` use them
+(:mod:`gearlever.loops.vector_loop` only re-exports them).  Derivatives are
+*analogues*: derivatives with respect to the input angle ``phi``.
 
 Each mechanism comes as a :class:`~gearlever.loops.engine.LoopSystem` (the
 general form, used for plans and for checking) and as a solver that finds the
@@ -15,8 +22,8 @@ import math
 import numpy as np
 
 from gearlever._validate import finite, finite_array, positive
-from gearlever.errors import GearleverError
-from gearlever.loops import vector_loop
+from gearlever.errors import ClosureError, GearleverError
+from gearlever.gears.willis import signed_ratio
 from gearlever.loops.engine import INPUT, Input, LoopSolution, LoopSystem, Unknown, Vector
 
 __all__ = [
@@ -28,6 +35,10 @@ __all__ = [
     "double_slider",
     "zrdpm_contour_system",
     "zrdpm_contour",
+    "double_slider_projections",
+    "slider_lever",
+    "point_acceleration",
+    "recover_analogues",
 ]
 
 _SIGN = {"open": 1.0, "crossed": -1.0}
@@ -46,8 +57,8 @@ def _finish(system, phi, x, closed, strict, singular_tol, what):
     valid = closed & ~bad
     if strict and not valid.all():
         first = phi.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
-        raise GearleverError(
-            f"theta2: the {what} cannot close or is at a dead point at {first!r} "
+        raise ClosureError(
+            f"phi: the {what} cannot close or is at a dead point at {first!r} "
             f"({int((~valid).sum())} of {valid.size} points)"
         )
     return LoopSolution(system.unknowns, phi, x, dx, d2x, valid, closed)
@@ -79,14 +90,14 @@ def slider_crank_system(crank, rod, offset=0.0) -> LoopSystem:
     )
 
 
-def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7) -> LoopSolution:
+def slider_crank(crank, rod, phi, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7) -> LoopSolution:
     """Slider-crank positions (closed form) and analogues (linear solves).
 
     Parameters
     ----------
     crank, rod : float
         Crank and connecting-rod lengths (> 0).
-    theta2 : array_like
+    phi : array_like
         Crank angles, radians.
     offset : float
         Height of the slider's line above the crank pivot.
@@ -100,8 +111,8 @@ def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False,
 
     Notes
     -----
-    ``a sin(theta2) + b sin(theta3) = offset`` gives ``theta3``, and
-    ``x_B = a cos(theta2) + b cos(theta3)`` (Norton, eq. 4.16).  Dead points
+    ``a sin(phi) + b sin(theta3) = offset`` gives ``theta3``, and
+    ``x_B = a cos(phi) + b cos(theta3)`` (Norton, eq. 4.16).  Dead points
     where ``cos(theta3) = 0``.
 
     Examples
@@ -113,7 +124,7 @@ def slider_crank(crank, rod, theta2, offset=0.0, branch="open", *, strict=False,
     system = slider_crank_system(crank, rod, offset)
     a, b, e = float(crank), float(rod), float(offset)
     sigma = _sigma(branch)
-    th2 = finite_array("theta2", theta2)
+    th2 = finite_array("phi", phi)
     s3 = (e - a * np.sin(th2)) / b
     closed = np.abs(s3) <= 1.0
     s3c = np.clip(s3, -1.0, 1.0)
@@ -150,7 +161,7 @@ def inverted_slider_crank_system(ground, crank, offset=0.0) -> LoopSystem:
 
 
 def inverted_slider_crank(
-    ground, crank, theta2, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7
+    ground, crank, phi, offset=0.0, branch="open", *, strict=False, singular_tol=1e-7
 ) -> LoopSolution:
     """Inverted slider-crank positions (closed form) and analogues (linear solves).
 
@@ -175,7 +186,7 @@ def inverted_slider_crank(
     system = inverted_slider_crank_system(ground, crank, offset)
     d, a, e = float(ground), float(crank), float(offset)
     sigma = _sigma(branch)
-    th2 = finite_array("theta2", theta2)
+    th2 = finite_array("phi", phi)
     px, py = a * np.cos(th2) - d, a * np.sin(th2)
     q = px * px + py * py - e * e
     closed = q >= 0
@@ -217,7 +228,7 @@ def double_slider_system(l, r) -> LoopSystem:
 
 
 def double_slider(l, r, phi) -> LoopSolution:
-    """Double-slider contour in closed form (:func:`gearlever.loops.vector_loop.double_slider`).
+    """Double-slider contour in closed form (:func:`double_slider_projections`) as a LoopSolution.
 
     Returns
     -------
@@ -227,7 +238,7 @@ def double_slider(l, r, phi) -> LoopSolution:
     Notes
     -----
     Paper eqs. 6-7 (contour 1) and 25-26 (contour 2), via
-    :func:`gearlever.loops.vector_loop.double_slider`.
+    :func:`double_slider_projections`.
 
     Examples
     --------
@@ -237,7 +248,7 @@ def double_slider(l, r, phi) -> LoopSolution:
     """
     system = double_slider_system(l, r)
     phi = finite_array("phi", phi)
-    xb, ya, dxb, dya, d2xb, d2ya = vector_loop.double_slider(l, r, phi)
+    xb, ya, dxb, dya, d2xb, d2ya = double_slider_projections(l, r, phi)
     x = np.stack([xb, ya], axis=-1)
     dx = np.stack([dxb, dya], axis=-1)
     d2x = np.stack([d2xb, d2ya], axis=-1)
@@ -290,9 +301,7 @@ def zrdpm_contour_system(
     r_a = l / 2 if r_a is None else positive("r_a", r_a)
     r_b = l / 2 if r_b is None else positive("r_b", r_b)
     ratio = positive("ratio", ratio)
-    if mesh not in ("external", "internal"):
-        raise GearleverError(f"mesh must be 'external' or 'internal', got {mesh!r}")
-    i = -ratio if mesh == "external" else ratio
+    i = signed_ratio(ratio, mesh)  # Willis' sign rule, gears/willis.py
     th0 = finite("lever_angle0", lever_angle0)
     K = (r_a + r_b) * th0 - r + l
     return LoopSystem(
@@ -326,6 +335,11 @@ def zrdpm_contour(
 ) -> LoopSolution:
     """Solve :func:`zrdpm_contour_system` over ``phi`` with the batched Newton engine.
 
+    Parameters are those of :func:`zrdpm_contour_system`; ``phi`` is the
+    leading gear's angle (radians, any shape, in path order).  ``strict``
+    raises :class:`~gearlever.errors.ClosureError` where the loops cannot
+    close (never, for this contour) instead of returning NaN.
+
     The seed at ``phi[0]`` is the sliders' position of eq. 6 with the lever at
     ``lever_angle0``; everything else (the lever's analogues ``u_1, e_1``, the
     point accelerations of eq. 16, the gear's ``u_8, e_8``) comes from the
@@ -338,6 +352,12 @@ def zrdpm_contour(
         ``sol.d2("p_x")``, ``sol.d2("p_y")`` are eq. 16's point accelerations
         (over ``omega9**2``), ``sol.d1("theta8")``, ``sol.d2("theta8")`` are
         ``u_8, e_8``.
+
+    Notes
+    -----
+    Paper eqs. 5-9 (the double slider turning the lever), 3 and 11-14
+    (Willis), 16 (the lever's point); :mod:`gearlever.zrdpm` gives the same
+    numbers in closed form, which the tests check.
 
     Examples
     --------
@@ -360,3 +380,181 @@ def zrdpm_contour(
         "w8": 0.0,
     }
     return system.solve(phi, guess, strict=strict)
+
+
+# --------------------------------------------------------------------------
+# closed forms of the ZRDPM contour (paper eqs. 6-9, 16-17, 25-28, 35-36)
+
+
+def double_slider_projections(l: float, r: float, phi) -> tuple[np.ndarray, ...]:
+    """Projections of the double-slider contour O-A-B and their analogues.
+
+    A link of length ``l`` at angle ``phi`` has its end B on the x axis and its
+    end A on a guide parallel to y, offset by ``r``.
+
+    Parameters
+    ----------
+    l : float
+        Link length (> 0).
+    r : float
+        Offset of the y-guide's origin.
+    phi : array_like
+        Link angle(s), radians.
+
+    Returns
+    -------
+    x_B, y_A, dx_B_dphi, dy_A_dphi, d2x_B_dphi2, d2y_A_dphi2 : ndarray
+        Positions and their first and second analogues, each shaped like ``phi``.
+
+    Notes
+    -----
+    Paper eq. 6 (contour 1) and eq. 25 (contour 2)::
+
+        x_B = l cos(phi),          y_A = l sin(phi) + r
+        dx_B/dphi = -l sin(phi),   dy_A/dphi = l cos(phi)          (eq. 7, 26)
+        d2x_B/dphi2 = -l cos(phi), d2y_A/dphi2 = -l sin(phi)
+
+    Examples
+    --------
+    >>> x, y, dx, dy, d2x, d2y = double_slider_projections(2.0, 1.0, [0.0])
+    >>> float(x[0]), float(y[0]), float(dx[0]), float(dy[0])
+    (2.0, 1.0, -0.0, 2.0)
+    """
+    l = positive("l", l)
+    r = finite("r", r)
+    phi = finite_array("phi", phi)
+    c, s = np.cos(phi), np.sin(phi)
+    return l * c, l * s + r, -l * s, l * c, -l * c, -l * s
+
+
+def point_acceleration(l: float, theta, u, e) -> tuple[np.ndarray, np.ndarray]:
+    """Acceleration analogues of the end of a link turning about its other end.
+
+    Parameters
+    ----------
+    l : float
+        Distance from the pivot to the point (> 0).
+    theta : array_like
+        Link angle, radians.
+    u, e : array_like
+        Velocity analogue ``dtheta/dphi`` and acceleration analogue
+        ``d2theta/dphi2`` of the link (broadcast against ``theta``).
+
+    Returns
+    -------
+    a_x, a_y : ndarray
+        ``d2x/dphi2`` and ``d2y/dphi2`` of the point (accelerations over
+        ``omega**2``, in the units of ``l``).
+
+    Notes
+    -----
+    Paper eq. 16 (points B, A) and eq. 35 (points D, E)::
+
+        a_x = -l cos(theta) u**2 - l sin(theta) e
+        a_y = -l sin(theta) u**2 + l cos(theta) e
+
+    Examples
+    --------
+    >>> ax, ay = point_acceleration(1.0, 0.0, 1.0, 0.0)   # centripetal only
+    >>> float(ax), float(ay)
+    (-1.0, 0.0)
+    """
+    l = positive("l", l)
+    theta = finite_array("theta", theta)
+    u = np.asarray(u, dtype=float)
+    e = np.asarray(e, dtype=float)
+    c, s = np.cos(theta), np.sin(theta)
+    u2 = u * u
+    return -l * (c * u2 + s * e), l * (c * e - s * u2)
+
+
+def recover_analogues(l: float, theta, a_x, a_y) -> tuple[np.ndarray, np.ndarray]:
+    """Recover ``u**2`` and ``e`` of a link from both acceleration projections.
+
+    Parameters
+    ----------
+    l : float
+        Distance from the pivot to the point (> 0).
+    theta : array_like
+        Link angle, radians.
+    a_x, a_y : array_like
+        Acceleration analogues of the point (as from :func:`point_acceleration`).
+
+    Returns
+    -------
+    u_squared, e : ndarray
+        The squared velocity analogue and the acceleration analogue.
+
+    Notes
+    -----
+    Paper eq. 17 (and 36) solves only the x line of eq. 16 for ``e`` and
+    divides by ``sin(theta)``, which fails at 0 and 180 degrees.  Projecting
+    eq. 16 on the link's normal and on the link itself instead::
+
+        e    = ( cos(theta) a_y - sin(theta) a_x) / l
+        u**2 = -(cos(theta) a_x + sin(theta) a_y) / l
+
+    is the exact inverse, finite for every angle when ``l > 0``.
+
+    Examples
+    --------
+    >>> u2, e = recover_analogues(1.0, 0.0, *point_acceleration(1.0, 0.0, 2.0, 0.5))
+    >>> float(u2), float(e)
+    (4.0, 0.5)
+    """
+    l = positive("l", l)
+    theta = finite_array("theta", theta)
+    a_x = np.asarray(a_x, dtype=float)
+    a_y = np.asarray(a_y, dtype=float)
+    c, s = np.cos(theta), np.sin(theta)
+    return -(c * a_x + s * a_y) / l, (c * a_y - s * a_x) / l
+
+
+def slider_lever(l: float, r_a: float, r_b: float, phi) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Turn and analogues of a lever driven by the two sliders of the double-slider contour.
+
+    The slider A (speed ``dy_A/dphi``) and the slider B (``dx_B/dphi``) push a
+    lever on opposite sides at radii ``r_a`` and ``r_b`` from its pivot.
+
+    Parameters
+    ----------
+    l : float
+        Contour link length (> 0).
+    r_a, r_b : float
+        Radii at which the sliders act on the lever (> 0).
+    phi : array_like
+        Angle(s) of the leading link, radians.
+
+    Returns
+    -------
+    dtheta, dtheta_dphi, d2theta_dphi2 : ndarray
+        The lever's turn since ``phi = 0``, its velocity analogue and its
+        acceleration analogue, each shaped like ``phi``.
+
+    Notes
+    -----
+    Paper eq. 8 (``omega_1 = (V_A - V_B)/(r_A + r_B)``) with eq. 7 gives eq. 9
+    for ``l = r_A + r_B``; in general, with ``c = l/(r_A + r_B)``::
+
+        dtheta/dphi   = c (sin(phi) + cos(phi))
+        d2theta/dphi2 = c (cos(phi) - sin(phi))
+        theta - theta(0) = c (sin(phi) - cos(phi) + 1)
+
+    The paper's eqs. 10-11 print ``sin - cos``; eq. 9 and the mirror
+    eqs. 28-30 print ``sin + cos``, which is what eqs. 7-8 give.  Contour 2's
+    eq. 27 takes ``|V_E - V_D|``; the signed difference is used here, as in
+    eq. 28.
+
+    Examples
+    --------
+    >>> d, u, e = slider_lever(2.0, 1.0, 1.0, [0.0])
+    >>> float(d[0]), float(u[0]), float(e[0])
+    (0.0, 1.0, 1.0)
+    """
+    l = positive("l", l)
+    r_a = positive("r_a", r_a)
+    r_b = positive("r_b", r_b)
+    phi = finite_array("phi", phi)
+    c = l / (r_a + r_b)
+    s, co = np.sin(phi), np.cos(phi)
+    return c * (s - co + 1.0), c * (s + co), c * (co - s)

@@ -25,8 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearlever._validate import finite, finite_array
-from gearlever.errors import GearleverError
+from gearlever._validate import finite, finite_array, positive
+from gearlever.errors import ClosureError, GearleverError
 
 __all__ = ["Input", "Unknown", "Vector", "LoopSystem", "LoopSolution", "INPUT"]
 
@@ -400,17 +400,23 @@ class LoopSystem:
             Approximate value of every unknown at the first point; it chooses
             the branch, which is then followed along the input.
         strict : bool
-            Raise ``ValueError`` instead of returning NaN where the loop does
-            not close or is at a dead point.
+            Raise :class:`~gearlever.errors.ClosureError` instead of returning
+            NaN where the loop does not close or is at a dead point.
         max_step : float
-            Largest input step taken by the predictor; larger gaps are
-            sub-stepped.
+            Largest input step taken by the predictor (> 0); larger gaps are
+            sub-stepped, and no sub-step is longer either.
         singular_tol : float
             Hadamard-ratio threshold for a dead point (see ``_singular``).
 
         Returns
         -------
         LoopSolution
+
+        Raises
+        ------
+        ClosureError
+            With ``strict=True``, naming the first input value where the loop
+            cannot close or is at a dead point and how many points fail.
 
         Notes
         -----
@@ -439,7 +445,7 @@ class LoopSystem:
         if missing:
             raise GearleverError(f"guess must give every unknown, missing {missing}")
         seed = np.array([finite(f"guess[{n!r}]", guess[n]) for n in self.unknowns])
-        max_step = float(max_step)
+        max_step = positive("max_step", max_step)
         p = phi_in.reshape(-1)
         N, n = p.size, len(self.unknowns)
         X = np.full((N, n), np.nan)
@@ -471,7 +477,7 @@ class LoopSystem:
             within = np.abs(hs) <= max_step
             m = int(np.argmin(within)) if not within.all() else within.size
             if m == 0:
-                got = self._substep(phi0, x0, d10, d20, p[i], max_step, singular_tol, sgn0)
+                got = self._substep(phi0, x0, d10, d20, p[i], max_step, max_step, singular_tol, sgn0)
                 if got is None:
                     blocked = p[i]
                 else:
@@ -499,7 +505,7 @@ class LoopSystem:
                 block = min(2 * block, 4096) if k == m else max(k, 1)
             else:
                 block = 1
-                got = self._substep(phi0, x0, d10, d20, p[i], max_step / 4, singular_tol, sgn0)
+                got = self._substep(phi0, x0, d10, d20, p[i], max_step / 4, max_step, singular_tol, sgn0)
                 if got is None:
                     blocked = p[i]
                 else:
@@ -515,7 +521,7 @@ class LoopSystem:
         Xr = np.where(closed[..., None], Xr, np.nan)
         if strict and not valid.all():
             first = int(np.flatnonzero(~valid.reshape(-1))[0])
-            raise GearleverError(
+            raise ClosureError(
                 f"phi: the loop does not close or is at a dead point at phi = {p[first]!r} "
                 f"({int((~valid).sum())} of {valid.size} points)"
             )
@@ -525,8 +531,12 @@ class LoopSystem:
         with np.errstate(invalid="ignore"):
             return np.sign(np.linalg.det(np.nan_to_num(self.jacobian(phi, x), nan=0.0)))
 
-    def _substep(self, phi0, x0, d10, d20, target, step, singular_tol, sgn0, min_step=1e-7):
-        """Walk from phi0 to target in steps of at most ``step``; None if it fails."""
+    def _substep(self, phi0, x0, d10, d20, target, step, max_step, singular_tol, sgn0, min_step=1e-7):
+        """Walk from phi0 to target, first in steps of ``step``, never more than ``max_step``; None if it fails.
+
+        A step that succeeds doubles the next one up to ``max_step`` (the
+        caller's :meth:`solve` argument); a step that fails halves it.
+        """
         cur = (phi0, x0, d10, d20)
         while True:
             phi_c, x_c, d1_c, d2_c = cur
@@ -548,7 +558,7 @@ class LoopSystem:
                     d1[0],
                     d2[0],
                 )
-                step = min(step * 2, 0.1)
+                step = min(step * 2, max_step)
             else:
                 step /= 2
                 if step < min_step:

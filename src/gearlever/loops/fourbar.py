@@ -1,13 +1,13 @@
 """The four-bar linkage: closed-form positions and analogues, Grashof, limits, transmission.
 
 Conventions: ground pivot O2 at the origin, ground pivot O4 at ``(ground, 0)``;
-crank O2-A at angle ``theta2`` (the input), coupler A-B at ``theta3``, rocker
+crank O2-A at angle ``phi`` (the input), coupler A-B at ``theta3``, rocker
 O4-B at ``theta4``; angles in radians, counter-clockwise from +x, returned in
-``(-pi, pi]``.  The loop is ``crank e^{i theta2} + coupler e^{i theta3} -
+``(-pi, pi]``.  The loop is ``crank e^{i phi} + coupler e^{i theta3} -
 rocker e^{i theta4} - ground = 0``.
 
 Branches: ``"open"`` puts B on the left of the diagonal A->O4 (the convex
-quadrilateral of textbook drawings when ``0 < theta2 < pi``), ``"crossed"``
+quadrilateral of textbook drawings when ``0 < phi < pi``), ``"crossed"``
 on its right.  The branch is a fixed sign in the closed form, so it is kept
 along the whole motion and never jumps.
 
@@ -16,12 +16,14 @@ Pure numpy.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from gearlever._result import Result
 from gearlever._validate import finite_array, positive
-from gearlever.errors import GearleverError
+from gearlever.errors import ClosureError, GearleverError
 from gearlever.loops.engine import INPUT, LoopSystem, Vector
 
 __all__ = [
@@ -34,6 +36,7 @@ __all__ = [
     "LimitPositions",
     "limit_positions",
     "transmission_angle",
+    "change_points",
 ]
 
 _BRANCH = {"open": 1.0, "crossed": -1.0}
@@ -53,22 +56,26 @@ def _lengths(ground, crank, coupler, rocker):
     c = positive("rocker", rocker)
     links = {"ground": d, "crank": a, "coupler": b, "rocker": c}
     name, longest = max(links.items(), key=lambda kv: kv[1])
-    if longest >= sum(links.values()) - longest:
+    # the sum of the three others, added directly (not total - longest, which
+    # loses them entirely beside a huge link: 1e308 + 3 - 1e308 = 0)
+    others = sum(sorted(v for k, v in links.items() if k != name))  # inf beside huge links: still >
+    if longest >= others:
         raise GearleverError(
             f"{name} must be shorter than the sum of the other three links "
-            f"({sum(links.values()) - longest:g}) for the linkage to assemble, got {longest:g}"
+            f"({others:.6g}) for the linkage to assemble, got {longest:.6g}"
         )
     return d, a, b, c
 
 
 @dataclass(frozen=True)
-class FourBarResult:
+class FourBarResult(Result):
     """Positions and analogues of a four-bar over an array of crank angles.
 
     Attributes
     ----------
-    theta2 : ndarray
-        Input (crank) angles, radians.
+    phi : ndarray
+        Input (crank) angles, radians (also readable as ``theta2``, its old
+        name).
     theta3, theta4 : ndarray
         Coupler and rocker angles, radians in ``(-pi, pi]``; NaN where the
         loop cannot close.
@@ -80,9 +87,16 @@ class FourBarResult:
         Closes and is not at a dead point (all six arrays finite).
     closed : ndarray of bool
         Closes (positions finite).
+    change_point : ndarray of bool
+        The linkage is folded flat here (all four joints on the ground line,
+        within ``singular_tol``): a change point of a Grashof change-point
+        linkage (``s + l = p + q``), where it can switch assembly.  The
+        closed form's branch sign is kept, so past such a point the same
+        ``branch`` names a different assembly (the parallelogram 4/2/4/2
+        becomes the antiparallelogram); see :func:`change_points`.
     """
 
-    theta2: np.ndarray
+    phi: np.ndarray
     theta3: np.ndarray
     theta4: np.ndarray
     dtheta3_dphi: np.ndarray
@@ -91,21 +105,35 @@ class FourBarResult:
     d2theta4_dphi2: np.ndarray
     valid: np.ndarray
     closed: np.ndarray
+    change_point: np.ndarray
+
+    @property
+    def theta2(self) -> np.ndarray:
+        """:attr:`phi` under its old name (the crank angle)."""
+        return self.phi
 
 
-def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=False, singular_tol=1e-7) -> FourBarResult:
+def _scaled(ground, crank, coupler, rocker):
+    """Checked lengths divided by the longest: angles and analogues are scale-free, and
+    huge (1e308) or tiny lengths then neither overflow nor underflow."""
+    d, a, b, c = _lengths(ground, crank, coupler, rocker)
+    m = max(d, a, b, c)
+    return d / m, a / m, b / m, c / m
+
+
+def fourbar(ground, crank, coupler, rocker, phi, branch="open", *, strict=False, singular_tol=1e-7) -> FourBarResult:
     """Coupler and rocker angles of a four-bar and their analogues, closed form.
 
     Parameters
     ----------
     ground, crank, coupler, rocker : float
         Link lengths (> 0, the longest shorter than the sum of the others).
-    theta2 : array_like
+    phi : array_like
         Crank angles, radians, any shape.
     branch : {"open", "crossed"}
         Assembly branch, kept for every point.
     strict : bool
-        Raise ``ValueError`` if any point cannot close or is at a dead point,
+        Raise :class:`~gearlever.errors.ClosureError` if any point cannot close or is at a dead point,
         instead of returning NaN there with ``valid`` False.
     singular_tol : float
         A point is a dead point where ``|sin(theta3 - theta4)|`` is below this.
@@ -124,8 +152,8 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
     *Design of Machinery*, eqs. 6.18 and 7.12, as analogues) solved by
     Cramer's rule::
 
-        dtheta3/dphi = a sin(theta4 - theta2) / (b sin(theta3 - theta4))
-        dtheta4/dphi = a sin(theta3 - theta2) / (c sin(theta3 - theta4))
+        dtheta3/dphi = a sin(theta4 - phi) / (b sin(theta3 - theta4))
+        dtheta4/dphi = a sin(theta3 - phi) / (c sin(theta3 - theta4))
 
     and the same 2x2 matrix for the acceleration analogues.
 
@@ -137,9 +165,9 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
     >>> bool(r.valid.all())
     True
     """
-    d, a, b, c = _lengths(ground, crank, coupler, rocker)
+    d, a, b, c = _scaled(ground, crank, coupler, rocker)
     sigma = _branch(branch)
-    th2 = finite_array("theta2", theta2)
+    th2 = finite_array("phi", phi)
     c2, s2 = np.cos(th2), np.sin(th2)
     dx, dy = d - a * c2, -a * s2
     f2 = dx * dx + dy * dy
@@ -167,13 +195,15 @@ def fourbar(ground, crank, coupler, rocker, theta2, branch="open", *, strict=Fal
         ky = a * s2 + b * w3 * w3 * s3 - c * w4 * w4 * s4
         e3 = -(kx * c4 + ky * s4) / (b * S)
         e4 = -(kx * c3 + ky * s3) / (c * S)
+        # folded flat: A and B on the ground line (the change point of s + l = p + q)
+        change_point = closed & (np.abs(s2) <= singular_tol) & (np.abs(a * s2 + b * s3) <= singular_tol)
     if strict and not valid.all():
         first = th2.reshape(-1)[int(np.flatnonzero(~valid.reshape(-1))[0])]
-        raise GearleverError(
-            f"theta2: the four-bar cannot close or is at a dead point at theta2 = {first!r} rad "
+        raise ClosureError(
+            f"phi: the four-bar cannot close or is at a dead point at phi = {first!r} rad "
             f"({int((~valid).sum())} of {valid.size} points)"
         )
-    return FourBarResult(th2, theta3, theta4, w3, w4, e3, e4, valid, closed)
+    return FourBarResult(th2, theta3, theta4, w3, w4, e3, e4, valid, closed, change_point)
 
 
 def fourbar_system(ground, crank, coupler, rocker) -> LoopSystem:
@@ -295,7 +325,7 @@ def limit_positions(ground, crank, coupler, rocker, branch="open") -> LimitPosit
     Notes
     -----
     Toggle of the input: coupler and rocker collinear, ``|O4 A| = b +- c``,
-    so ``cos(theta2) = (a^2 + d^2 - (b +- c)^2) / (2 a d)``.  Rocker
+    so ``cos(phi) = (a^2 + d^2 - (b +- c)^2) / (2 a d)``.  Rocker
     extremes: crank and coupler collinear, ``|O2 B| = a + b`` (extended) or
     ``|a - b|`` (folded), and the triangle O2-O4-B gives B (Norton, sec. 3.3).
     Only the positions that lie on ``branch`` are kept.
@@ -341,7 +371,50 @@ def limit_positions(ground, crank, coupler, rocker, branch="open") -> LimitPosit
     )
 
 
-def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:
+def change_points(ground, crank, coupler, rocker) -> np.ndarray:
+    """Crank angles where a four-bar folds flat (all joints on the ground line), radians.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : float
+        Link lengths (> 0, the longest shorter than the sum of the others).
+
+    Returns
+    -------
+    ndarray
+        Sorted angles in ``[0, pi]`` (of 0 and pi) where the linkage is flat;
+        empty unless the linkage is a Grashof change-point linkage
+        (``s + l = p + q``).
+
+    Notes
+    -----
+    Flat means the crank lies on the ground line (``phi = 0`` or ``pi``)
+    and the triangle A-B-O4 is degenerate: ``|O4 - A| = |d - a cos(phi)|``
+    equals ``b + c`` or ``|b - c|``.  That happens only when
+    ``s + l = p + q`` (Norton, *Design of Machinery*, sec. 2.12, the
+    change-point or "special Grashof" case): there the linkage can switch
+    between two assemblies (parallelogram and antiparallelogram for
+    ``d = b``, ``a = c``).  :func:`fourbar` keeps its branch sign through
+    the point, so it follows the switch; ``FourBarResult.change_point``
+    marks the samples at the fold.
+
+    Examples
+    --------
+    >>> np.degrees(change_points(4, 2, 4, 2)).tolist()
+    [0.0, 180.0]
+    >>> change_points(9, 5, 8, 8).size
+    0
+    """
+    d, a, b, c = _scaled(ground, crank, coupler, rocker)
+    out = []
+    for th in (0.0, math.pi):
+        f = abs(d - a * math.cos(th))
+        if min(abs(f - (b + c)), abs(f - abs(b - c))) <= 1e-12:
+            out.append(th)
+    return np.array(out, dtype=float)
+
+
+def transmission_angle(ground, crank, coupler, rocker, phi) -> np.ndarray:
     """Transmission angle (between coupler and rocker), radians in ``[0, pi]``.
 
     Notes
@@ -356,8 +429,8 @@ def transmission_angle(ground, crank, coupler, rocker, theta2) -> np.ndarray:
     >>> float(np.degrees(transmission_angle(9, 5, 8, 8, 0.0)).round(6))
     28.955024
     """
-    d, a, b, c = _lengths(ground, crank, coupler, rocker)
-    th2 = finite_array("theta2", theta2)
+    d, a, b, c = _scaled(ground, crank, coupler, rocker)
+    th2 = finite_array("phi", phi)
     f2 = a * a + d * d - 2 * a * d * np.cos(th2)
     cm = (b * b + c * c - f2) / (2 * b * c)
     with np.errstate(invalid="ignore"):
@@ -398,9 +471,9 @@ class FourBar:
         """``(ground, crank, coupler, rocker)``."""
         return (self.ground, self.crank, self.coupler, self.rocker)
 
-    def solve(self, theta2, *, strict=False) -> FourBarResult:
+    def solve(self, phi, *, strict=False) -> FourBarResult:
         """:func:`fourbar` on this linkage and branch."""
-        return fourbar(*self.links, theta2, branch=self.branch, strict=strict)
+        return fourbar(*self.links, phi, branch=self.branch, strict=strict)
 
     def system(self) -> LoopSystem:
         """:func:`fourbar_system` of this linkage."""
@@ -414,6 +487,10 @@ class FourBar:
         """:func:`limit_positions` on this branch."""
         return limit_positions(*self.links, branch=self.branch)
 
-    def transmission_angle(self, theta2) -> np.ndarray:
+    def transmission_angle(self, phi) -> np.ndarray:
         """:func:`transmission_angle` of this linkage."""
-        return transmission_angle(*self.links, theta2)
+        return transmission_angle(*self.links, phi)
+
+    def change_points(self) -> np.ndarray:
+        """:func:`change_points` of this linkage."""
+        return change_points(*self.links)

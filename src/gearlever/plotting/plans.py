@@ -121,9 +121,14 @@ def draw_plan(terms, ax=None, *, prefix="a", unit="", labels=None, title=None):
     ax.plot([0], [0], "ko", ms=5)
     ax.annotate("p", (0, 0), textcoords="offset points", xytext=(5, 5))
     pad = 0.12 * scale
-    ax.set_xlim(min(xs) - pad, max(xs) + pad)
-    ax.set_ylim(min(ys) - pad, max(ys) + pad)
-    ax.set_aspect("equal", adjustable="box")
+    # data limits, not fixed limits: with adjustable="datalim" the aspect may widen them
+    ax.update_datalim([(min(xs) - pad, min(ys) - pad), (max(xs) + pad, max(ys) + pad)])
+    ax.margins(0.0)
+    ax.autoscale_view()
+    # "datalim": the axes keep the box constrained layout gives them and the
+    # limits grow to keep the aspect (a "box" aspect made the right plan taller
+    # than its slot, its title ran into the suptitle and its x label was cut)
+    ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, alpha=0.3)
     what = "velocity" if prefix == "v" else "acceleration"
     ax.set_xlabel(f"x component of {what} ({unit})" if unit else f"x component of {what}")

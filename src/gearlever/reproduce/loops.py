@@ -1,4 +1,4 @@
-"""Figures of the vector-loop engine (issue 5) and the ZRDPM acceleration plan (issue 2)."""
+"""Figures of the vector-loop engine and the ZRDPM acceleration plan (paper eqs. 19-20)."""
 
 from __future__ import annotations
 

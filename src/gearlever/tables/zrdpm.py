@@ -10,6 +10,21 @@ import pandas as pd
 from gearlever.mechanism import structure
 from gearlever.zrdpm import model as zrdpm
 
+#: Decimals written, each at the precision its data supports, so that the CSVs
+#: are byte-identical on any machine (the published tables carry 2-3 decimals):
+#: values computed by closed forms or by the linear fit and their deviations
+#: (rounding ~1e-14 cm) with 5; the identified constants and their residuals
+#: with 5; the nonlinear self-consistent fit (converged to ~1e-9) with 4 in cm
+#: and 3 in degrees.
+DECIMALS_CM = 5
+DECIMALS_SELF_CONSISTENT_CM = 4
+DECIMALS_SELF_CONSISTENT_DEG = 3
+
+
+def _r(values, decimals):
+    """``values`` rounded to ``decimals`` (arrays or floats), with -0.0 written as 0."""
+    return np.round(np.asarray(values, dtype=float), decimals) + 0.0
+
 
 @dataclass(frozen=True)
 class Reproduction:
@@ -49,12 +64,14 @@ def comparison_frame(rep: Reproduction) -> pd.DataFrame:
     self-consistent lever's ``u_1_selfconsistent``, ``e_1_selfconsistent``,
     and ``l_u2_recovered_cm``, ``l_e_recovered_cm``: the lever's ``l u**2``
     and ``l e`` recovered from the two published columns at each angle.
+    Numbers are rounded as :data:`DECIMALS_CM` and
+    :data:`DECIMALS_SELF_CONSISTENT_CM` say.
     """
     pub, fit, sc = rep.table, rep.fit, rep.self_consistent
     phi = pub.phi
     ax, ay = zrdpm.tables_point_accelerations(fit.constants, phi)
     kin = zrdpm.analogues(sc.params, phi)
-    l_u2, l_e = zrdpm.recover_tables_constants(pub.contour, phi, pub.a_x, pub.a_y, fit.constants.lever_angle0_deg)
+    l_u2, l_e = zrdpm.recover_tables_constants(pub.contour, phi, pub.a_x, pub.a_y, fit.constants.lever_angle0)
     cx, cy = pub.columns
     uc, _, ec, _, _, _ = zrdpm.PAPER_NAMES[pub.contour]
     data = {"phi_deg": pub.phi_deg}
@@ -65,13 +82,14 @@ def comparison_frame(rep: Reproduction) -> pd.DataFrame:
         data[f"{name}_printed"] = list(printed)
         data[f"{name}_corrected"] = corrected.astype(int)
         data[f"{name}_published_cm"] = published
+        computed = _r(computed, DECIMALS_CM)
         data[f"{name}_computed_cm"] = computed
-        data[f"{name}_deviation_cm"] = computed - published
-        data[f"{name}_selfconsistent_cm"] = selfc
-    data[f"{uc}_selfconsistent"] = kin.u_carrier
-    data[f"{ec}_selfconsistent"] = kin.e_carrier
-    data["l_u2_recovered_cm"] = l_u2
-    data["l_e_recovered_cm"] = l_e
+        data[f"{name}_deviation_cm"] = _r(computed - published, DECIMALS_CM)  # of the numbers as written
+        data[f"{name}_selfconsistent_cm"] = _r(selfc, DECIMALS_SELF_CONSISTENT_CM)
+    data[f"{uc}_selfconsistent"] = _r(kin.u_carrier, DECIMALS_CM)
+    data[f"{ec}_selfconsistent"] = _r(kin.e_carrier, DECIMALS_CM)
+    data["l_u2_recovered_cm"] = _r(l_u2, DECIMALS_CM)
+    data["l_e_recovered_cm"] = _r(l_e, DECIMALS_CM)
     return pd.DataFrame(data)
 
 
@@ -80,24 +98,29 @@ def constants_frame(reps) -> pd.DataFrame:
 
     One row per (model, table, parameter): ``model`` (``tables`` or
     ``self-consistent``), ``table``, ``contour``, ``parameter``, ``value``,
-    ``unit``, ``n_values``, ``rms_residual_cm``, ``max_abs_residual_cm``.
+    ``unit``, ``n_values``, ``rms_residual_cm``, ``max_abs_residual_cm``,
+    rounded as the ``DECIMALS_*`` constants of this module say.
     """
     rows = []
     for rep in reps:
         pub, k, sc = rep.table, rep.fit.constants, rep.self_consistent
         common = dict(table=pub.table, contour=pub.contour, n_values=pub.size)
-        tstats = dict(rms_residual_cm=rep.fit.rms, max_abs_residual_cm=rep.fit.max_abs)
-        sstats = dict(rms_residual_cm=sc.rms, max_abs_residual_cm=sc.max_abs)
-        for par, val, unit in (
-            ("l_u2", k.l_u2, "cm"),
-            ("l_e", k.l_e, "cm"),
-            ("A", k.A, "cm"),
-            ("B", k.B, "cm"),
-            ("lever_angle0_fixed", k.lever_angle0_deg, "deg"),
+        cm, scm, sdeg = DECIMALS_CM, DECIMALS_SELF_CONSISTENT_CM, DECIMALS_SELF_CONSISTENT_DEG
+        tstats = dict(rms_residual_cm=_r(rep.fit.rms, cm), max_abs_residual_cm=_r(rep.fit.max_abs, cm))
+        sstats = dict(rms_residual_cm=_r(sc.rms, scm), max_abs_residual_cm=_r(sc.max_abs, scm))
+        for par, val, unit, dec in (
+            ("l_u2", k.l_u2, "cm", cm),
+            ("l_e", k.l_e, "cm", cm),
+            ("A", k.A, "cm", cm),
+            ("B", k.B, "cm", cm),
+            ("lever_angle0_fixed", k.lever_angle0_deg, "deg", sdeg),
         ):
-            rows.append(dict(model="tables", **common, parameter=par, value=val, unit=unit, **tstats))
-        for par, val, unit in (("l", sc.params.l, "cm"), ("lever_angle0", sc.params.lever_angle0_deg, "deg")):
-            rows.append(dict(model="self-consistent", **common, parameter=par, value=val, unit=unit, **sstats))
+            rows.append(dict(model="tables", **common, parameter=par, value=_r(val, dec), unit=unit, **tstats))
+        for par, val, unit, dec in (
+            ("l", sc.params.l, "cm", scm),
+            ("lever_angle0", sc.params.lever_angle0_deg, "deg", sdeg),
+        ):
+            rows.append(dict(model="self-consistent", **common, parameter=par, value=_r(val, dec), unit=unit, **sstats))
     return pd.DataFrame(rows)
 
 

@@ -1,8 +1,11 @@
 """The gear-lever differential mechanism (ZRDPM) of Alimukhamedov et al. (2020).
 
-Parameters of the two contours, the self-consistent model and its fast path,
-the tables model, the published Tables I and II and the identification of the
-constants they were computed with.
+Modules by concern: :mod:`~gearlever.zrdpm.parameters` (the contours'
+parameters, the paper's names), :mod:`~gearlever.zrdpm.model` (the
+self-consistent and the tables model), :mod:`~gearlever.zrdpm.fast` (their
+fast path), :mod:`~gearlever.zrdpm.published` (the published Tables I and II,
+the identification of the constants they were computed with, the recovery of
+analogues from point accelerations).  Radians throughout the API.
 
 Numeric core: may import numpy, scipy, :mod:`gearlever.gears.willis`,
 :mod:`gearlever.loops`, :mod:`gearlever.mechanism.structure`,
@@ -10,28 +13,32 @@ Numeric core: may import numpy, scipy, :mod:`gearlever.gears.willis`,
 """
 
 from gearlever.zrdpm.model import (
+    analogues,
+    contour1,
+    contour2,
+    lever_angle,
+    tables_outputs,
+    tables_point_accelerations,
+)
+from gearlever.zrdpm.parameters import (
     CONTOUR_OF_TABLE,
     PAPER_NAMES,
     TABLE_OF_CONTOUR,
     ContourKinematics,
+    TablesConstants,
+    ZrdpmContour,
+    x_sign,
+)
+from gearlever.zrdpm.published import (
     PublishedTable,
     SelfConsistentFit,
-    TablesConstants,
     TablesFit,
-    ZrdpmContour,
-    analogues,
-    contour1,
-    contour2,
     fit_self_consistent,
     gear_acceleration_from_points,
     identify_tables_constants,
-    lever_angle,
     published_table,
     recover_lever_analogues,
     recover_tables_constants,
-    tables_outputs,
-    tables_point_accelerations,
-    x_sign,
 )
 
 __all__ = [
