@@ -5,6 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import gearlever
 from gearlever.gears import willis as df
 from gearlever.loops import vector_loop as vl
 from tests._zrdpm_fd import assert_rel, d1
@@ -79,3 +80,18 @@ def test_driven_analogues_with_accelerating_lead():
 def test_bad_input_raises_value_error_naming_the_parameter(call, name):
     with pytest.raises(ValueError, match=f"^{name} must"):
         call()
+
+
+@given(st.integers(1, 500), st.integers(1, 500), st.sampled_from([(1, "external"), (-1, "internal")]))
+def test_willis_row_is_the_signed_ratio_in_tooth_form(z_a, z_b, kind):
+    """The integer row of gear networks and the float ratio of the ZRDPM are one Willis relation."""
+    sign, mesh = kind
+    c_a, c_b, c_c = df.willis_row(z_a, z_b, sign)
+    # seen from the carrier: (rot_b - rot_c)/(rot_a - rot_c) = -c_a/c_b
+    assert c_a + c_b + c_c == 0
+    assert -c_a / c_b == pytest.approx(df.signed_ratio(z_a / z_b, mesh), rel=1e-15)
+
+
+def test_willis_row_refuses_a_sign_other_than_one():
+    with pytest.raises(gearlever.GearleverError, match="sign"):
+        df.willis_row(20, 30, 0)

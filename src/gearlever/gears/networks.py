@@ -58,6 +58,7 @@ from fractions import Fraction
 import numpy as np
 
 from gearlever.errors import GearleverError
+from gearlever.gears.willis import willis_row
 
 #: Name of the fixed frame (rotation 0, never an unknown).
 FRAME = "frame"
@@ -170,9 +171,10 @@ class Mesh:
             _known(self, teeth, self.carrier)
         n_p = _teeth_of(self, teeth, self.p)
         n_q = _teeth_of(self, teeth, self.q)
-        pairs = [(self.p, n_p), (self.q, self.sign * n_q)]
+        c_p, c_q, c_c = willis_row(n_p, n_q, self.sign)
+        pairs = [(self.p, c_p), (self.q, c_q)]
         if on_carrier:
-            pairs.append((self.carrier, -(n_p + self.sign * n_q)))
+            pairs.append((self.carrier, c_c))
         return pairs
 
     def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
@@ -212,9 +214,8 @@ class Differential:
 
     def _int_terms(self, teeth) -> list[tuple[str, int]]:
         _known(self, teeth, self.carrier)
-        n_a = _teeth_of(self, teeth, self.a)
-        n_b = _teeth_of(self, teeth, self.b)
-        return [(self.a, n_a), (self.b, n_b), (self.carrier, -(n_a + n_b))]
+        c_a, c_b, c_c = willis_row(_teeth_of(self, teeth, self.a), _teeth_of(self, teeth, self.b))
+        return [(self.a, c_a), (self.b, c_b), (self.carrier, c_c)]
 
     def terms(self, teeth: Mapping[str, int | None]) -> dict[str, Fraction]:
         """Exact coefficients of the constraint row, ``{member: Fraction}`` (the frame has none)."""

@@ -96,6 +96,33 @@ def signed_ratio(ratio, mesh="external") -> float:
 _signed = signed_ratio
 
 
+def willis_row(z_a: int, z_b: int, sign: int = 1) -> tuple[int, int, int]:
+    """Willis' equation in tooth form: coefficients of ``rot_a, rot_b, rot_c``.
+
+    ``z_a (rot_a - rot_c) + sign z_b (rot_b - rot_c) = 0``, so the row is
+    ``(z_a, sign z_b, -(z_a + sign z_b))``: ``sign = 1`` for an external
+    mesh (or the two side gears of a bevel differential seen from opposite
+    sides), ``-1`` for an internal one.  It is :func:`signed_ratio` with
+    ``ratio = z_a / z_b`` written without division, so that gear networks
+    keep exact integers.
+
+    Notes
+    -----
+    R. Willis, *Principles of Mechanism*, 2nd ed. (1870): the train seen from
+    the carrier is an ordinary train; ZRDPM paper eq. 2; the generic
+    differential ``n_a rot_a + n_b rot_b - (n_a + n_b) rot_c = 0`` of the
+    Nuttall chariot page is the case ``sign = 1``.
+
+    Examples
+    --------
+    >>> willis_row(20, 40), willis_row(20, 80, sign=-1)
+    ((20, 40, -60), (20, -80, 60))
+    """
+    if sign not in (1, -1):
+        raise GearleverError(f"sign must be 1 or -1, got {sign!r}")
+    return (z_a, sign * z_b, -(z_a + sign * z_b))
+
+
 def driven_speed(omega_lead, omega_carrier, ratio, mesh="external"):
     """Angular speed of the driven gear from the leading gear's and the carrier's.
 
