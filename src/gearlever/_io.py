@@ -204,3 +204,42 @@ def to_json(obj, indent: int | None = 2) -> str:
     '{"b": null, "a": [1.5, null]}'
     """
     return json.dumps(_strict(obj), indent=indent, allow_nan=False)
+
+
+#: Largest input file read (model, network, way-point, torque files): 64 MiB
+#: of text is far beyond any real model and still parses in seconds.
+MAX_INPUT_BYTES = 64 * 2**20
+
+
+def read_text_capped(path, what: str, cap: int = MAX_INPUT_BYTES) -> str:
+    """The UTF-8 text of the input file ``path``: the one reader of user files.
+
+    Refused with a :class:`~gearlever.errors.GearleverError` whose message
+    starts with ``what`` (the user's flag or the file's role) and the path: a
+    missing or unreadable file, anything but a regular file (a device such as
+    ``/dev/zero`` or a pipe would never end), a file larger than ``cap``
+    bytes, text that is not UTF-8.
+
+    >>> read_text_capped("/dev/zero", "FILE")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: FILE '/dev/zero': must be a regular file (not a device, pipe or folder)
+    """
+    from gearlever.errors import GearleverError
+
+    p = Path(path)
+    try:
+        if not p.is_file():
+            if p.exists():
+                raise GearleverError(f"{what} {str(path)!r}: must be a regular file (not a device, pipe or folder)")
+            raise GearleverError(f"{what} {str(path)!r}: cannot be read: no such file")
+        with open(p, "rb") as fh:
+            data = fh.read(cap + 1)
+    except OSError as exc:
+        raise GearleverError(f"{what} {str(path)!r}: cannot be read: {exc.strerror or exc}") from None
+    if len(data) > cap:
+        raise GearleverError(f"{what} {str(path)!r}: larger than the cap of {cap:,} bytes")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise GearleverError(f"{what} {str(path)!r}: not UTF-8 text") from None

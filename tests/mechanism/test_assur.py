@@ -64,7 +64,7 @@ def test_fast_path_equals_newton_on_every_example_model(path):
     plan = m.system.dyad_plan
     assert (plan is not None) == (path.stem in PLANNED)
     if plan is None:
-        pytest.skip("not decomposable into drivers and dyads: the general path answers")
+        return  # declined, as it must be: the general Newton path answers (tested elsewhere)
     q, qd = sweep(m, 2001)
     qdd = 0.3 * qd - 0.1
     fast, slow = newton_and_fast(m, q, qd, qdd)

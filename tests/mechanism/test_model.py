@@ -183,7 +183,7 @@ def test_toml_syntax_error_names_the_line(tmp_path):
 
 
 def test_unreadable_file(tmp_path):
-    with pytest.raises(GearleverError, match="cannot read"):
+    with pytest.raises(GearleverError, match="cannot be read"):
         load_model(tmp_path / "missing.toml")
 
 

@@ -15,8 +15,8 @@ random path and of the way-point path do not mix.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
+from gearlever._io import read_text_capped
 from gearlever.cli._common import (
     capped_float,
     capped_int,
@@ -186,18 +186,7 @@ def _nuttall(args) -> int:
 
 def _read_waypoints(name: str) -> str:
     """The text of the way-point file ``name`` (a regular file, at most :data:`MAX_WAYPOINT_BYTES`)."""
-    path = Path(name)
-    try:
-        if path.exists() and not path.is_file() and not path.is_dir():
-            raise GearleverError(f"--waypoints {name!r}: must be a regular file (not a device or pipe)")
-        with open(path, "rb") as fh:
-            data = fh.read(MAX_WAYPOINT_BYTES + 1)
-        if len(data) > MAX_WAYPOINT_BYTES:
-            raise GearleverError(f"--waypoints {name!r}: file larger than the cap of {MAX_WAYPOINT_BYTES:,} bytes")
-        return data.decode("utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = getattr(exc, "strerror", None) or type(exc).__name__
-        raise GearleverError(f"--waypoints {name!r}: waypoints file cannot be read: {reason}") from None
+    return read_text_capped(name, "--waypoints", MAX_WAYPOINT_BYTES)
 
 
 def _path_options(args):

@@ -10,8 +10,7 @@ tooth number ends with exit 2 and one line naming it.
 
 from __future__ import annotations
 
-from pathlib import Path
-
+from gearlever._io import read_text_capped
 from gearlever.cli._common import emit, to_json
 from gearlever.errors import GearleverError
 
@@ -68,11 +67,7 @@ def _frac(f) -> str:
 def _run(args) -> int:
     from gearlever.gears.networks import format_linear, parse_network
 
-    try:
-        text = Path(args.file).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = getattr(exc, "strerror", None) or type(exc).__name__
-        raise GearleverError(f"network file {args.file!r} cannot be read: {reason}") from None
+    text = read_text_capped(args.file, "network file")
     net = parse_network(text, teeth=_teeth(args.teeth))
     a = net.analyse()
     result = {

@@ -31,6 +31,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from gearlever._io import read_text_capped
 from gearlever.errors import GearleverError
 
 __all__ = [
@@ -296,14 +297,10 @@ def load_model(path) -> MechanismModel:
     ('crank',)
     """
     p = Path(path)
+    text = read_text_capped(p, "model file")
+    raw = text.encode("utf-8")
     try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise GearleverError(f"{p}: cannot read the model file: {exc.strerror or exc}") from None
-    try:
-        data = tomllib.loads(raw.decode("utf-8"))
-    except UnicodeDecodeError:
-        raise GearleverError(f"{p}: the model file is not UTF-8 text") from None
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
         if "line" not in msg:
