@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from gearlever import fourbar
+from tests._mechanism_package import run_fourbar
 
 mechanism = pytest.importorskip("mechanism")
 
@@ -21,29 +22,8 @@ OMEGA = 1.7  # rad/s, constant crank speed
 
 
 def run_mechanism(theta2):
-    O, A, B, C = mechanism.get_joints("O A B C")
-    a = mechanism.Vector((O, A), r=5)
-    b = mechanism.Vector((A, B), r=8)
-    c = mechanism.Vector((O, C), r=9, theta=0, style="ground")
-    d = mechanism.Vector((C, B), r=8)
-
-    def loops(x, inp):
-        return a(inp) + b(x[0]) - c() - d(x[1])
-
     r0 = fourbar(9, 5, 8, 8, theta2[:1])
-    guess = (np.array([r0.theta3[0], r0.theta4[0]]), np.array([1.0, 1.0]), np.array([1.0, 1.0]))
-    n = theta2.size
-    m = mechanism.Mechanism(
-        vectors=(a, b, c, d),
-        origin=O,
-        loops=loops,
-        pos=theta2,
-        vel=np.full(n, OMEGA),
-        acc=np.zeros(n),
-        guess=guess,
-    )
-    m.iterate()
-    return b, d
+    return run_fourbar(9, 5, 8, 8, theta2, OMEGA, r0.theta3[0], r0.theta4[0])
 
 
 def wrap(x):

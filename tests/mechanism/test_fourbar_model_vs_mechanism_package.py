@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import gearlever
+from tests._mechanism_package import run_fourbar
 
 from ._models import example, wrap
 
@@ -23,27 +24,7 @@ L_GROUND, L_ROCKER = 40.0, math.dist((40, 0), (45.1, 28.3))
 
 
 def run_package(theta2, guess3, guess4):
-    O, A, B, C = mechanism.get_joints("O A B C")
-    a = mechanism.Vector((O, A), r=L_CRANK)
-    b = mechanism.Vector((A, B), r=L_COUPLER)
-    c = mechanism.Vector((O, C), r=L_GROUND, theta=0, style="ground")
-    d = mechanism.Vector((C, B), r=L_ROCKER)
-
-    def loops(x, inp):
-        return a(inp) + b(x[0]) - c() - d(x[1])
-
-    n = theta2.size
-    m = mechanism.Mechanism(
-        vectors=(a, b, c, d),
-        origin=O,
-        loops=loops,
-        pos=theta2,
-        vel=np.full(n, OMEGA),
-        acc=np.zeros(n),
-        guess=(np.array([guess3, guess4]), np.array([1.0, 1.0]), np.array([1.0, 1.0])),
-    )
-    m.iterate()
-    return b, d
+    return run_fourbar(L_GROUND, L_CRANK, L_COUPLER, L_ROCKER, theta2, OMEGA, guess3, guess4)
 
 
 @pytest.mark.filterwarnings("ignore:The iteration is not making good progress:RuntimeWarning")
