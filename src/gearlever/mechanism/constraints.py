@@ -127,6 +127,18 @@ def _guide(model, s):
     return (c * gx + si * gy, -si * gx + c * gy), (c * ux + si * uy, -si * ux + c * uy)
 
 
+def _slider_geometry(model, pose, s):
+    """Angles of slider ``s``'s link and guide link, the arms of its point and guide point,
+    the guide's normal ``(nx, ny)`` and the offset ``(dx, dy)`` of the point from the guide point."""
+    xl, yl, tl = _pose_of(model, pose, s.link)
+    xo, yo, to = _pose_of(model, pose, s.on)
+    g, u = _guide(model, s)
+    rl = _rot(tl, model.links[s.link].local[s.point])
+    rg = _rot(to, g)
+    nx, ny = _rot(to, (-u[1], u[0]))
+    return tl, to, rl, rg, nx, ny, xl + rl[0] - xo - rg[0], yl + rl[1] - yo - rg[1]
+
+
 def constraint_residual(model: MechanismModel, pose) -> np.ndarray:
     """Residual of every constraint row at the link poses.
 
@@ -164,13 +176,7 @@ def constraint_residual(model: MechanismModel, pose) -> np.ndarray:
         ra, rb = _rot(ta, model.links[a].local[p]), _rot(tb, model.links[b].local[p])
         rows += [xa + ra[0] - xb - rb[0], ya + ra[1] - yb - rb[1]]
     for s in model.sliders:
-        xl, yl, tl = _pose_of(model, pose, s.link)
-        xo, yo, to = _pose_of(model, pose, s.on)
-        g, u = _guide(model, s)
-        rl = _rot(tl, model.links[s.link].local[s.point])
-        rg = _rot(to, g)
-        nx, ny = _rot(to, (-u[1], u[0]))
-        dx, dy = xl + rl[0] - xo - rg[0], yl + rl[1] - yo - rg[1]
+        tl, to, rl, rg, nx, ny, dx, dy = _slider_geometry(model, pose, s)
         rows.append(nx * dx + ny * dy)
         rows.append(tl - to - (model.links[s.link].angle0 - model.links[s.on].angle0))
     for m in model.meshes:
@@ -239,13 +245,7 @@ def constraint_jacobian(model: MechanismModel, pose) -> np.ndarray:
             put(r + 1, link, (None, sign, sign * rx))
         r += 2
     for s in model.sliders:
-        xl, yl, tl = _pose_of(model, pose, s.link)
-        xo, yo, to = _pose_of(model, pose, s.on)
-        g, u = _guide(model, s)
-        rl = _rot(tl, model.links[s.link].local[s.point])
-        rg = _rot(to, g)
-        nx, ny = _rot(to, (-u[1], u[0]))
-        dx, dy = xl + rl[0] - xo - rg[0], yl + rl[1] - yo - rg[1]
+        tl, to, rl, rg, nx, ny, dx, dy = _slider_geometry(model, pose, s)
         put(r, s.link, (nx, ny, nx * -rl[1] + ny * rl[0]))
         # n' = R' n_local = (-ny, nx); d(d)/dtheta_O = -R'_O g = (rg_y, -rg_x)
         put(r, s.on, (-nx, -ny, -ny * dx + nx * dy + nx * rg[1] - ny * rg[0]))
