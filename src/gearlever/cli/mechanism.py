@@ -130,41 +130,15 @@ def _structure(args) -> int:
     return 0
 
 
-def columns(mech, result):
-    """CLI table: ordered dict name -> (N,) array (angles in degrees, rates as solved)."""
-    m = mech.model
-    u = m.units or "len"
-    cols = {}
-    for i, spec in enumerate(m.inputs):
-        if spec.kind == "slider":
-            cols[f"in_{spec.name}_{u}"] = result.q[:, i]
-        else:
-            cols[f"in_{spec.label.replace('/', '_rel_')}_deg"] = np.degrees(result.q[:, i])
-    for k in m.moving:
-        cols[f"{k}_deg"] = np.degrees(result.angle[k])
-        cols[f"{k}_omega"] = result.omega[k]
-        cols[f"{k}_alpha"] = result.alpha[k]
-    for s in m.sliders:
-        cols[f"{s.name}_s"] = result.displacement[s.name]
-        cols[f"{s.name}_v"] = result.slider_velocity[s.name]
-        cols[f"{s.name}_a"] = result.slider_acceleration[s.name]
-    for p in result.point:
-        P, V, A = result.point[p], result.velocity[p], result.acceleration[p]
-        cols[f"{p}_x"], cols[f"{p}_y"] = P[:, 0], P[:, 1]
-        cols[f"{p}_vx"], cols[f"{p}_vy"] = V[:, 0], V[:, 1]
-        cols[f"{p}_ax"], cols[f"{p}_ay"] = A[:, 0], A[:, 1]
-    return cols
-
-
 def _fmt(v) -> str:
-    return "nan" if not math.isfinite(v) else f"{v:.12g}"
+    return "nan" if not math.isfinite(v) else f"{v + 0.0:.12g}"  # + 0.0: no "-0"
 
 
 def _analyze(args) -> int:
     mech = _load(args.model)
     q, qdot = sweep(mech, args.points, args.input)
     r = mech.solve(q, qdot)
-    cols = columns(mech, r)
+    cols = r.columns(degrees=True)
     names = list(cols)
     arr = np.column_stack([cols[k] for k in names])
     if args.format == "csv":
@@ -182,15 +156,8 @@ def _analyze(args) -> int:
             rec["reason"] = r.reason[i] or None
             recs.append(rec)
         text = to_json({"mechanism": mech.model.name, "rows": recs})
-    _write(lambda: emit(text, args.out))
+    emit(text, args.out)
     return 0
-
-
-def _write(fn):
-    try:
-        return fn()
-    except OSError as exc:
-        raise GearleverError(f"--out: cannot write the file: {exc.strerror or exc}") from None
 
 
 def _check_suffix(out, allowed):
@@ -210,7 +177,7 @@ def _draw(args) -> int:
     from gearlever.plotting.mechanism import draw_mechanism
 
     ax = draw_mechanism(mech, r)
-    _write(lambda: save(ax.figure, args.out))
+    save(ax.figure, args.out)
     return 0
 
 
@@ -223,5 +190,5 @@ def _animate(args) -> int:
     r = mech.solve(q, qdot)
     from gearlever.plotting.mechanism import animate_mechanism
 
-    _write(lambda: animate_mechanism(mech, r, args.out))
+    animate_mechanism(mech, r, args.out)
     return 0

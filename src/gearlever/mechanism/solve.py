@@ -979,29 +979,41 @@ class MechanismResult(Result):
         """``(N, n, 3)``: second time derivative of :attr:`pose`."""
         return self._pose(2)
 
-    def _frame_columns(self) -> dict:
+    def columns(self, degrees: bool = False) -> dict:
+        """The result as named columns, each name ending in its unit (``coupler_omega_rad_s``).
+
+        One row per input point.  Angles in radians (``_rad``), or in degrees
+        (``_deg``) when ``degrees`` is true (the command line); lengths in the
+        model's ``units`` label (``len`` when it gives none).  This is the one
+        naming of result columns: :meth:`to_frame` and ``gearlever mechanism
+        analyze`` both use it.
+        """
         m = self.model
-        u = m.units or "length"
+        u = m.units or "len"
+        ang, conv = ("deg", np.degrees) if degrees else ("rad", lambda x: x)
         cols = {}
         for i, spec in enumerate(m.inputs):
-            unit = u if spec.kind == "slider" else "rad"
-            cols[f"q_{spec.label} [{unit}]"] = self.q[:, i]
+            name = spec.label.replace("/", "_rel_")
+            cols[f"in_{name}_{u}" if spec.kind == "slider" else f"in_{name}_{ang}"] = (
+                self.q[:, i] if spec.kind == "slider" else conv(self.q[:, i])
+            )
         for k in m.moving:
-            cols[f"{k} angle [rad]"] = self.angle[k]
-            cols[f"{k} omega [rad/s]"] = self.omega[k]
-            cols[f"{k} alpha [rad/s^2]"] = self.alpha[k]
+            cols[f"{k}_{ang}"] = conv(self.angle[k])
+            cols[f"{k}_omega_rad_s"] = self.omega[k]
+            cols[f"{k}_alpha_rad_s2"] = self.alpha[k]
         for sname in self.displacement:
-            cols[f"{sname} s [{u}]"] = self.displacement[sname]
-            cols[f"{sname} v [{u}/s]"] = self.slider_velocity[sname]
-            cols[f"{sname} a [{u}/s^2]"] = self.slider_acceleration[sname]
+            cols[f"{sname}_s_{u}"] = self.displacement[sname]
+            cols[f"{sname}_v_{u}_s"] = self.slider_velocity[sname]
+            cols[f"{sname}_a_{u}_s2"] = self.slider_acceleration[sname]
         for p in m.points:
-            for lab, d, unit in (
-                ("", self.point, u),
-                ("v", self.velocity, f"{u}/s"),
-                ("a", self.acceleration, f"{u}/s^2"),
-            ):
-                cols[f"{p} {lab}x [{unit}]".replace("  ", " ")] = d[p][:, 0]
-                cols[f"{p} {lab}y [{unit}]".replace("  ", " ")] = d[p][:, 1]
+            P, V, A = self.point[p], self.velocity[p], self.acceleration[p]
+            cols[f"{p}_x_{u}"], cols[f"{p}_y_{u}"] = P[:, 0], P[:, 1]
+            cols[f"{p}_vx_{u}_s"], cols[f"{p}_vy_{u}_s"] = V[:, 0], V[:, 1]
+            cols[f"{p}_ax_{u}_s2"], cols[f"{p}_ay_{u}_s2"] = A[:, 0], A[:, 1]
+        return cols
+
+    def _frame_columns(self) -> dict:
+        cols = self.columns()
         cols["closed"] = self.closed
         cols["reason"] = self.reason
         return cols
