@@ -456,3 +456,23 @@ def test_fourbar_result_is_a_result_with_phi_and_the_theta2_alias():
     r = fourbar(9, 5, 8, 8, th)
     assert isinstance(r, Result) and r.to_frame().shape == (4, 10)
     assert r.theta2 is r.phi and np.array_equal(r.phi, th)
+
+
+def test_loop_solution_frame_names_each_unknown_and_its_analogues():
+    from gearlever.loops import INPUT, LoopSystem, Vector
+
+    loop = LoopSystem(
+        [
+            [
+                Vector("A", 5.0, INPUT),
+                Vector("BA", 8.0, "theta3"),
+                Vector("B", 8.0, "theta4", -1),
+                Vector("O4", 9.0, 0.0, -1),
+            ]
+        ]
+    )
+    sol = loop.solve(np.linspace(0, 1, 3), {"theta3": 1.3, "theta4": 1.8})
+    df = sol.to_frame()
+    assert list(df.columns[:4]) == ["phi", "theta3", "dtheta3_dphi", "d2theta3_dphi2"]
+    np.testing.assert_array_equal(df["dtheta4_dphi"].to_numpy(), sol.d1("theta4"))
+    assert sol.as_dict()["names"] == ("theta3", "theta4")

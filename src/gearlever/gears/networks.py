@@ -57,6 +57,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.gears.willis import willis_row
 
@@ -309,7 +310,7 @@ def format_linear(terms: Mapping[str, Fraction]) -> str:
 
 
 @dataclass(frozen=True)
-class NetworkAnalysis:
+class NetworkAnalysis(Result):
     """Counts and redundancies of a network's constraint system (exact).
 
     Attributes
@@ -334,7 +335,7 @@ class NetworkAnalysis:
 
 
 @dataclass(frozen=True)
-class NetworkSolution:
+class NetworkSolution(Result):
     """Every member's rotation as an exact linear function of the input members.
 
     ``coefficients[name][k]`` is the factor of ``rot_inputs[k]`` in ``rot_name``.

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearlever._result import Result
 from gearlever._validate import finite, finite_array, positive
 from gearlever.errors import ClosureError, GearleverError
 
@@ -566,7 +567,7 @@ class LoopSystem:
 
 
 @dataclass(frozen=True)
-class LoopSolution:
+class LoopSolution(Result):
     """Positions and analogues of a loop system's unknowns over the input values.
 
     Attributes
@@ -616,3 +617,13 @@ class LoopSolution:
     def d2(self, name) -> np.ndarray:
         """Acceleration analogue of unknown ``name``."""
         return self.d2x_dphi2[..., self._i(name)]
+
+    def _frame_columns(self) -> dict:
+        """One row per input value: ``phi``, then each unknown, ``d<name>_dphi``, ``d2<name>_dphi2``."""
+        cols = {"phi": np.ravel(self.phi)}
+        for name in self.names:
+            cols[name] = np.ravel(self[name])
+            cols[f"d{name}_dphi"] = np.ravel(self.d1(name))
+            cols[f"d2{name}_dphi2"] = np.ravel(self.d2(name))
+        cols["valid"], cols["closed"] = np.ravel(self.valid), np.ravel(self.closed)
+        return cols

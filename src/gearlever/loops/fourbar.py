@@ -297,7 +297,7 @@ def grashof(ground, crank, coupler, rocker) -> GrashofClass:
 
 
 @dataclass(frozen=True)
-class LimitPositions:
+class LimitPositions(Result):
     """Limit positions of a four-bar on one branch.
 
     Attributes

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from gearlever._result import Result
 from gearlever._validate import finite, finite_array
 from gearlever.errors import GearleverError
 from gearlever.gears import willis
@@ -169,7 +170,7 @@ def recover_tables_constants(
 
 
 @dataclass(frozen=True)
-class PublishedTable:
+class PublishedTable(Result):
     """One published table (I or II): two columns over 12 angles.
 
     Attributes
@@ -262,7 +263,7 @@ def published_table(table: str) -> PublishedTable:
 
 
 @dataclass(frozen=True)
-class TablesFit:
+class TablesFit(Result):
     """Result of :func:`identify_tables_constants`.
 
     Attributes
@@ -348,7 +349,7 @@ def identify_tables_constants(table: PublishedTable, lever_angle0=-math.pi / 2, 
 
 
 @dataclass(frozen=True)
-class SelfConsistentFit:
+class SelfConsistentFit(Result):
     """Result of :func:`fit_self_consistent`: the best the section-2 model can do.
 
     Attributes
