@@ -1,21 +1,24 @@
 """gearlever: kinematic analysis of gear-lever differential mechanisms.
 
-Numeric modules (floats and numpy arrays in, arrays out; none imports
-matplotlib or pandas):
+Subpackages by concept; the numeric core (numpy arrays in, arrays out) never
+imports matplotlib or pandas:
 
-- :mod:`gearlever.zrdpm`, :mod:`~gearlever.loops.vector_loop`,
-  :mod:`~gearlever.gears.willis`, :mod:`~gearlever.mechanism.structure`: the ZRDPM
-  paper's mobility, Willis equations, contours, analogues and Tables I and II.
-- :mod:`gearlever.loops`: the general planar vector-loop engine (four-bar,
-  slider-cranks, double slider, any loop system), plans.
-- :mod:`gearlever.gears.networks`, :mod:`~gearlever.gears.chariot`, :mod:`~gearlever.gears.car`:
-  gear networks solved exactly, the Nuttall south-pointing chariot, the car
-  differential.
-- :mod:`gearlever.trains`, :mod:`~gearlever.trains.synthesis`, :mod:`~gearlever.trains.hooke`:
-  trains of wheels, tooth-number synthesis and exact search, Hooke's coupling.
+- :mod:`gearlever.zrdpm`: the ZRDPM paper (Alimukhamedov et al., 2020):
+  contours, analogues, Tables I and II and the constants they were computed with.
+- :mod:`gearlever.gears`: the Willis relation (:mod:`~gearlever.gears.willis`),
+  gear networks with meshes on carriers, the tabular method, planetary design,
+  the Nuttall south-pointing chariot, the car differential.
+- :mod:`gearlever.trains`: ratio and sense of trains of wheels, tooth-number
+  synthesis by the classical rules, an exact best search, Hooke's coupling.
+- :mod:`gearlever.loops`: the planar vector-loop engine, closed forms (four-bar,
+  slider-cranks, the double slider), velocity and acceleration plans.
+- :mod:`gearlever.mechanism`: planar mechanisms of links, pins, sliders and
+  gears read from model files: structure, positions, velocities, accelerations.
 
 :mod:`gearlever.tables` (pandas) and :mod:`gearlever.plotting` (matplotlib)
-sit on top of them and are imported only when asked for.
+sit on top of them and are imported only when asked for; :mod:`gearlever.cli`
+is the command line.  Radians everywhere in the API; bad input raises
+:class:`GearleverError` (a :class:`ValueError`).
 
 >>> import gearlever
 >>> round(float(gearlever.mobility(n=9, p5=12, p4=3, q=2)), 1)
