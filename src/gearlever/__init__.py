@@ -25,6 +25,7 @@ sit on top of them and are imported only when asked for.
 __version__ = "0.1.0"
 
 from gearlever import _aliases  # noqa: E402
+from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
 from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate  # noqa: E402
@@ -71,6 +72,7 @@ __all__ = [
     "design_train",
     "search_best",
     "HookeJoint",
+    "flywheel",
 ]
 
 _aliases.install()
