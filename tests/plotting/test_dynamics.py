@@ -1,0 +1,34 @@
+"""Turning-moment figures: drawn, titled, labelled, with a legend and the energy band, and saved (Agg)."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+
+from gearlever.dynamics.flywheel import flywheel  # noqa: E402
+from gearlever.plotting import dynamics as plots  # noqa: E402
+from gearlever.plotting._common import save  # noqa: E402
+
+
+def _res(period=None):
+    th = np.linspace(0, 4 * np.pi, 145)
+    T = 200 + 900 * np.maximum(np.sin(th / 2), 0) ** 3 - 150 * np.sin(th)
+    if period:
+        th, T = th[:-1], T[:-1]
+    return flywheel(th, T, 1500.0, fluctuation=0.02, period=period)
+
+
+def test_turning_moment_and_energy_panels(tmp_path):
+    res = _res()
+    ax = plots.plot_turning_moment(res)
+    assert "(deg)" in ax.get_xlabel() and ax.get_title() and ax.get_legend() is not None
+    ax2 = plots.plot_energy(res)
+    band = [p for p in ax2.patches]
+    assert band, "the dE band is drawn"
+    ext = band[0].get_window_extent()  # the band spans E_min..E_max in data coordinates
+    y0, y1 = ax2.transData.inverted().transform([[0, ext.y0], [0, ext.y1]])[:, 1]
+    assert np.isclose(y1 - y0, res.energy_fluctuation, rtol=1e-6)
+    fig = plots.turning_moment_figure(_res(period=4 * np.pi))
+    path = save(fig, tmp_path / "tm.png")
+    assert path.stat().st_size > 1000
