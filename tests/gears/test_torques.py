@@ -302,3 +302,17 @@ def test_random_lossy_networks_power_balance_equals_losses(netfree, data, eta):
 def test_bad_input_is_refused_naming_it(kwargs, needle):
     with pytest.raises(GearleverError, match=needle):
         network_torques(planetary(), **kwargs)
+
+
+def test_cli_parsers_read_exact_values_and_name_the_flag():
+    from gearlever.gears.torques import parse_assignments, parse_number
+
+    assert parse_assignments("sun=100, ring=-2.5,c=3/4", "--torque") == {
+        "sun": 100,
+        "ring": Fraction(-5, 2),
+        "c": Fraction(3, 4),
+    }
+    assert parse_number("0.98", "--efficiency") == Fraction(49, 50)
+    for text, needle in [("sun", "MEMBER=VALUE"), ("sun=1,sun=2", "twice"), ("sun=abc", "--torque sun")]:
+        with pytest.raises(GearleverError, match=needle):
+            parse_assignments(text, "--torque")

@@ -40,7 +40,7 @@ from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.gears.networks import FRAME, Differential, Mesh, Network, SameShaft
 
-__all__ = ["NetworkTorques", "network_torques", "torque_report"]
+__all__ = ["NetworkTorques", "network_torques", "parse_assignments", "parse_number", "torque_report"]
 
 #: Largest number of direction-fixing passes for a lossy network (each pass is one exact solve).
 MAX_PASSES = 32
@@ -324,7 +324,7 @@ def network_torques(
     network.solve(list(loads))  # checks names, count (= dof) and independence, naming the constraints
     eta = _exact("efficiency", efficiency)
     if not 0 < eta <= 1:
-        raise GearleverError(f"efficiency must be in (0, 1], got {efficiency!r}")
+        raise GearleverError(f"efficiency must be in (0, 1], got {efficiency}")
 
     spd: dict[str, Fraction] | None = None
     if speeds is not None:
@@ -476,4 +476,35 @@ def torque_report(
         "efficiency": float(r.efficiency),
         "indeterminate": [k for k, v in r.multipliers.items() if v is None],
     }
+    return out
+
+
+def parse_number(text: str, flag: str) -> Fraction:
+    """An exact number from command-line text (``100``, ``2.5``, ``3/4``), the error naming ``flag``.
+
+    >>> parse_number("0.98", "--efficiency")
+    Fraction(49, 50)
+    """
+    try:
+        value = Fraction(str(text).strip())
+    except (ValueError, ZeroDivisionError):
+        raise GearleverError(f"{flag} must be a number (e.g. 100, 2.5 or 3/4), got {text!r}") from None
+    return value
+
+
+def parse_assignments(text: str, flag: str) -> dict[str, Fraction]:
+    """``"S=100,C=-2.5"`` as ``{member: exact value}``, the error naming ``flag``.
+
+    >>> parse_assignments("sun=10, ring=1/2", "--torque")
+    {'sun': Fraction(10, 1), 'ring': Fraction(1, 2)}
+    """
+    out: dict[str, Fraction] = {}
+    for item in filter(None, (x.strip() for x in str(text).split(","))):
+        name, sep, value = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise GearleverError(f"{flag} must be MEMBER=VALUE pairs separated by commas, got {item!r}")
+        if name in out:
+            raise GearleverError(f"{flag}: member {name!r} is given twice")
+        out[name] = parse_number(value, f"{flag} {name}")
     return out
