@@ -31,6 +31,7 @@ from gearlever.gears.car import car_differential  # noqa: E402
 from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate  # noqa: E402
 from gearlever.gears.networks import Network  # noqa: E402
 from gearlever.loops import LoopSystem, Vector, fourbar, grashof  # noqa: E402
+from gearlever.mechanism.core import Mechanism  # noqa: E402
 from gearlever.mechanism.structure import mobility, redundant_constraints  # noqa: E402
 from gearlever.trains import design_train, search_best, train_ratio  # noqa: E402
 from gearlever.trains.hooke import HookeJoint  # noqa: E402
@@ -59,6 +60,7 @@ __all__ = [
     "identify_tables_constants",
     "mobility",
     "redundant_constraints",
+    "Mechanism",
     "fourbar",
     "grashof",
     "LoopSystem",

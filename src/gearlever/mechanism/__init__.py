@@ -1,12 +1,33 @@
-"""Planar mechanisms: structure (mobility with redundant constraints).
+"""Planar mechanisms: structure (mobility with redundant constraints) and models as data.
 
 - :mod:`~gearlever.mechanism.structure`: the mobility formula
   W = 3n - 2 P5 - P4 + q and its inverse for redundant constraints.
+- :mod:`~gearlever.mechanism.model`: model files (TOML) of links, pins,
+  sliders, gears and meshes, validated into a :class:`MechanismModel`.
+- :mod:`~gearlever.mechanism.constraints`: constraint rows and their
+  analytic Jacobian in absolute coordinates.
+- :mod:`~gearlever.mechanism.structural`: counts, mobility and redundant
+  constraints from the Jacobian's rank.
+- :mod:`~gearlever.mechanism.solve`: positions, velocities, accelerations,
+  batched over the inputs; :mod:`~gearlever.mechanism.core`: :class:`Mechanism`.
 
 Numeric core: may import numpy, :mod:`gearlever.loops`, :mod:`gearlever.gears`,
 :mod:`gearlever.errors`, :mod:`gearlever._validate`; never pandas or matplotlib.
 """
 
+from gearlever.mechanism.core import Mechanism
+from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict
+from gearlever.mechanism.solve import MechanismResult
+from gearlever.mechanism.structural import MechanismStructure
 from gearlever.mechanism.structure import mobility, redundant_constraints
 
-__all__ = ["mobility", "redundant_constraints"]
+__all__ = [
+    "mobility",
+    "redundant_constraints",
+    "Mechanism",
+    "MechanismModel",
+    "MechanismResult",
+    "MechanismStructure",
+    "load_model",
+    "model_from_dict",
+]

@@ -1,0 +1,94 @@
+"""The :class:`Mechanism` object: a model file loaded, analysed and solved."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from gearlever.mechanism.constraints import constraint_jacobian, constraint_labels, constraint_residual
+from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict
+from gearlever.mechanism.solve import KinematicSystem, MechanismResult, solve
+from gearlever.mechanism.structural import MechanismStructure, analyze_structure
+
+__all__ = ["Mechanism"]
+
+
+class Mechanism:
+    """A planar mechanism of links, revolute pins, sliders and gears, read from a model.
+
+    Parameters
+    ----------
+    model : MechanismModel
+        Parsed model (see :func:`~gearlever.mechanism.model.model_from_dict`);
+        usually built by :meth:`load` or :meth:`from_dict`.
+
+    Examples
+    --------
+    A crank-rocker (ground 4, crank 1) with the crank as input:
+
+    >>> m = Mechanism.from_dict({
+    ...     "points": {"O2": [0, 0], "O4": [4, 0], "A": [1, 0], "B": [4.5, 2.8]},
+    ...     "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"],
+    ...               "coupler": ["A", "B"], "rocker": ["O4", "B"]},
+    ...     "inputs": [{"link": "crank"}]})
+    >>> m.structure().dof
+    1
+    >>> r = m.solve(np.linspace(0.0, 2 * np.pi, 5))
+    >>> bool(r.closed.all()), r.point["B"].shape
+    (True, (5, 2))
+    """
+
+    def __init__(self, model: MechanismModel):
+        self.model = model
+        self._system = None
+        self._structure = None
+
+    @classmethod
+    def load(cls, path) -> Mechanism:
+        """Read a TOML model file (see :mod:`gearlever.mechanism.model` for the schema)."""
+        return cls(load_model(path))
+
+    @classmethod
+    def from_dict(cls, d) -> Mechanism:
+        """Build from a dict with the model file's structure."""
+        return cls(model_from_dict(d))
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+    def structure(self) -> MechanismStructure:
+        """Counts, dof, redundant constraints (:func:`~gearlever.mechanism.structural.analyze_structure`)."""
+        if self._structure is None:
+            self._structure = analyze_structure(self.model)
+        return self._structure
+
+    @property
+    def system(self) -> KinematicSystem:
+        """The model compiled to reduced coordinates (built on first use)."""
+        if self._system is None:
+            self._system = KinematicSystem(self.model)
+        return self._system
+
+    @property
+    def sketch_inputs(self) -> np.ndarray:
+        """Input values of the sketch, ``(W,)``: link angles (rad) and slider displacements (0)."""
+        return self.system.q0.copy()
+
+    def solve(self, q, qdot=None, qddot=None) -> MechanismResult:
+        """Positions, velocities, accelerations over the input rows (:func:`~gearlever.mechanism.solve.solve`)."""
+        return solve(self.system, q, qdot, qddot)
+
+    def constraint_labels(self) -> tuple:
+        """Row names of :meth:`constraint_jacobian`."""
+        return constraint_labels(self.model)
+
+    def constraint_residual(self, pose) -> np.ndarray:
+        """Constraint residual at poses (:func:`~gearlever.mechanism.constraints.constraint_residual`)."""
+        return constraint_residual(self.model, pose)
+
+    def constraint_jacobian(self, pose) -> np.ndarray:
+        """Absolute-coordinate constraint Jacobian (:func:`~gearlever.mechanism.constraints.constraint_jacobian`)."""
+        return constraint_jacobian(self.model, pose)
+
+    def __repr__(self) -> str:
+        return f"Mechanism({self.model.name!r}, links={list(self.model.links)})"

@@ -1,0 +1,597 @@
+"""Mechanism model files: schema, loading and validation.
+
+A planar mechanism is described as data (a TOML file, or the same structure
+as a dict): named sketch points, rigid links carrying points, sliders, gears,
+meshes and inputs.  :func:`load_model` and :func:`model_from_dict` check every
+element and return a :class:`MechanismModel`, a frozen dataclass holding the
+parsed data (links with their body-fixed coordinates, joints, sliders, gears,
+meshes, inputs).  Every refusal is a :class:`~gearlever.errors.GearleverError`
+whose message names the element (``links.crank``, ``meshes[2]``...) and what
+is wrong.
+
+Schema (top-level tables)::
+
+    [mechanism]  name, units, module; gravity, pressure_angle (kept in extra)
+    [points]     NAME = [x, y]
+    [links]      NAME = ["P1", "P2", ...]        (the link "ground" is the frame)
+    [[sliders]]  link, on, point, direction [, name]
+    [gears]      NAME = { link, centre, teeth [, internal] }
+    [[meshes]]   gears = ["a", "b"] [, carrier]
+    [[inputs]]   link [, relative_to]   or   slider
+    [masses], [[loads]]   not read here: kept raw in MechanismModel.extra
+
+Standard library and numpy only.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from gearlever.errors import GearleverError
+
+__all__ = [
+    "GROUND",
+    "Link",
+    "Slider",
+    "Gear",
+    "Mesh",
+    "InputSpec",
+    "MechanismModel",
+    "load_model",
+    "model_from_dict",
+]
+
+#: Name of the frame link.
+GROUND = "ground"
+
+NEWLINE = b"\n"
+_TOP = ("mechanism", "points", "links", "sliders", "gears", "meshes", "inputs")
+_KEPT_TABLES = ("masses", "loads")
+_MECH_KEYS = ("name", "units", "module")
+_KEPT_MECH_KEYS = ("gravity", "pressure_angle")
+
+
+@dataclass(frozen=True)
+class Link:
+    """A rigid link: the points it carries and their body-fixed coordinates.
+
+    Attributes
+    ----------
+    name : str
+    points : tuple of str
+        In the order listed; the first is the origin of the body frame.
+    origin : tuple of float
+        Sketch position of the first point.
+    angle0 : float
+        Sketch angle (rad) of the line from the first point to the second;
+        0 for a one-point link (its angle is its rotation from the sketch).
+    local : dict
+        Point name -> body-fixed coordinates ``(xi, eta)``: the sketch offset
+        from ``origin`` turned back by ``angle0``.
+    """
+
+    name: str
+    points: tuple
+    origin: tuple
+    angle0: float
+    local: dict = field(repr=False)
+
+
+@dataclass(frozen=True)
+class Slider:
+    """A prismatic pair: ``link`` slides along a straight guide fixed on ``on``.
+
+    The guide passes through the sketch position of ``point`` (a point of
+    ``link``) along the unit vector ``direction`` (sketch orientation), and
+    turns with ``on``; ``link`` does not turn relative to ``on``.  Its
+    displacement is measured along ``direction`` from the sketch.
+    """
+
+    name: str
+    link: str
+    on: str
+    point: str
+    direction: tuple
+
+
+@dataclass(frozen=True)
+class Gear:
+    """A gear rigid on ``link``, centred at ``centre``; ``internal`` for a ring."""
+
+    name: str
+    link: str
+    centre: str
+    teeth: int
+    internal: bool = False
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """A gear mesh (higher pair) of gears ``a`` and ``b`` whose centres ``carrier`` carries."""
+
+    name: str
+    a: str
+    b: str
+    carrier: str
+
+
+@dataclass(frozen=True)
+class InputSpec:
+    """One input (degree of freedom).
+
+    ``kind`` is ``"link"`` (absolute angle of ``name``, or relative to the
+    link ``relative_to``) or ``"slider"`` (displacement of slider ``name``).
+    """
+
+    kind: str
+    name: str
+    relative_to: str | None = None
+
+    @property
+    def label(self) -> str:
+        """``"crank"``, ``"crank/ground2"`` or ``"slider:piston"``."""
+        if self.kind == "slider":
+            return f"slider:{self.name}"
+        return self.name if self.relative_to is None else f"{self.name}/{self.relative_to}"
+
+
+@dataclass(frozen=True)
+class MechanismModel:
+    """The parsed, validated data of a mechanism model file.
+
+    Attributes
+    ----------
+    name, units : str
+        From ``[mechanism]`` (``units`` is only a label for lengths).
+    module : float or None
+        Gear module; when given every mesh's centre distance was checked.
+    points : dict
+        Point name -> sketch position ``(x, y)``.
+    links : dict
+        Link name -> :class:`Link`; ``"ground"`` is the frame.
+    moving : tuple of str
+        The moving links (all but ground), in file order: the column order of
+        the absolute-coordinate Jacobian (columns ``x, y, theta`` of each).
+    joints : tuple of tuple
+        Revolute pairs ``(point, link_i, link_j)``: a point carried by ``k``
+        links gives ``k - 1`` pairs, all with its first carrier.
+    sliders : tuple of Slider
+    gears : dict
+        Gear name -> :class:`Gear`.
+    meshes : tuple of Mesh
+    inputs : tuple of InputSpec
+    extra : dict
+        Raw values of the tables and keys this loader keeps but does not
+        read: ``masses``, ``loads`` (top level), ``gravity``,
+        ``pressure_angle`` (of ``[mechanism]``); only those present.
+    """
+
+    name: str
+    units: str
+    module: float | None
+    points: dict
+    links: dict
+    moving: tuple
+    joints: tuple
+    sliders: tuple
+    gears: dict
+    meshes: tuple
+    inputs: tuple
+    extra: dict = field(default_factory=dict, repr=False)
+
+    def carriers(self, point: str) -> tuple:
+        """Links carrying ``point``, in file order."""
+        return tuple(name for name, link in self.links.items() if point in link.local)
+
+    def mesh_internal(self, mesh: Mesh) -> bool:
+        """True when one gear of ``mesh`` is internal (a ring)."""
+        return self.gears[mesh.a].internal or self.gears[mesh.b].internal
+
+    def pitch_radius(self, gear: str) -> float | None:
+        """Pitch radius of ``gear``: ``module * teeth / 2``, or from its first mesh's centre distance.
+
+        Returns None for a gear in no mesh when no module is given.
+        """
+        g = self.gears[gear]
+        if self.module is not None:
+            return self.module * g.teeth / 2.0
+        for m in self.meshes:
+            if gear in (m.a, m.b):
+                ga, gb = self.gears[m.a], self.gears[m.b]
+                d = math.dist(self.points[ga.centre], self.points[gb.centre])
+                zsum = abs(ga.teeth - gb.teeth) if self.mesh_internal(m) else ga.teeth + gb.teeth
+                if zsum > 0 and d > 0:
+                    return d * g.teeth / zsum
+        return None
+
+    @property
+    def length_scale(self) -> float:
+        """Largest distance of a sketch point from the centroid of all points (>= 1e-300)."""
+        xs = [p[0] for p in self.points.values()]
+        ys = [p[1] for p in self.points.values()]
+        cx, cy = sum(xs) / len(xs), sum(ys) / len(ys)
+        return max(max(math.hypot(x - cx, y - cy) for x, y in zip(xs, ys)), 1e-300)
+
+
+# --------------------------------------------------------------------------- helpers
+def _is_num(v) -> bool:
+    return isinstance(v, numbers.Real) and not isinstance(v, bool)
+
+
+def _num(where: str, v) -> float:
+    if not _is_num(v):
+        raise GearleverError(f"{where} must be a number, got {v!r}")
+    if not math.isfinite(float(v)):
+        raise GearleverError(f"{where} must be a finite number, got {v!r}")
+    return float(v)
+
+
+def _str(where: str, v) -> str:
+    if not isinstance(v, str) or not v:
+        raise GearleverError(f"{where} must be a non-empty string, got {v!r}")
+    return v
+
+
+def _table(where: str, v, allowed, required=()) -> dict:
+    if not isinstance(v, dict):
+        raise GearleverError(f"{where} must be a table, got {type(v).__name__}")
+    for k in v:
+        if k not in allowed:
+            raise GearleverError(f"{where}: unknown key {k!r} (allowed: {', '.join(allowed)})")
+    for k in required:
+        if k not in v:
+            raise GearleverError(f"{where}: missing key {k!r}")
+    return v
+
+
+def _array_of_tables(where: str, v) -> list:
+    if isinstance(v, dict):
+        v = [v]
+    if not isinstance(v, list) or not all(isinstance(t, dict) for t in v):
+        raise GearleverError(f"{where} must be an array of tables ([[{where}]])")
+    return v
+
+
+def _vec2(where: str, v) -> tuple:
+    if not isinstance(v, (list, tuple)) or len(v) != 2:
+        raise GearleverError(f"{where} must be a pair of numbers [x, y], got {v!r}")
+    return (_num(f"{where}[0]", v[0]), _num(f"{where}[1]", v[1]))
+
+
+# --------------------------------------------------------------------------- loading
+def load_model(path) -> MechanismModel:
+    """Read and validate a mechanism model file (TOML).
+
+    Parameters
+    ----------
+    path : str or path-like
+
+    Returns
+    -------
+    MechanismModel
+
+    Raises
+    ------
+    GearleverError
+        Unreadable file, TOML syntax error (with its line and column), or any
+        element refused by :func:`model_from_dict`; the message starts with
+        the file name.
+
+    Notes
+    -----
+    The file is parsed with the standard library's ``tomllib`` (TOML 1.0,
+    T. Preston-Werner, *TOML: Tom's Obvious Minimal Language*).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "m.toml"
+    >>> _ = p.write_text('[points]\\nO = [0, 0]\\nA = [1, 0]\\n[links]\\nground = ["O"]\\n'
+    ...                  'crank = ["O", "A"]\\n[[inputs]]\\nlink = "crank"\\n')
+    >>> load_model(p).moving
+    ('crank',)
+    """
+    p = Path(path)
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise GearleverError(f"{p}: cannot read the model file: {exc.strerror or exc}") from None
+    try:
+        data = tomllib.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError:
+        raise GearleverError(f"{p}: the model file is not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
+        if "line" not in msg:
+            msg += f" (line {raw.count(NEWLINE) + 1})"
+        raise GearleverError(f"{p}: TOML syntax error: {msg}") from None
+    try:
+        return model_from_dict(data)
+    except GearleverError as exc:
+        raise GearleverError(f"{p}: {exc}") from None
+
+
+def model_from_dict(d) -> MechanismModel:
+    """Validate a model given as a dict (the TOML file's structure) and parse it.
+
+    Parameters
+    ----------
+    d : dict
+        Top-level tables as in the module docstring.
+
+    Returns
+    -------
+    MechanismModel
+
+    Raises
+    ------
+    GearleverError
+        Naming the element and what is wrong: unknown table or key, unknown
+        point in a link, a link with no points, missing ground, a link not
+        joined to ground, a gear centre not on its link, a mesh with no
+        carrier or two, a centre distance that does not match the module, an
+        input on ground, a slider whose point is not on its link or whose
+        guide is on the sliding link itself, a zero direction, non-finite
+        numbers.
+
+    Notes
+    -----
+    A point carried by ``k >= 2`` links is a revolute joint, ``k - 1`` lower
+    pairs (Artobolevsky's counting, as in the planar Chebyshev-Grubler
+    formula).
+
+    Examples
+    --------
+    >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...                      "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...                      "inputs": [{"link": "crank"}]})
+    >>> m.joints
+    (('O', 'ground', 'crank'),)
+    """
+    if not isinstance(d, dict):
+        raise GearleverError(f"model must be a table (dict), got {type(d).__name__}")
+    for k in d:
+        if k not in _TOP and k not in _KEPT_TABLES:
+            raise GearleverError(f"unknown table [{k}] (allowed: {', '.join(_TOP + _KEPT_TABLES)})")
+    extra = {k: d[k] for k in _KEPT_TABLES if k in d}
+
+    mech = _table("[mechanism]", d.get("mechanism", {}), _MECH_KEYS + _KEPT_MECH_KEYS)
+    name = _str("mechanism.name", mech["name"]) if "name" in mech else "mechanism"
+    units = _str("mechanism.units", mech["units"]) if "units" in mech else ""
+    module = None
+    if "module" in mech:
+        module = _num("mechanism.module", mech["module"])
+        if module <= 0:
+            raise GearleverError(f"mechanism.module must be positive, got {mech['module']!r}")
+    for k in _KEPT_MECH_KEYS:
+        if k in mech:
+            extra[k] = mech[k]
+
+    # points
+    if "points" not in d:
+        raise GearleverError("missing table [points]")
+    pts = d["points"]
+    if not isinstance(pts, dict) or not pts:
+        raise GearleverError("[points] must be a non-empty table of NAME = [x, y]")
+    points = {str(k): _vec2(f"points.{k}", v) for k, v in pts.items()}
+
+    # links
+    if "links" not in d:
+        raise GearleverError("missing table [links]")
+    lk = d["links"]
+    if not isinstance(lk, dict) or not lk:
+        raise GearleverError("[links] must be a non-empty table of NAME = [points]")
+    if GROUND not in lk:
+        raise GearleverError('[links]: missing the frame link "ground"')
+    links = {}
+    for lname, plist in lk.items():
+        where = f"links.{lname}"
+        if not isinstance(plist, list):
+            raise GearleverError(f"{where} must be a list of point names, got {plist!r}")
+        if not plist:
+            raise GearleverError(f"{where}: a link must carry at least one point")
+        seen = []
+        for p in plist:
+            if not isinstance(p, str):
+                raise GearleverError(f"{where}: point names must be strings, got {p!r}")
+            if p not in points:
+                raise GearleverError(f"{where}: unknown point {p!r}")
+            if p in seen:
+                raise GearleverError(f"{where}: point {p!r} listed twice")
+            seen.append(p)
+        links[lname] = _make_link(lname, tuple(seen), points)
+    moving = tuple(n for n in links if n != GROUND)
+    if not moving:
+        raise GearleverError("[links]: the mechanism needs at least one moving link besides ground")
+
+    joints = []
+    for p in points:
+        carriers = [n for n in links if p in links[n].local]
+        for other in carriers[1:]:
+            joints.append((p, carriers[0], other))
+
+    # sliders
+    sliders = []
+    for i, t in enumerate(_array_of_tables("sliders", d.get("sliders", []))):
+        where = f"sliders[{i}]"
+        _table(where, t, ("name", "link", "on", "point", "direction"), ("link", "on", "point", "direction"))
+        link = _str(f"{where}.link", t["link"])
+        on = _str(f"{where}.on", t["on"])
+        for k, v in (("link", link), ("on", on)):
+            if v not in links:
+                raise GearleverError(f"{where}.{k}: unknown link {v!r}")
+        sname = _str(f"{where}.name", t["name"]) if "name" in t else link
+        where = f"sliders[{i}] ({sname})"
+        if on == link:
+            raise GearleverError(f"{where}: the guide must be on another link than the sliding link {link!r}")
+        point = _str(f"{where}.point", t["point"])
+        if point not in points:
+            raise GearleverError(f"{where}.point: unknown point {point!r}")
+        if point not in links[link].local:
+            raise GearleverError(f"{where}.point: point {point!r} is not on the sliding link {link!r}")
+        ux, uy = _vec2(f"{where}.direction", t["direction"])
+        norm = math.hypot(ux, uy)
+        if not norm > 0 or not math.isfinite(norm):
+            raise GearleverError(f"{where}.direction must be a non-zero vector, got {t['direction']!r}")
+        if any(s.name == sname for s in sliders):
+            raise GearleverError(f"{where}: slider name {sname!r} used twice (give each a name)")
+        sliders.append(Slider(sname, link, on, point, (ux / norm, uy / norm)))
+
+    _check_connected(links, joints, sliders)
+
+    # gears
+    gtab = d.get("gears", {})
+    if not isinstance(gtab, dict):
+        raise GearleverError("[gears] must be a table of NAME = { link, centre, teeth }")
+    gears = {}
+    for gname, t in gtab.items():
+        where = f"gears.{gname}"
+        _table(where, t, ("link", "centre", "teeth", "internal"), ("link", "centre", "teeth"))
+        link = _str(f"{where}.link", t["link"])
+        if link not in links:
+            raise GearleverError(f"{where}.link: unknown link {link!r}")
+        centre = _str(f"{where}.centre", t["centre"])
+        if centre not in points:
+            raise GearleverError(f"{where}.centre: unknown point {centre!r}")
+        if centre not in links[link].local:
+            raise GearleverError(f"{where}.centre: point {centre!r} is not on the gear's link {link!r}")
+        z = t["teeth"]
+        if isinstance(z, bool) or not isinstance(z, int) or z < 1:
+            raise GearleverError(f"{where}.teeth must be a positive integer, got {z!r}")
+        internal = t.get("internal", False)
+        if not isinstance(internal, bool):
+            raise GearleverError(f"{where}.internal must be true or false, got {internal!r}")
+        gears[gname] = Gear(gname, link, centre, int(z), internal)
+
+    # meshes
+    meshes = []
+    for i, t in enumerate(_array_of_tables("meshes", d.get("meshes", []))):
+        where = f"meshes[{i}]"
+        _table(where, t, ("gears", "carrier"), ("gears",))
+        pair = t["gears"]
+        if not isinstance(pair, list) or len(pair) != 2 or not all(isinstance(g, str) for g in pair):
+            raise GearleverError(f"{where}.gears must be a pair of gear names, got {pair!r}")
+        a, b = pair
+        where = f"meshes[{i}] ({a}-{b})"
+        for g in (a, b):
+            if g not in gears:
+                raise GearleverError(f"{where}: unknown gear {g!r}")
+        if a == b:
+            raise GearleverError(f"{where}: a gear cannot mesh with itself")
+        ga, gb = gears[a], gears[b]
+        if ga.internal and gb.internal:
+            raise GearleverError(f"{where}: two internal gears cannot mesh")
+        if ga.link == gb.link:
+            raise GearleverError(f"{where}: both gears are on the same link {ga.link!r}")
+        centres = {ga.centre, gb.centre}
+        if "carrier" in t:
+            carrier = _str(f"{where}.carrier", t["carrier"])
+            if carrier not in links:
+                raise GearleverError(f"{where}.carrier: unknown link {carrier!r}")
+            if not centres <= set(links[carrier].local):
+                raise GearleverError(f"{where}.carrier: link {carrier!r} does not carry both gear centres")
+        else:
+            cands = [n for n in links if centres <= set(links[n].local)]
+            if not cands:
+                raise GearleverError(f"{where}: no carrier (no link carries both centres {ga.centre}, {gb.centre})")
+            if len(cands) > 1:
+                raise GearleverError(f"{where}: two or more carriers {cands}; name one with carrier = ...")
+            carrier = cands[0]
+        if module is not None:
+            dist = math.dist(points[ga.centre], points[gb.centre])
+            internal = ga.internal or gb.internal
+            want = module * (abs(ga.teeth - gb.teeth) if internal else ga.teeth + gb.teeth) / 2.0
+            if abs(dist - want) > 1e-6 * max(want, 1.0):
+                raise GearleverError(
+                    f"{where}: centre distance {dist:.9g} does not match module {module:g}: "
+                    f"m (z_a {'-' if internal else '+'} z_b) / 2 = {want:.9g}"
+                )
+        meshes.append(Mesh(f"{a}-{b}", a, b, carrier))
+
+    # inputs
+    inputs = []
+    for i, t in enumerate(_array_of_tables("inputs", d.get("inputs", []))):
+        where = f"inputs[{i}]"
+        _table(where, t, ("link", "relative_to", "slider"))
+        if ("link" in t) == ("slider" in t):
+            raise GearleverError(f"{where}: give exactly one of link = ... or slider = ...")
+        if "slider" in t:
+            if "relative_to" in t:
+                raise GearleverError(f"{where}: relative_to applies to a link input only")
+            s = _str(f"{where}.slider", t["slider"])
+            if not any(sl.name == s for sl in sliders):
+                raise GearleverError(f"{where}.slider: unknown slider {s!r}")
+            spec = InputSpec("slider", s)
+        else:
+            lname = _str(f"{where}.link", t["link"])
+            if lname not in links:
+                raise GearleverError(f"{where}.link: unknown link {lname!r}")
+            if lname == GROUND:
+                raise GearleverError(f"{where}.link: an input cannot be on ground")
+            rel = None
+            if "relative_to" in t:
+                rel = _str(f"{where}.relative_to", t["relative_to"])
+                if rel not in links:
+                    raise GearleverError(f"{where}.relative_to: unknown link {rel!r}")
+                if rel == lname:
+                    raise GearleverError(f"{where}.relative_to: must be another link than {lname!r}")
+            spec = InputSpec("link", lname, rel)
+        if spec in inputs:
+            raise GearleverError(f"{where}: input {spec.label!r} given twice")
+        inputs.append(spec)
+    if not inputs:
+        raise GearleverError("missing [[inputs]]: give one per degree of freedom")
+
+    return MechanismModel(
+        name=name,
+        units=units,
+        module=module,
+        points=points,
+        links=links,
+        moving=moving,
+        joints=tuple(joints),
+        sliders=tuple(sliders),
+        gears=gears,
+        meshes=tuple(meshes),
+        inputs=tuple(inputs),
+        extra=extra,
+    )
+
+
+def _make_link(name: str, pts: tuple, points: dict) -> Link:
+    ox, oy = points[pts[0]]
+    angle0 = 0.0
+    if len(pts) >= 2:
+        bx, by = points[pts[1]]
+        if bx == ox and by == oy:
+            raise GearleverError(f"links.{name}: its first two points {pts[0]!r}, {pts[1]!r} coincide in the sketch")
+        angle0 = math.atan2(by - oy, bx - ox)
+    c, s = math.cos(angle0), math.sin(angle0)
+    local = {}
+    for p in pts:
+        dx, dy = points[p][0] - ox, points[p][1] - oy
+        local[p] = (c * dx + s * dy, -s * dx + c * dy)
+    return Link(name, pts, (ox, oy), angle0, local)
+
+
+def _check_connected(links, joints, sliders) -> None:
+    adj = {n: set() for n in links}
+    for _, a, b in joints:
+        adj[a].add(b)
+        adj[b].add(a)
+    for s in sliders:
+        adj[s.link].add(s.on)
+        adj[s.on].add(s.link)
+    seen, stack = {GROUND}, [GROUND]
+    while stack:
+        for m in adj[stack.pop()]:
+            if m not in seen:
+                seen.add(m)
+                stack.append(m)
+    for n in links:
+        if n not in seen:
+            raise GearleverError(f"links.{n}: not joined to ground by pins or sliders")

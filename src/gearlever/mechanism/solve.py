@@ -1,0 +1,1028 @@
+"""Positions, velocities and accelerations of a mechanism model, batched over the inputs.
+
+The model is compiled once into *reduced coordinates* ``x = (phi, s)``: the
+rotation ``phi_k`` of every moving link from the sketch and the displacement
+``s_j`` of every slider.  A spanning tree of the joint graph (pins and
+sliders, rooted at ground) writes every point as
+
+    p = c + sum_k R(phi_k) v_k + sum_j w_j s_j R(phi_on(j)) u_j
+
+(a sum of rotated sketch vectors), so the joints of the tree hold by
+construction.  What is left:
+
+- linear rows: a slider does not turn relative to its guide
+  (``phi_link = phi_on``), a mesh obeys Willis' equation, each input fixes
+  one coordinate; their null space is eliminated once, ``x = X_p (q - q0) + N z``;
+- closure rows: every pin or slider not in the tree closes a loop of the
+  joint graph (a cycle basis; the loops are never written by hand), two rows
+  each, solved for ``z`` by batched Newton with the analytic Jacobian.
+
+Velocities and accelerations are batched linear solves with the same
+Jacobian.  Pure numpy; no solver call per point.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from gearlever._result import Result
+from gearlever._validate import finite_array
+from gearlever.errors import GearleverError
+from gearlever.mechanism.constraints import mesh_coefficients
+from gearlever.mechanism.model import GROUND, MechanismModel
+from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independent_rows, numeric_rank
+
+__all__ = ["KinematicSystem", "MechanismResult", "solve"]
+
+#: Largest step (rad, or length / model length scale) of the sequential continuation.
+COARSE_STEP = 0.25
+#: Hadamard-ratio threshold below which the reduced Jacobian counts as singular (a dead point).
+SINGULAR_TOL = 1e-9
+
+REASON_UNREACHED = "not reached continuously from the sketch (past a dead point, or no assembly there)"
+REASON_DEAD = "dead point: the constraint Jacobian is singular (velocities undefined)"
+
+
+def _null_space(A: np.ndarray, ncols: int) -> np.ndarray:
+    if A.shape[0] == 0:
+        return np.eye(ncols)
+    u, sv, vt = np.linalg.svd(A)
+    r = int(np.sum(sv > RANK_TOL * max(sv[0] if sv.size else 0.0, 1e-300)))
+    return vt[r:].T.copy()
+
+
+class _Forms:
+    """Stacked point expressions ``c + sum_k R(phi_k) v_k + sum_j w_j s_j R(phi_o(j)) u_j``."""
+
+    def __init__(self, c, V, W):
+        self.c = np.asarray(c, dtype=float).reshape(-1, 2)
+        V = np.asarray(V, dtype=float).reshape(len(self.c), -1, 2)
+        self.Vx = np.ascontiguousarray(V[..., 0])  # (K, n)
+        self.Vy = np.ascontiguousarray(V[..., 1])
+        self.W = np.ascontiguousarray(np.asarray(W, dtype=float).reshape(len(self.c), -1))  # (K, S)
+        self.has_sliders = bool(np.any(self.W))
+
+
+class KinematicSystem:
+    """A mechanism model compiled to reduced coordinates (see the module docstring).
+
+    Parameters
+    ----------
+    model : MechanismModel
+
+    Raises
+    ------
+    GearleverError
+        If the number of inputs differs from the degrees of freedom, or the
+        inputs do not fix the mechanism at the sketch (a locked or dependent
+        input).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> m = model_from_dict({"points": {"O2": [0, 0], "O4": [4, 0], "A": [1, 0], "B": [4.5, 2.8]},
+    ...     "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"],
+    ...               "rocker": ["O4", "B"]}, "inputs": [{"link": "crank"}]})
+    >>> ks = KinematicSystem(m)
+    >>> (ks.nx, ks.dz, ks.n_closure_rows)
+    (3, 2, 2)
+    """
+
+    def __init__(self, model: MechanismModel):
+        self.model = model
+        st = analyze_structure(model)
+        self.structure = st
+        W = len(model.inputs)
+        if W != st.dof:
+            raise GearleverError(
+                f"inputs: the mechanism has {st.dof} degree(s) of freedom (rank analysis at the sketch) "
+                f"but {W} [[inputs]] are given"
+            )
+        moving = model.moving
+        self.n = n = len(moving)
+        self.S = S = len(model.sliders)
+        self.nx = n + S
+        self.W = W
+        self.idx = {k: i for i, k in enumerate(moving)}
+        self.slider_idx = {s.name: j for j, s in enumerate(model.sliders)}
+        self.L = model.length_scale
+        # slider directions (sketch) and the link whose rotation turns them (-1: ground)
+        self.ux = np.array([s.direction[0] for s in model.sliders])
+        self.uy = np.array([s.direction[1] for s in model.sliders])
+        self.so = np.array([self.idx.get(s.on, -1) for s in model.sliders], dtype=int)
+        self._tree()
+        self._linear()
+        self._closures()
+
+    # ------------------------------------------------------------- compilation
+    def _zero_form(self):
+        return np.zeros(2), np.zeros((self.n, 2)), np.zeros(self.S)
+
+    def form_at(self, link: str, X) -> tuple:
+        """Expression ``(c, V, W)`` of the sketch location ``X`` carried by ``link``."""
+        X = np.asarray(X, dtype=float)
+        if link == GROUND:
+            c, V, W = self._zero_form()
+            return X.copy(), V, W
+        A, (c, V, W) = self.anchor[link]
+        V = V.copy()
+        V[self.idx[link]] += X - A
+        return c.copy(), V, W.copy()
+
+    def _tree(self):
+        model = self.model
+        adj = {k: [] for k in model.links}
+        for e, (_p, a, b) in enumerate(model.joints):
+            adj[a].append(("pin", e, b))
+            adj[b].append(("pin", e, a))
+        for j, s in enumerate(model.sliders):
+            adj[s.link].append(("slider", j, s.on))
+            adj[s.on].append(("slider", j, s.link))
+        self.anchor = {}
+        used_pins, used_sliders = set(), set()
+        seen = {GROUND}
+        queue = deque([GROUND])
+        while queue:
+            p = queue.popleft()
+            for kind, e, k in adj[p]:
+                if k in seen:
+                    continue
+                seen.add(k)
+                queue.append(k)
+                if kind == "pin":
+                    J = np.array(model.points[model.joints[e][0]], dtype=float)
+                    self.anchor[k] = (J, self.form_at(p, J))
+                    used_pins.add(e)
+                else:
+                    s = model.sliders[e]
+                    G = np.array(model.points[s.point], dtype=float)
+                    c, V, W = self.form_at(p, G)
+                    W[e] += 1.0 if k == s.link else -1.0
+                    self.anchor[k] = (G, (c, V, W))
+                    used_sliders.add(e)
+        self.cut_pins = [e for e in range(len(model.joints)) if e not in used_pins]
+        self.cut_sliders = [j for j in range(len(model.sliders)) if j not in used_sliders]
+
+    def _linear(self):
+        model, n, nx = self.model, self.n, self.nx
+        rows = []
+        for s in model.sliders:
+            r = np.zeros(nx)
+            if s.link != GROUND:
+                r[self.idx[s.link]] += 1.0
+            if s.on != GROUND:
+                r[self.idx[s.on]] -= 1.0
+            rows.append(r)
+        for m in model.meshes:
+            r = np.zeros(nx)
+            for link, c in mesh_coefficients(model, m).items():
+                if link != GROUND:
+                    r[self.idx[link]] += c
+            rows.append(r)
+        A_c = np.array(rows).reshape(len(rows), nx)
+        Nc = _null_space(A_c, nx)
+        A_in = np.zeros((self.W, nx))
+        q0 = np.zeros(self.W)
+        scale = np.ones(self.W)
+        for i, spec in enumerate(model.inputs):
+            if spec.kind == "slider":
+                A_in[i, n + self.slider_idx[spec.name]] = 1.0
+                scale[i] = self.L
+            else:
+                A_in[i, self.idx[spec.name]] = 1.0
+                q0[i] = model.links[spec.name].angle0
+                if spec.relative_to is not None:
+                    q0[i] -= model.links[spec.relative_to].angle0
+                    if spec.relative_to != GROUND:
+                        A_in[i, self.idx[spec.relative_to]] -= 1.0
+        B = A_in @ Nc
+        if numeric_rank(B) < self.W:
+            bad = [model.inputs[i].label for i in range(self.W) if numeric_rank(B[i : i + 1]) == 0]
+            which = f" (input {bad[0]!r} cannot move)" if bad else ""
+            raise GearleverError(
+                f"inputs: the inputs are locked or depend on each other through gears or sliders{which}"
+            )
+        P = np.linalg.pinv(B)
+        N2 = _null_space(B, Nc.shape[1])
+        self.Xp = Nc @ P  # (nx, W)
+        self.N = Nc @ N2  # (nx, dz)
+        self.Xp[np.abs(self.Xp) < 1e-15] = 0.0
+        self.N[np.abs(self.N) < 1e-15] = 0.0
+        self.dz = self.N.shape[1]
+        self.q0 = q0
+        self.qscale = scale
+
+    def _closures(self):
+        model = self.model
+        cs, Vs, Ws = [], [], []
+        for e in self.cut_pins:
+            p, a, b = model.joints[e]
+            J = model.points[p]
+            ca, Va, Wa = self.form_at(a, J)
+            cb, Vb, Wb = self.form_at(b, J)
+            cs.append(ca - cb)
+            Vs.append(Va - Vb)
+            Ws.append(Wa - Wb)
+        for j in self.cut_sliders:
+            s = model.sliders[j]
+            G = model.points[s.point]
+            ca, Va, Wa = self.form_at(s.link, G)
+            cb, Vb, Wb = self.form_at(s.on, G)
+            W = Wa - Wb
+            W[j] -= 1.0
+            cs.append(ca - cb)
+            Vs.append(Va - Vb)
+            Ws.append(W)
+        K = len(cs)
+        self.n_closure_rows = 2 * K
+        if K == 0:
+            self.closure = None
+            self.sel = np.zeros(0, dtype=int)
+            if self.dz:
+                raise GearleverError("inputs: the inputs do not fix the mechanism")
+            return
+        self.closure = _Forms(np.array(cs), np.array(Vs), np.array(Ws))
+        # reduced Jacobian tables: dG/dz = -(s @ A1 + c @ A2) (x rows), (c @ A1 - s @ A2) (y rows)
+        self._jz_tables()
+        # independent rows at the sketch
+        x0 = np.zeros((self.nx, 1))
+        Jz = self.jz(x0, *self.trig(x0))[:, :, 0]
+        if numeric_rank(Jz / self.L) < self.dz:
+            raise GearleverError(
+                "inputs: the inputs do not fix the mechanism at the sketch (the sketch is a dead point, "
+                "or an input is locked)"
+            )
+        self.sel = np.array(independent_rows(Jz / self.L), dtype=int) if self.dz else np.zeros(0, dtype=int)
+        self.sgn0 = float(np.sign(np.linalg.det(Jz[self.sel][:, :]))) if self.dz else 1.0
+
+    def _jz_tables(self):
+        f, n, N = self.closure, self.n, self.N
+        K = f.c.shape[0]
+        dz = self.dz
+        Nphi = N[:n]  # (n, dz)
+        self.zlinks = np.flatnonzero(np.any(Nphi != 0, axis=1))
+        # (K*dz, n): entry [K dz + m, k] = V[K, k] N[k, m]
+        self._A1 = np.ascontiguousarray(np.einsum("Kk,km->Kmk", f.Vx, Nphi).reshape(K * dz, n))
+        self._A2 = np.ascontiguousarray(np.einsum("Kk,km->Kmk", f.Vy, Nphi).reshape(K * dz, n))
+        S = self.S
+        if S:
+            Ns = N[n:]  # (S, dz)
+            No = np.where(self.so[:, None] >= 0, Nphi[np.maximum(self.so, 0)], 0.0)  # (S, dz)
+            self._B1 = np.ascontiguousarray(np.einsum("Kj,jm->Kmj", f.W, Ns).reshape(K * dz, S))
+            self._B2 = np.ascontiguousarray(np.einsum("Kj,jm->Kmj", f.W, No).reshape(K * dz, S))
+
+    # ------------------------------------------------------------- evaluation
+    # Arrays are laid out feature-major: x (nx, N), C = cos(phi), S = sin(phi) (n, N),
+    # so that every sum over links is one small-by-long matrix product.
+    def trig(self, x):
+        """``cos`` and ``sin`` of the link rotations, (n, N) each."""
+        phi = x[: self.n]
+        return np.cos(phi), np.sin(phi)
+
+    def _ru(self, C, S):
+        """Slider directions turned with their guides, (S, N) each."""
+        Ce = np.concatenate([C, np.ones((1, C.shape[1]))])[self.so]
+        Se = np.concatenate([S, np.zeros((1, S.shape[1]))])[self.so]
+        return Ce * self.ux[:, None] - Se * self.uy[:, None], Se * self.ux[:, None] + Ce * self.uy[:, None]
+
+    def eval_forms(self, f: _Forms, x, C, S, xd=None, xdd=None):
+        """Positions (and velocities, accelerations) of stacked expressions, ``(K, N)`` arrays x and y."""
+        n = self.n
+        X = f.c[:, 0, None] + (f.Vx @ C - f.Vy @ S)
+        Y = f.c[:, 1, None] + (f.Vx @ S + f.Vy @ C)
+        sliders = self.S and f.has_sliders
+        if sliders:
+            rux, ruy = self._ru(C, S)
+            sl = x[n:]
+            X += f.W @ (sl * rux)
+            Y += f.W @ (sl * ruy)
+        out = [(X, Y)]
+        if xd is None:
+            return out
+        w = xd[:n]
+        a, b = w * C, w * S
+        # sum_k w_k R'(phi_k) v_k = rot90(sum_k w_k R(phi_k) v_k)
+        VX = -(f.Vx @ b + f.Vy @ a)
+        VY = f.Vx @ a - f.Vy @ b
+        if sliders:
+            sd = xd[n:]
+            wo = np.concatenate([w, np.zeros((1, w.shape[1]))])[self.so]
+            VX += f.W @ (sd * rux - sl * wo * ruy)
+            VY += f.W @ (sd * ruy + sl * wo * rux)
+        out.append((VX, VY))
+        if xdd is None:
+            return out
+        e = xdd[:n]
+        ww = w * w
+        # sum_k e_k R'_k v_k - w_k^2 R_k v_k
+        P, Q = e * S + ww * C, e * C - ww * S
+        AX = -(f.Vx @ P + f.Vy @ Q)
+        AY = f.Vx @ Q - f.Vy @ P
+        if sliders:
+            sdd = xdd[n:]
+            eo = np.concatenate([e, np.zeros((1, e.shape[1]))])[self.so]
+            k1 = sdd - sl * wo * wo
+            k2 = 2.0 * sd * wo + sl * eo
+            AX += f.W @ (k1 * rux - k2 * ruy)
+            AY += f.W @ (k1 * ruy + k2 * rux)
+        out.append((AX, AY))
+        return out
+
+    def residual(self, x, C, S):
+        """Closure rows, ``(2K, N)``: x and y of each cut pair, interleaved."""
+        X, Y = self.eval_forms(self.closure, x, C, S)[0]
+        G = np.empty((2 * X.shape[0], X.shape[1]))
+        G[0::2], G[1::2] = X, Y
+        return G
+
+    def jz(self, x, C, S):
+        """Reduced Jacobian ``dG/dz`` of the closure rows, shape ``(2K, dz, N)``."""
+        K, dz = self.closure.c.shape[0], self.dz
+        Nn = C.shape[1]
+        JX = -(self._A1 @ S + self._A2 @ C)
+        JY = self._A1 @ C - self._A2 @ S
+        if self.S:
+            rux, ruy = self._ru(C, S)
+            sl = x[self.n :]
+            JX += self._B1 @ rux - self._B2 @ (sl * ruy)
+            JY += self._B1 @ ruy + self._B2 @ (sl * rux)
+        J = np.empty((2 * K, dz, Nn))
+        J[0::2] = JX.reshape(K, dz, Nn)
+        J[1::2] = JY.reshape(K, dz, Nn)
+        return J
+
+    @staticmethod
+    def _solve_small(J, b):
+        """Solve ``J y = b`` for stacked square ``J`` (d, d, N), ``b`` (d, N); Cramer's rule for d <= 2."""
+        d = J.shape[0]
+        if d == 1:
+            return b / J[0]
+        if d == 2:
+            a, bb, c, dd = J[0, 0], J[0, 1], J[1, 0], J[1, 1]
+            det = a * dd - bb * c
+            return np.stack([(dd * b[0] - bb * b[1]) / det, (a * b[1] - c * b[0]) / det])
+        return np.linalg.solve(np.moveaxis(J, -1, 0), b.T[..., None])[..., 0].T
+
+    @staticmethod
+    def _hadamard(J):
+        """Hadamard ratio ``|det J| / prod(column norms)`` (1 orthogonal, 0 singular) and ``sign(det J)``."""
+        d = J.shape[0]
+        if d == 1:
+            det = J[0, 0]
+        elif d == 2:
+            det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
+        else:
+            det = np.linalg.det(np.nan_to_num(np.moveaxis(J, -1, 0)))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = np.abs(det) / np.prod(np.sqrt(np.sum(J * J, axis=0)), axis=0)
+        return np.nan_to_num(ratio, nan=0.0), np.sign(det)
+
+    def coordinates(self, dq, z):
+        """Reduced coordinates ``x = X_p dq + N z``, shape (nx, N)."""
+        x = self.Xp @ dq
+        if self.dz:
+            x += self.N @ z
+        return x
+
+    def newton(self, dq, z, CS=None, max_iter: int = 12):
+        """Batched Newton on the selected closure rows from ``z`` (dz, N).
+
+        Returns ``(z, x, C, S, converged)``.  Once the corrections are below
+        1e-4 rad the cosines and sines are turned by them (series to fourth
+        order) instead of recomputed.
+        """
+        x = self.coordinates(dq, z)
+        C, S = self.trig(x) if CS is None else CS
+        Nn = x.shape[1]
+        if self.dz == 0:
+            return z, x, C, S, np.ones(Nn, dtype=bool)
+        tol = 1e-13 * self.L
+        sel, zl, Nz = self.sel, self.zlinks, self.N[self.zlinks]
+        z = z.copy()
+        for _ in range(max_iter):
+            G = self.residual(x, C, S)
+            with np.errstate(invalid="ignore"):
+                if not np.any(np.abs(G[sel]) > tol):
+                    break
+            J = self.jz(x, C, S)[sel]
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                dz = self._solve_small(J, G[sel])
+            z -= dz
+            x = self.coordinates(dq, z)
+            d = -(Nz @ dz)
+            with np.errstate(invalid="ignore"):
+                big = not np.all(np.abs(d) <= 1e-4)
+            if big:
+                Cz, Sz = np.cos(x[zl]), np.sin(x[zl])
+            else:
+                d2 = d * d
+                cd, sd = 1.0 - d2 * (0.5 - d2 / 24.0), d * (1.0 - d2 / 6.0)
+                Cz, Sz = C[zl] * cd - S[zl] * sd, S[zl] * cd + C[zl] * sd
+            C, S = C.copy(), S.copy()
+            C[zl], S[zl] = Cz, Sz
+        else:
+            G = self.residual(x, C, S)
+        with np.errstate(invalid="ignore"):
+            conv = np.all(np.abs(G) <= 1e-9 * self.L, axis=0)
+        return z, x, C, S, conv
+
+    def derivatives(self, x, qd, qdd, CS=None):
+        """Velocities ``xd`` and accelerations ``xdd`` (nx, N) of the reduced coordinates, and a dead-point mask.
+
+        Parameters
+        ----------
+        x : ndarray (nx, N)
+        qd, qdd : ndarray (W, N)
+            Input velocities and accelerations.
+
+        Notes
+        -----
+        ``J_z zd = -G_x X_p qd`` and ``J_z zdd = -(G_x X_p qdd + gamma(xd))``:
+        the first and second time derivatives of the closure rows, linear in
+        the unknown rates with the Jacobian of the position problem
+        (Nikravesh, *Computer-Aided Analysis of Mechanical Systems*, 1988,
+        eqs. 3.15 and 3.17).
+        """
+        xd = self.Xp @ qd
+        xdd = self.Xp @ qdd
+        Nn = x.shape[1]
+        if self.dz == 0:
+            return xd, xdd, np.zeros(Nn, dtype=bool)
+        C, S = self.trig(x) if CS is None else CS
+        J = self.jz(x, C, S)[self.sel]
+        ratio, _ = self._hadamard(J)
+        dead = ~(ratio > SINGULAR_TOL)
+        if np.any(dead):
+            J = np.where(dead, np.eye(self.dz)[:, :, None], J)
+        sel = self.sel
+        (_, _), (VX, VY) = self.eval_forms(self.closure, x, C, S, xd)
+        b = np.empty((2 * VX.shape[0], Nn))
+        b[0::2], b[1::2] = VX, VY
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            xd += self.N @ self._solve_small(J, -b[sel])
+        (_, _), (_, _), (AX, AY) = self.eval_forms(self.closure, x, C, S, xd, xdd)
+        b[0::2], b[1::2] = AX, AY
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            xdd += self.N @ self._solve_small(J, -b[sel])
+        if np.any(dead):
+            xd[:, dead] = np.nan
+            xdd[:, dead] = np.nan
+        return xd, xdd, dead
+
+    # ------------------------------------------------------------- continuation
+    def _walk(self, dq0, z0, target, h):
+        """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,); None if it cannot get there."""
+        cur_dq, cur_z = dq0.copy(), z0.copy()
+        step = h
+        zeros = np.zeros((self.W, 1))
+        while True:
+            delta = target - cur_dq
+            dist = float(np.max(np.abs(delta / self.qscale)))
+            if dist == 0.0:
+                return cur_z
+            t = min(step, dist) / dist
+            x = self.coordinates(cur_dq[:, None], cur_z[:, None])
+            xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
+            if dead[0]:
+                return None
+            zd, zdd = self.N.T @ xd[:, 0], self.N.T @ xdd[:, 0]  # N: orthonormal columns, orthogonal to X_p
+            pred = cur_z + zd * t + 0.5 * zdd * t * t
+            new_dq = target.copy() if t >= 1.0 else cur_dq + t * delta
+            z, xn, C, S, conv = self.newton(new_dq[:, None], pred[:, None])
+            ok = bool(conv[0])
+            if ok:
+                ratio, sgn = self._hadamard(self.jz(xn, C, S)[self.sel])
+                trust = 0.2 * t * (1.0 + float(np.max(np.abs(zd)))) + 1e-12
+                ok = ratio[0] > SINGULAR_TOL and sgn[0] == self.sgn0 and float(np.max(np.abs(z[:, 0] - pred))) <= trust
+            if ok:
+                cur_dq, cur_z = new_dq, z[:, 0]
+                step = min(2 * step, h)
+            else:
+                step /= 2
+                if step < 1e-7:
+                    return None
+
+    def solve(self, q, qd, qdd):
+        """Reduced coordinates and rates over the input rows; arrays (nx, N), see :func:`solve`.
+
+        Parameters
+        ----------
+        q, qd, qdd : ndarray (W, N)
+        """
+        Nn = q.shape[1]
+        dq = q - self.q0[:, None]
+        CS = None
+        if self.dz == 0:
+            x = self.coordinates(dq, np.zeros((0, Nn)))
+            closed = np.ones(Nn, dtype=bool)
+            if self.closure is not None:
+                C, S = self.trig(x)
+                closed = np.all(np.abs(self.residual(x, C, S)) <= 1e-9 * self.L, axis=0)
+        else:
+            x = np.full((self.nx, Nn), np.nan)
+            closed = np.zeros(Nn, dtype=bool)
+            CS = self._positions(dq, x, closed)
+        if closed.all():
+            xs = x
+        else:
+            xs = np.where(closed, x, 0.0)
+            CS = None
+        xd, xdd, dead = self.derivatives(xs, qd, qdd, CS)
+        reason = np.full(Nn, "", dtype=object)
+        reason[closed & dead] = REASON_DEAD
+        reason[~closed] = REASON_UNREACHED
+        if not closed.all():
+            xd[:, ~closed] = np.nan
+            xdd[:, ~closed] = np.nan
+        return x, xd, xdd, closed, reason, CS
+
+    def _state(self, dq, z):
+        """Derivatives of ``z`` at one point: first per input (dz, W) and, for one input, second (dz,)."""
+        x = self.coordinates(dq[:, None], z[:, None])
+        Zp = np.zeros((self.dz, self.W))
+        Zpp = np.zeros(self.dz)
+        for w in range(self.W):
+            e = np.zeros((self.W, 1))
+            e[w] = 1.0
+            xd, xdd, dead = self.derivatives(x, e, np.zeros_like(e))
+            if dead[0]:
+                return None
+            Zp[:, w] = self.N.T @ xd[:, 0]
+            if self.W == 1:
+                Zpp = self.N.T @ xdd[:, 0]
+        return Zp, Zpp
+
+    def _coarse(self, cdq, cz, cok, h, block: int = 8):
+        """Continuation through the coarse points ``cdq`` (W, nb) from the sketch, in batched blocks.
+
+        From the last accepted state the next ``block`` coarse points are
+        predicted (Taylor, second order for one input), corrected together by
+        batched Newton, and the longest prefix that passes the checks
+        (converged, same sign of det J, correction within the trust radius)
+        is accepted; when none passes, the next point is walked to in small
+        sequential steps (:meth:`_walk`).
+        """
+        nb = cdq.shape[1]
+        st_dq, st_z = np.zeros(self.W), np.zeros(self.dz)
+        st = self._state(st_dq, st_z)
+        blocked = None  # (from, at) input values of a failed walk (one input only)
+        k = 0
+        while k < nb:
+            if blocked is not None and self.W == 1:
+                q_from, q_at = blocked
+                t0 = cdq[0, k]
+                if (t0 - q_from) * (q_at - q_from) > 0 and abs(t0 - q_from) >= abs(q_at - q_from):
+                    k += 1
+                    continue
+            m = 0
+            if st is not None:
+                ks = np.arange(k, min(k + block, nb))
+                d = cdq[:, ks] - st_dq[:, None]
+                Zp, Zpp = st
+                pred = st_z[:, None] + Zp @ d
+                if self.W == 1:
+                    pred += 0.5 * Zpp[:, None] * d[0] ** 2
+                z, x, C, S, conv = self.newton(cdq[:, ks], pred)
+                ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
+                dist = np.max(np.abs(d / self.qscale[:, None]), axis=0)
+                trust = 0.2 * np.maximum(dist, 1e-3) * (1.0 + np.max(np.abs(Zp * self.qscale[None, :])))
+                with np.errstate(invalid="ignore"):
+                    good = (
+                        conv & (ratio > SINGULAR_TOL) & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=0) <= trust)
+                    )
+                m = int(np.argmin(good)) if not good.all() else good.size
+                if m:
+                    cz[:, ks[:m]] = z[:, :m]
+                    cok[ks[:m]] = True
+                    nst = self._state(cdq[:, ks[m - 1]], z[:, m - 1])
+                    if nst is None:  # a dead point exactly at the accepted point: keep the older state
+                        m = 0
+                    else:
+                        st_dq, st_z, st = cdq[:, ks[m - 1]].copy(), z[:, m - 1].copy(), nst
+                        blocked = None
+                        k += m
+                        continue
+            zk = self._walk(st_dq, st_z, cdq[:, k], h)
+            if zk is None:
+                blocked = (st_dq[0], cdq[0, k])
+            else:
+                nst = self._state(cdq[:, k], zk)
+                cz[:, k], cok[k] = zk, True
+                if nst is not None:
+                    st_dq, st_z, st = cdq[:, k].copy(), zk, nst
+                blocked = None
+            k += 1
+
+    def _positions(self, dq, x_out, closed):
+        """Fill ``x_out`` (nx, N) and ``closed`` by continuation; return (C, S) of the points when all closed."""
+        Nn, h = dq.shape[1], COARSE_STEP
+        qs = np.abs(dq / self.qscale[:, None])
+        step = np.empty(Nn)
+        step[0] = np.max(qs[:, 0])
+        if Nn > 1:
+            step[1:] = np.max(np.abs(np.diff(dq / self.qscale[:, None], axis=1)), axis=0)
+        bins = np.floor(np.cumsum(step) / h)
+        newbin = np.diff(bins) != 0
+        starts = np.concatenate([[0], np.flatnonzero(newbin) + 1])
+        nb = starts.size
+        counts = np.diff(np.concatenate([starts, [Nn]]))
+        cz = np.full((self.dz, nb), np.nan)
+        cok = np.zeros(nb, dtype=bool)
+        cdq = dq[:, starts]
+        self._coarse(cdq, cz, cok, h)
+        if not cok.any():
+            return None
+        # first (per input) and, for one input, second derivatives of z at the coarse points
+        good = np.flatnonzero(cok)
+        xc = self.coordinates(cdq[:, good], cz[:, good])
+        Zp = np.zeros((self.dz, self.W, nb))
+        Zpp = np.zeros((self.dz, nb))
+        for w in range(self.W):
+            e = np.zeros((self.W, good.size))
+            e[w] = 1.0
+            xd, xdd, _ = self.derivatives(xc, e, np.zeros_like(e))
+            Zp[:, w, good] = self.N.T @ xd
+            if self.W == 1:
+                Zpp[:, good] = self.N.T @ xdd
+        Zp = np.nan_to_num(Zp)
+        Zpp = np.nan_to_num(Zpp)
+        # start of every point from its coarse point: cubic Hermite (one input) or Taylor
+        allok = bool(cok.all())
+        if allok:
+            idx = None
+            b = np.repeat(np.arange(nb), counts)
+            d = dq - np.repeat(cdq, counts, axis=1)
+        else:
+            bid = np.repeat(np.arange(nb), counts)
+            idx = np.flatnonzero(cok[bid])
+            b = bid[idx]
+            d = dq[:, idx] - cdq[:, b]
+        if self.W == 1:
+            # per-bin cubic in the local input offset d: a0 + a1 d + a2 d^2 + a3 d^3
+            nxt = np.minimum(np.arange(nb) + 1, nb - 1)
+            span = cdq[0, nxt] - cdq[0]
+            use = (nxt > np.arange(nb)) & cok & cok[nxt] & (np.abs(span / self.qscale[0]) > 1e-3)
+            a0, a1 = cz.copy(), Zp[:, 0].copy()
+            a2, a3 = 0.5 * Zpp, np.zeros_like(Zpp)
+            if np.any(use):
+                u = np.flatnonzero(use)
+                hs = span[u]
+                dz_ = cz[:, nxt[u]] - cz[:, u]
+                m0, m1 = Zp[:, 0, u], Zp[:, 0, nxt[u]]
+                a2[:, u] = (3 * dz_ / hs - 2 * m0 - m1) / hs
+                a3[:, u] = (m0 + m1 - 2 * dz_ / hs) / (hs * hs)
+            coef = np.stack([a0, a1, a2, a3])  # (4, dz, nb)
+            cb = np.repeat(coef, counts, axis=2) if allok else coef[:, :, b]
+            t = d[0]
+            pred = cb[0] + t * (cb[1] + t * (cb[2] + t * cb[3]))
+        else:
+            zb = np.repeat(cz, counts, axis=1) if allok else cz[:, b]
+            Zb = np.repeat(Zp, counts, axis=2) if allok else Zp[:, :, b]
+            pred = zb + np.einsum("dwn,wn->dn", Zb, d)
+        dqi = dq if allok else dq[:, idx]
+        z, x, C, S, conv = self.newton(dqi, pred)
+        ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
+        zpb = np.max(np.abs(Zp * self.qscale[None, :, None]), axis=(0, 1))
+        trust = 0.2 * h * (1.0 + (np.repeat(zpb, counts) if allok else zpb[b]))
+        with np.errstate(invalid="ignore"):
+            ok = conv & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=0) <= trust)
+        if allok and ok.all():
+            x_out[:] = x
+            closed[:] = True
+            return C, S
+        ii = np.arange(Nn) if allok else idx
+        x_out[:, ii[ok]] = x[:, ok]
+        closed[ii[ok]] = True
+        # repair the points that failed: sequential continuation from the previous point that closed
+        zfull = np.full((self.dz, Nn), np.nan)
+        zfull[:, ii[ok]] = z[:, ok]
+        bid = np.repeat(np.arange(nb), counts)
+        skip_bin = -1
+        for i in ii[~ok]:
+            if bid[i] == skip_bin:
+                continue
+            prev = i - 1
+            while prev >= 0 and not closed[prev]:
+                prev -= 1
+            if prev >= 0 and bid[prev] == bid[i]:
+                src_dq, src_z = dq[:, prev], zfull[:, prev]
+            else:
+                src_dq, src_z = cdq[:, bid[i]], cz[:, bid[i]]
+            zi = self._walk(src_dq, src_z, dq[:, i], h)
+            if zi is None:
+                skip_bin = bid[i]
+                continue
+            zfull[:, i] = zi
+            x_out[:, i] = self.coordinates(dq[:, i : i + 1], zi[:, None])[:, 0]
+            closed[i] = True
+        return None
+
+
+def _as_rows(name, v, N, W):
+    a = finite_array(name, v)
+    if a.ndim == 0:
+        a = np.full((N, W), float(a))
+    elif a.ndim == 1 and W == 1:
+        a = a[:, None]
+    elif a.ndim == 1 and a.shape[0] == W and N == 1:
+        a = a[None, :]
+    if a.shape != (N, W):
+        raise GearleverError(f"{name} must have shape ({N},) or ({N}, {W}) like q, got {a.shape}")
+    return a
+
+
+def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
+    """Positions, velocities and accelerations of every link and point over the input rows.
+
+    Parameters
+    ----------
+    system : KinematicSystem
+    q : array_like
+        ``(N,)`` for one input or ``(N, W)``, columns in the order of
+        ``[[inputs]]``: link angles in rad (absolute, or relative to
+        ``relative_to``), slider displacements in length units from the sketch.
+    qdot, qddot : array_like, optional
+        Input velocities and accelerations, same shape (default 1 and 0: the
+        results are then the velocity and acceleration analogues).
+
+    Returns
+    -------
+    MechanismResult
+
+    Notes
+    -----
+    Continuation (E. L. Allgower and K. Georg, *Numerical Continuation
+    Methods*, Springer, 1990, ch. 2, predictor-corrector): the inputs are
+    followed from the sketch in steps of at most :data:`COARSE_STEP`
+    through a coarse subsequence (second-order Taylor predictor, Newton
+    corrector), then every point is corrected at once by batched Newton from
+    a cubic Hermite (one input) or Taylor (several) start.  A point whose
+    correction moves farther than the predictor explains, or where the sign
+    of ``det J`` differs from the sketch's (the other assembly branch), is
+    re-walked sequentially and otherwise left NaN with ``closed`` False.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> r = solve(KinematicSystem(m), [0.0, np.pi / 2])
+    >>> np.round(r.point["A"], 12).tolist()
+    [[1.0, 0.0], [0.0, 1.0]]
+    """
+    W = system.W
+    qa = finite_array("q", q)
+    if qa.ndim == 0:
+        qa = qa.reshape(1, 1) if W == 1 else qa
+    if qa.ndim == 1:
+        qa = qa[:, None] if W == 1 else (qa[None, :] if qa.shape[0] == W else qa)
+    if qa.ndim != 2 or qa.shape[1] != W:
+        raise GearleverError(f"q must have shape (N,) for one input or (N, {W}) for {W} inputs, got {np.shape(q)}")
+    if qa.shape[0] == 0:
+        raise GearleverError("q must hold at least one input row")
+    N = qa.shape[0]
+    qd = np.ones((N, W)) if qdot is None else _as_rows("qdot", qdot, N, W)
+    qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
+    x, xd, xdd, closed, reason, CS = system.solve(qa.T, qd.T, qdd.T)
+    r = MechanismResult(qa, qd, qdd, x.T, xd.T, xdd.T, closed, reason, system)
+    object.__setattr__(r, "_cs", CS)
+    return r
+
+
+@dataclass(frozen=True)
+class MechanismResult(Result):
+    """Positions, velocities and accelerations of a mechanism over its input rows.
+
+    Attributes
+    ----------
+    q, qdot, qddot : ndarray
+        ``(N, W)`` inputs and their rates, columns in ``[[inputs]]`` order.
+    x, xdot, xddot : ndarray
+        ``(N, n + S)`` reduced coordinates: rotation from the sketch of each
+        moving link (rad), then displacement of each slider; NaN where not
+        closed (rates also NaN at a dead point).
+    closed : ndarray of bool
+        ``(N,)``: the mechanism is assembled at this input row.
+    reason : ndarray of str
+        ``(N,)``: ``""`` where closed with finite rates, otherwise why not.
+    system : KinematicSystem
+        The compiled model.
+
+    Dicts (computed when first asked for): :attr:`angle`, :attr:`omega`,
+    :attr:`alpha` (link -> ``(N,)``), :attr:`point`, :attr:`velocity`,
+    :attr:`acceleration` (point -> ``(N, 2)``), :attr:`displacement`,
+    :attr:`slider_velocity`, :attr:`slider_acceleration` (slider -> ``(N,)``);
+    arrays :attr:`pose`, :attr:`pose_velocity`, :attr:`pose_acceleration`
+    (``(N, n, 3)``: ``x, y, theta`` of each moving link's frame, the columns
+    of :func:`~gearlever.mechanism.constraints.constraint_jacobian`).
+    """
+
+    q: np.ndarray
+    qdot: np.ndarray
+    qddot: np.ndarray
+    x: np.ndarray
+    xdot: np.ndarray
+    xddot: np.ndarray
+    closed: np.ndarray
+    reason: np.ndarray
+    system: KinematicSystem = field(repr=False, compare=False)
+
+    @property
+    def model(self) -> MechanismModel:
+        return self.system.model
+
+    def _links(self, arr, ground_value):
+        m = self.model
+        out = {}
+        for k, link in m.links.items():
+            if k == GROUND:
+                out[k] = np.full(arr.shape[0], ground_value(link))
+            else:
+                out[k] = arr[:, self.system.idx[k]]
+        return out
+
+    @cached_property
+    def angle(self) -> dict:
+        """Link -> absolute angle (rad): sketch angle plus rotation."""
+        m = self.model
+        out = self._links(self.x, lambda link: link.angle0)
+        for k in m.moving:
+            out[k] = out[k] + m.links[k].angle0
+        return out
+
+    @cached_property
+    def omega(self) -> dict:
+        """Link -> angular velocity (rad/s, or the velocity analogue)."""
+        return self._links(self.xdot, lambda link: 0.0)
+
+    @cached_property
+    def alpha(self) -> dict:
+        """Link -> angular acceleration (rad/s^2, or the acceleration analogue)."""
+        return self._links(self.xddot, lambda link: 0.0)
+
+    @cached_property
+    def _point_kinematics(self):
+        ks = self.system
+        names, f = _point_forms(ks)
+        ok = self.closed
+        allok = bool(ok.all())
+        x = self.x.T if allok else np.where(ok, self.x.T, 0.0)
+        CS = self.__dict__.get("_cs") if allok else None
+        C, S = ks.trig(x) if CS is None else CS
+        (X, Y), (VX, VY), (AX, AY) = ks.eval_forms(f, x, C, S, self.xdot.T, self.xddot.T)
+        if not allok:
+            X[:, ~ok] = np.nan
+            Y[:, ~ok] = np.nan
+        return names, (X, Y), (VX, VY), (AX, AY)
+
+    def _pdict(self, which):
+        names, *arrs = self._point_kinematics
+        X, Y = arrs[which]
+        return _LazyDict(
+            [p for p in names if not p.startswith("\0")],
+            lambda p: np.stack([X[names.index(p)], Y[names.index(p)]], axis=1),
+        )
+
+    @cached_property
+    def point(self) -> dict:
+        """Point -> position ``(N, 2)``."""
+        return self._pdict(0)
+
+    @cached_property
+    def velocity(self) -> dict:
+        """Point -> velocity ``(N, 2)`` (or its analogue)."""
+        return self._pdict(1)
+
+    @cached_property
+    def acceleration(self) -> dict:
+        """Point -> acceleration ``(N, 2)`` (or its analogue)."""
+        return self._pdict(2)
+
+    def _sliders(self, arr):
+        n = self.system.n
+        return {s.name: arr[:, n + j] for j, s in enumerate(self.model.sliders)}
+
+    @cached_property
+    def displacement(self) -> dict:
+        """Slider -> displacement along its guide from the sketch (length)."""
+        return self._sliders(self.x)
+
+    @cached_property
+    def slider_velocity(self) -> dict:
+        """Slider -> sliding velocity along its guide."""
+        return self._sliders(self.xdot)
+
+    @cached_property
+    def slider_acceleration(self) -> dict:
+        """Slider -> sliding acceleration along its guide."""
+        return self._sliders(self.xddot)
+
+    def _pose(self, which):
+        names, *arrs = self._point_kinematics
+        X, Y = arrs[which]
+        m = self.model
+        out = np.empty((X.shape[1], len(m.moving), 3))
+        base = [self.x, self.xdot, self.xddot][which]
+        for i, k in enumerate(m.moving):
+            j = names.index("\0" + k)
+            out[:, i, 0], out[:, i, 1] = X[j], Y[j]
+            out[:, i, 2] = base[:, i] + (m.links[k].angle0 if which == 0 else 0.0)
+        return out
+
+    @cached_property
+    def pose(self) -> np.ndarray:
+        """``(N, n, 3)``: ``x, y, theta`` of each moving link (origin at its first point)."""
+        return self._pose(0)
+
+    @cached_property
+    def pose_velocity(self) -> np.ndarray:
+        """``(N, n, 3)``: time derivative of :attr:`pose`."""
+        return self._pose(1)
+
+    @cached_property
+    def pose_acceleration(self) -> np.ndarray:
+        """``(N, n, 3)``: second time derivative of :attr:`pose`."""
+        return self._pose(2)
+
+    def _frame_columns(self) -> dict:
+        m = self.model
+        u = m.units or "length"
+        cols = {}
+        for i, spec in enumerate(m.inputs):
+            unit = u if spec.kind == "slider" else "rad"
+            cols[f"q_{spec.label} [{unit}]"] = self.q[:, i]
+        for k in m.moving:
+            cols[f"{k} angle [rad]"] = self.angle[k]
+            cols[f"{k} omega [rad/s]"] = self.omega[k]
+            cols[f"{k} alpha [rad/s^2]"] = self.alpha[k]
+        for sname in self.displacement:
+            cols[f"{sname} s [{u}]"] = self.displacement[sname]
+            cols[f"{sname} v [{u}/s]"] = self.slider_velocity[sname]
+            cols[f"{sname} a [{u}/s^2]"] = self.slider_acceleration[sname]
+        for p in m.points:
+            for lab, d, unit in (
+                ("", self.point, u),
+                ("v", self.velocity, f"{u}/s"),
+                ("a", self.acceleration, f"{u}/s^2"),
+            ):
+                cols[f"{p} {lab}x [{unit}]".replace("  ", " ")] = d[p][:, 0]
+                cols[f"{p} {lab}y [{unit}]".replace("  ", " ")] = d[p][:, 1]
+        cols["closed"] = self.closed
+        cols["reason"] = self.reason
+        return cols
+
+
+class _LazyDict(Mapping):
+    """A read-only mapping whose values are computed on first access."""
+
+    def __init__(self, keys, compute):
+        self._keys = list(keys)
+        self._compute = compute
+        self._cache = {}
+
+    def __getitem__(self, key):
+        if key not in self._cache:
+            if key not in self._keys:
+                raise KeyError(key)
+            self._cache[key] = self._compute(key)
+        return self._cache[key]
+
+    def __iter__(self):
+        return iter(self._keys)
+
+    def __len__(self):
+        return len(self._keys)
+
+    def __repr__(self):
+        return f"<{len(self._keys)} arrays: {', '.join(self._keys)}>"
+
+
+def _point_forms(ks: KinematicSystem):
+    cached = getattr(ks, "_pforms", None)
+    if cached is not None:
+        return cached
+    m = ks.model
+    names, cs, Vs, Ws = [], [], [], []
+    for p, X in m.points.items():
+        carriers = m.carriers(p)
+        if not carriers:
+            continue
+        c, V, W = ks.form_at(carriers[0], X)
+        names.append(p)
+        cs.append(c)
+        Vs.append(V)
+        Ws.append(W)
+    for k in m.moving:
+        c, V, W = ks.form_at(k, m.links[k].origin)
+        names.append("\0" + k)
+        cs.append(c)
+        Vs.append(V)
+        Ws.append(W)
+    out = (names, _Forms(np.array(cs), np.array(Vs), np.array(Ws)))
+    ks._pforms = out
+    return out
