@@ -144,7 +144,8 @@ class InverseDynamics(Result):
     mesh_force : mesh -> (N,) tooth force along the line of action, ``|F_t| / cos(pressure angle)``.
     mesh_tangential : mesh -> (N,) tangential tooth force on the first gear along ``t = R(90 deg) e``,
         ``e`` the unit vector from its centre to the second gear's centre (the second gear gets ``-F_t t``).
-    ground_force : (N, 2) total force of the frame on the mechanism (pins, guides, teeth, drivers).
+    ground_force : (N, 2) total force of the frame on the mechanism (pins, guides, teeth, drivers); fixed
+        by equilibrium even where its share among redundant pairs is not.
     ground_moment : (N,) total moment of the frame on the mechanism about the world origin.
     indeterminate : labels of the multipliers the equilibrium does not fix (redundant constraints).
     ok : (N,) rows where the mechanism is closed and the equilibrium system is consistent.
@@ -342,6 +343,7 @@ def inverse_dynamics(
         yr, und_r, _ = _solve_equilibrium(A, Qr, m.length_scale, n3)
         y = y + yr
         und = und | und_r
+    y_any = np.where(ok[:, None], y, 0.0)  # one particular solution: the frame's total action is the same for all
     y = np.where(ok[:, None] & ~und, y, np.nan)
     indeterminate = tuple(lab for j, lab in enumerate(labels) if np.any(und[ok, j]))
 
@@ -370,7 +372,7 @@ def inverse_dynamics(
     # the frame's total action: every row that involves ground, as a world wrench on the moving links
     gf = np.zeros((N, 2))
     gm = np.zeros(N)
-    yz = np.nan_to_num(y)
+    yz = y_any
     for j, mem in enumerate(members):
         if GROUND not in mem:
             continue
@@ -539,7 +541,7 @@ def simulate(
     masses=None,
     loads=None,
     gravity=None,
-    rtol: float = 1e-11,
+    rtol: float = 1e-10,
     atol: float = 1e-12,
     grid: int = SIM_GRID,
 ) -> Simulation:
@@ -572,8 +574,11 @@ def simulate(
     reduced-inertia method, e.g. Nikravesh 1988, ch. 6).  ``J(q)`` and the
     loads' generalized force ``Q_L(q) = sum F . dP/dq + ...`` are tabulated over
     one turn and interpolated by periodic cubic splines, whose derivative is
-    used for ``J'``: the interpolated system conserves ``J q'^2 / 2`` exactly
-    without torque and losses, so energy drift is the integrator's alone.
+    used for ``J'``.  The equation is integrated in the variables ``q`` and
+    ``u = sqrt(J) q'`` (so that ``J q'^2 / 2 = u^2 / 2``):
+    ``q' = u / sqrt(J)``, ``u' = Q / sqrt(J)``, which follows from
+    ``J q'' + J' q'^2 / 2 = Q`` and keeps the kinetic energy constant to
+    rounding when ``Q = 0``, with no singularity where the motion reverses.
     """
     from scipy.integrate import solve_ivp
     from scipy.interpolate import CubicSpline
@@ -634,18 +639,22 @@ def simulate(
             return tv
 
     def rhs(time, state):
-        q, qd = state
+        q, u = state
         qq = wrap(q)
-        Jq = Js(qq)
-        return [qd, (float(tau(time, q, qd)) + Qs(qq) - 0.5 * dJs(qq) * qd * qd) / Jq]
+        sJ = np.sqrt(Js(qq))
+        qd = u / sJ
+        return [qd, (float(tau(time, q, qd)) + Qs(qq)) / sJ]
 
-    sol = solve_ivp(rhs, (tt[0], tt[-1]), [q0, qdot0], t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
+    u0 = math.sqrt(Js(wrap(q0))) * qdot0
+    sol = solve_ivp(rhs, (tt[0], tt[-1]), [q0, u0], t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
     if not sol.success:  # pragma: no cover - DOP853 on a smooth ODE
         raise GearleverError(f"simulate: the integration failed: {sol.message}")
-    q, qd = sol.y
+    q, u = sol.y
     qq = wrap(q)
     Jq = Js(qq)
-    qdd = np.array([rhs(ti, (qi, di))[1] for ti, qi, di in zip(sol.t, q, qd)])
+    qd = u / np.sqrt(Jq)
+    Qt = np.array([float(tau(ti, qi, di)) for ti, qi, di in zip(sol.t, q, qd)]) + Qs(qq)
+    qdd = (Qt - 0.5 * dJs(qq) * qd * qd) / Jq
     return Simulation(t=sol.t, q=q, qdot=qd, qddot=qdd, kinetic_energy=0.5 * Jq * qd * qd, inertia=Jq)
 
 
