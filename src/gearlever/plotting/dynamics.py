@@ -40,7 +40,8 @@ def plot_turning_moment(res, ax=None):
         ax.annotate(name, (t, ax.get_ylim()[1]), xytext=(3, -12), textcoords="offset points", color=c, fontsize=8)
     ax.set_xlabel("crank angle (deg)")
     ax.set_ylabel("torque")
-    ax.set_title(f"Turning-moment diagram, mean torque {res.mean_torque:.4g}")
+    mean = res.mean_torque if abs(res.mean_torque) > 1e-9 * float(np.max(np.abs(T))) else 0.0
+    ax.set_title(f"Turning-moment diagram, mean torque {mean:.4g}")
     ax.legend(loc="lower right", fontsize=8)
     return ax
 
@@ -79,3 +80,58 @@ def turning_moment_figure(res):
     plot_turning_moment(res, ax=a1)
     plot_energy(res, ax=a2)
     return fig
+
+
+def plot_input_torque(d, ax=None, label=None):
+    """Input torque (or force) of an inverse-dynamics result against the input angle.
+
+    Parameters
+    ----------
+    d : gearlever.mechanism.dynamics.InverseDynamics
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    ax = axes(ax)
+    th = np.degrees(d.q[:, 0])
+    ax.plot(th, d.input_force[:, 0], color="C0", lw=1.5, label=label or "input torque")
+    ax.axhline(float(np.nanmean(d.input_force[:, 0])), color="C3", lw=1.0, ls="--", label="mean")
+    ax.set_xlabel("input angle (deg)")
+    ax.set_ylabel("input torque (N m)")
+    ax.set_title("Torque the driver must give")
+    ax.legend(loc="best", fontsize=8)
+    return ax
+
+
+def plot_bearing_polar(d, key, ax=None):
+    """Polar diagram of a pin force over the cycle: the tip of the force vector, angle and magnitude.
+
+    Parameters
+    ----------
+    d : gearlever.mechanism.dynamics.InverseDynamics
+    key : str
+        A key of ``d.reaction`` (the force on the pin's second link from its first).
+    ax : matplotlib polar Axes, optional (a new polar Axes when None)
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        fig = plt.figure(figsize=(5.0, 5.0), layout="constrained")
+        ax = fig.add_subplot(projection="polar")
+    f = d.reaction[key]
+    ang = np.arctan2(f[:, 1], f[:, 0])
+    mag = np.hypot(f[:, 0], f[:, 1])
+    ang = np.append(ang, ang[:1])
+    mag = np.append(mag, mag[:1])
+    ax.plot(ang, mag, color="C0", lw=1.4, label=f"pin {key} (N)")
+    ax.plot(ang[:1], mag[:1], "o", color="C3", label=f"input at {np.degrees(d.q[0, 0]):.0f} deg")
+    a, b = d.pins[key]
+    ax.set_title(f"Load on {b} from {a} at pin {key.split(':')[0]}")
+    ax.legend(loc="lower left", fontsize=8, bbox_to_anchor=(-0.1, -0.12))
+    return ax
