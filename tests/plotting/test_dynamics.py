@@ -32,3 +32,24 @@ def test_turning_moment_and_energy_panels(tmp_path):
     fig = plots.turning_moment_figure(_res(period=4 * np.pi))
     path = save(fig, tmp_path / "tm.png")
     assert path.stat().st_size > 1000
+
+
+def test_mechanism_forces_figure_has_torque_and_polar_panels(tmp_path):
+    from gearlever.mechanism import Mechanism
+
+    mech = Mechanism.from_dict(
+        {
+            "points": {"O": [0, 0], "A": [1, 0]},
+            "links": {"ground": ["O"], "crank": ["O", "A"]},
+            "inputs": [{"link": "crank"}],
+            "masses": {"crank": {"mass": 1.0, "centre": "A"}},
+        }
+    )
+    q = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+    d = mech.inverse_dynamics(q, 10.0, 0.0)
+    fig = plots.forces_figure(d, "O")
+    ax1, ax2 = fig.axes
+    assert "(deg)" in ax1.get_xlabel() and ax2.name == "polar"
+    r = ax2.lines[0].get_ydata()
+    assert np.allclose(r, 100.0)  # centripetal m w^2 R, constant
+    assert save(fig, tmp_path / "f.png").stat().st_size > 1000

@@ -135,3 +135,13 @@ def plot_bearing_polar(d, key, ax=None):
     ax.set_title(f"Load on {b} from {a} at pin {key.split(':')[0]}")
     ax.legend(loc="lower left", fontsize=8, bbox_to_anchor=(-0.1, -0.12))
     return ax
+
+
+def forces_figure(d, bearing: str, label=None):
+    """Input torque beside the polar diagram of the load at pin ``bearing``; returns the Figure."""
+    import matplotlib.pyplot as plt
+
+    fig = plt.figure(figsize=(11.0, 4.5), layout="constrained")
+    plot_input_torque(d, ax=fig.add_subplot(1, 2, 1), label=label)
+    plot_bearing_polar(d, bearing, ax=fig.add_subplot(1, 2, 2, projection="polar"))
+    return fig

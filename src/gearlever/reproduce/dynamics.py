@@ -14,13 +14,12 @@ BEARING = "A"
 def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     import math
 
-    import matplotlib.pyplot as plt
     import numpy as np
 
     from gearlever.dynamics.flywheel import flywheel
     from gearlever.mechanism import Mechanism
     from gearlever.plotting._common import save
-    from gearlever.plotting.dynamics import plot_bearing_polar, plot_input_torque, turning_moment_figure
+    from gearlever.plotting.dynamics import forces_figure, turning_moment_figure
     from gearlever.reproduce.mechanism import examples_dir
 
     path = examples_dir() / "engine.toml"
@@ -31,9 +30,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     q = mech.sketch_inputs[0] + np.linspace(0.0, 2 * np.pi, POINTS, endpoint=False)
     d = mech.inverse_dynamics(q, np.full_like(q, w), np.zeros_like(q))
 
-    fig = plt.figure(figsize=(11.0, 4.5), layout="constrained")
-    plot_input_torque(d, ax=fig.add_subplot(1, 2, 1), label=f"input torque at {RPM:g} rpm")
-    plot_bearing_polar(d, BEARING, ax=fig.add_subplot(1, 2, 2, projection="polar"))
+    fig = forces_figure(d, BEARING, label=f"input torque at {RPM:g} rpm")
     save(fig, Path(figures_dir) / "dynamics_engine_forces.png", dpi=90)
 
     tau = d.input_force[:, 0]
