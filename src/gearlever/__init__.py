@@ -28,6 +28,7 @@ is the command line.  Radians everywhere in the API; bad input raises
 __version__ = "0.1.0"
 
 from gearlever import _aliases  # noqa: E402
+from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
 from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate  # noqa: E402
@@ -76,6 +77,7 @@ __all__ = [
     "design_train",
     "search_best",
     "HookeJoint",
+    "flywheel",
 ]
 
 _aliases.install()

@@ -68,6 +68,10 @@ def register(sub) -> None:
     _sweep_args(g, points=False)
     g.set_defaults(func=_animate)
 
+    from gearlever.cli._mechanism_dynamics import register_dynamics
+
+    register_dynamics(ms)
+
 
 def _sweep_args(p, points: bool, default: int = 360):
     if points:

@@ -78,6 +78,24 @@ class Mechanism:
         """Positions, velocities, accelerations over the input rows (:func:`~gearlever.mechanism.solve.solve`)."""
         return solve(self.system, q, qdot, qddot)
 
+    def inverse_dynamics(self, q, qdot=None, qddot=None, loads=None, **kw):
+        """Driver torques and pair forces (:func:`~gearlever.mechanism.dynamics.inverse_dynamics`)."""
+        from gearlever.mechanism.dynamics import inverse_dynamics
+
+        return inverse_dynamics(self, q, qdot, qddot, loads=loads, **kw)
+
+    def reduced_inertia(self, q, masses=None):
+        """Reduced inertia (:func:`~gearlever.mechanism.dynamics.reduced_inertia`)."""
+        from gearlever.mechanism.dynamics import reduced_inertia
+
+        return reduced_inertia(self, q, masses=masses)
+
+    def simulate(self, t, q0, qdot0, torque=0.0, **kw):
+        """Motion under a driving torque (:func:`~gearlever.mechanism.dynamics.simulate`)."""
+        from gearlever.mechanism.dynamics import simulate
+
+        return simulate(self, t, q0, qdot0, torque=torque, **kw)
+
     def constraint_labels(self) -> tuple:
         """Row names of :meth:`constraint_jacobian`."""
         return constraint_labels(self.model)

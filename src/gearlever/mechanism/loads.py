@@ -1,0 +1,201 @@
+"""Masses, external loads, gravity and pressure angle of a mechanism model, validated.
+
+Model file tables (kept raw by the model loader in ``MechanismModel.extra``)::
+
+    [mechanism]
+    gravity = [0.0, -9.81]          # optional, acceleration of gravity (length/s^2 of the model)
+    pressure_angle = 20.0           # optional, degrees, of every gear pair (default 20)
+    [masses]
+    crank = { mass = 0.5, centre = "O2", inertia = 0.001 }   # centre: a point of the link, or [x, y] in the sketch
+    [[loads]]
+    link = "piston"
+    point = "B"                     # or [x, y] in the sketch, carried by the link
+    force = [-500.0, 0.0]
+    [[loads]]
+    link = "rocker"
+    torque = 5.0
+
+The Python API takes the same loads as a list of dicts whose ``force`` may be
+an array ``(N, 2)`` and ``torque`` an array ``(N,)`` over the input rows.
+
+Units are the user's, consistent: with lengths in m, masses in kg, inertias
+in kg m^2, forces come out in N and torques in N m (a model drawn in mm needs
+its gravity and inertias in mm: 9810 mm/s^2, kg mm^2, forces in kg mm/s^2 = mN).
+
+Imports numpy and the model only.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearlever.errors import GearleverError
+from gearlever.mechanism.model import GROUND, MechanismModel
+
+__all__ = ["MassSpec", "LoadSpec", "parse_masses", "parse_loads", "gravity_of", "pressure_angle_of"]
+
+#: Default pressure angle of the gear pairs (rad): 20 degrees.
+DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
+
+
+@dataclass(frozen=True)
+class MassSpec:
+    """Mass ``mass`` with centre ``centre`` (body-fixed coordinates of the link) and inertia about it."""
+
+    link: str
+    mass: float
+    centre: tuple
+    inertia: float
+
+
+@dataclass(frozen=True)
+class LoadSpec:
+    """A force at a body-fixed point and/or a torque on a link; arrays are ``(N, 2)`` and ``(N,)``."""
+
+    label: str
+    link: str
+    point: tuple | None
+    force: np.ndarray | None
+    torque: np.ndarray | None
+
+
+def _num(where, v, nonneg=False) -> float:
+    if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(float(v)):
+        raise GearleverError(f"{where} must be a finite number, got {v!r}")
+    if nonneg and float(v) < 0:
+        raise GearleverError(f"{where} must be >= 0, got {v!r}")
+    return float(v)
+
+
+def _local(model: MechanismModel, link: str, where: str, spec) -> tuple:
+    """Body-fixed coordinates of a point name of ``link`` or of a sketch location ``[x, y]``."""
+    lk = model.links[link]
+    if isinstance(spec, str):
+        if spec not in lk.local:
+            raise GearleverError(f"{where}: point {spec!r} is not on link {link!r} (its points: {list(lk.points)})")
+        return tuple(lk.local[spec])
+    if isinstance(spec, (list, tuple, np.ndarray)) and len(spec) == 2:
+        x, y = _num(f"{where}[0]", spec[0]), _num(f"{where}[1]", spec[1])
+        dx, dy = x - lk.origin[0], y - lk.origin[1]
+        c, s = math.cos(lk.angle0), math.sin(lk.angle0)
+        return (c * dx + s * dy, -s * dx + c * dy)
+    raise GearleverError(f"{where} must be a point name of link {link!r} or a sketch location [x, y], got {spec!r}")
+
+
+def _link(model: MechanismModel, where: str, name) -> str:
+    if not isinstance(name, str) or name not in model.links:
+        raise GearleverError(f"{where}: unknown link {name!r}")
+    if name == GROUND:
+        raise GearleverError(f"{where}: the frame {GROUND!r} does not move (give masses and loads of moving links)")
+    return name
+
+
+def parse_masses(model: MechanismModel, masses=None) -> dict:
+    """``{link: MassSpec}`` from ``masses`` (default the model's ``[masses]``); links without one are massless.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> m = model_from_dict({"points": {"O": [0, 0], "A": [2, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> parse_masses(m, {"crank": {"mass": 3.0, "centre": [1.0, 0.0], "inertia": 0.5}})["crank"].centre
+    (1.0, 0.0)
+    """
+    raw = model.extra.get("masses", {}) if masses is None else masses
+    if not isinstance(raw, dict):
+        raise GearleverError("masses must be a table {link = { mass, centre, inertia }}")
+    out = {}
+    for name, t in raw.items():
+        where = f"masses.{name}"
+        link = _link(model, where, name)
+        if not isinstance(t, dict):
+            raise GearleverError(f"{where} must be a table {{ mass, centre, inertia }}, got {t!r}")
+        for k in t:
+            if k not in ("mass", "centre", "inertia"):
+                raise GearleverError(f"{where}: unknown key {k!r} (allowed: mass, centre, inertia)")
+        mass = _num(f"{where}.mass", t.get("mass", 0.0), nonneg=True)
+        inertia = _num(f"{where}.inertia", t.get("inertia", 0.0), nonneg=True)
+        if "centre" in t:
+            centre = _local(model, link, f"{where}.centre", t["centre"])
+        elif mass == 0.0:
+            centre = (0.0, 0.0)
+        else:
+            raise GearleverError(f"{where}: missing key 'centre' (a point of the link or [x, y])")
+        out[link] = MassSpec(link, mass, centre, inertia)
+    return out
+
+
+def _array(where, v, N, shape):
+    try:
+        a = np.asarray(v, dtype=float)
+    except (TypeError, ValueError):
+        raise GearleverError(f"{where} must be numbers, got {v!r}") from None
+    if not np.all(np.isfinite(a)):
+        raise GearleverError(f"{where} must be finite numbers")
+    full = (N,) + shape
+    if a.shape == shape:
+        return np.broadcast_to(a, full).copy()
+    if a.shape == full:
+        return a.copy()
+    want = f"{shape}" if not shape else f"{shape} or ({N}, {', '.join(map(str, shape))})"
+    raise GearleverError(f"{where} must have shape {want if shape else f'() or ({N},)'}, got {a.shape}")
+
+
+def parse_loads(model: MechanismModel, loads=None, N: int = 1) -> list:
+    """``[LoadSpec]`` from ``loads`` (default the model's ``[[loads]]``), arrays broadcast to ``N`` rows."""
+    raw = model.extra.get("loads", []) if loads is None else loads
+    if isinstance(raw, dict):
+        raw = [raw]
+    if not isinstance(raw, (list, tuple)):
+        raise GearleverError("loads must be a list of tables {link, point, force} or {link, torque}")
+    out = []
+    for i, t in enumerate(raw):
+        where = f"loads[{i}]"
+        if not isinstance(t, dict):
+            raise GearleverError(f"{where} must be a table {{link, point, force}} or {{link, torque}}, got {t!r}")
+        for k in t:
+            if k not in ("link", "point", "force", "torque"):
+                raise GearleverError(f"{where}: unknown key {k!r} (allowed: link, point, force, torque)")
+        link = _link(model, f"{where}.link", t.get("link"))
+        if "force" not in t and "torque" not in t:
+            raise GearleverError(f"{where}: give a force (with its point) or a torque")
+        force = point = torque = None
+        if "force" in t:
+            if "point" not in t:
+                raise GearleverError(f"{where}: a force needs its point (a point of link {link!r} or [x, y])")
+            point = _local(model, link, f"{where}.point", t["point"])
+            force = _array(f"{where}.force", t["force"], N, (2,))
+        elif "point" in t:
+            raise GearleverError(f"{where}: a point is given but no force")
+        if "torque" in t:
+            torque = _array(f"{where}.torque", t["torque"], N, ())
+        label = f"{link}" + (f"@{t['point']}" if isinstance(t.get("point"), str) else "")
+        out.append(LoadSpec(label, link, point, force, torque))
+    return out
+
+
+def gravity_of(model: MechanismModel, gravity=None) -> np.ndarray:
+    """Acceleration of gravity ``(2,)``: ``gravity`` or the model's ``[mechanism] gravity`` (default none)."""
+    g = model.extra.get("gravity", (0.0, 0.0)) if gravity is None else gravity
+    if not isinstance(g, (list, tuple, np.ndarray)) or len(g) != 2:
+        raise GearleverError(f"gravity must be a pair of numbers [gx, gy], got {g!r}")
+    return np.array([_num("gravity[0]", g[0]), _num("gravity[1]", g[1])])
+
+
+def pressure_angle_of(model: MechanismModel, pressure_angle=None) -> float:
+    """Pressure angle (rad): ``pressure_angle`` (rad) or the model's ``pressure_angle`` (deg), default 20 deg."""
+    if pressure_angle is None:
+        if "pressure_angle" not in model.extra:
+            return DEFAULT_PRESSURE_ANGLE
+        a = math.radians(_num("mechanism.pressure_angle", model.extra["pressure_angle"]))
+        where = "mechanism.pressure_angle (deg)"
+    else:
+        a = _num("pressure_angle", pressure_angle)
+        where = "pressure_angle (rad)"
+    if not 0.0 <= a < math.radians(60.0):
+        raise GearleverError(f"{where} must be in [0, 60) degrees, got {math.degrees(a):g} deg")
+    return a
