@@ -139,3 +139,24 @@ def test_network_carrier_and_empty_file_errors_exit_2_one_line(capsys, tmp_path,
     assert main(["network", str(f), *extra]) == 2
     err = capsys.readouterr().err
     assert needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_network_torques_of_a_planetary_with_the_ring_held(capsys):
+    """Sun 24, ring 60 held: carrier torque -T_sun (1 + z_r/z_s); with mesh efficiency eta the
+    sun-planet-ring path in the carrier's frame loses eta^2 (Macmillan 1961)."""
+    argv = ["network", str(EXAMPLES / "simple_planetary.csv"), "--inputs", "sun"]
+    argv += ["--torque", "sun=100", "--loads", "carrier", "--format", "json"]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["torques"]["carrier"] == -350 and d["frame_reactions"]["fix"] == 250
+    assert sum(d["power"].values()) == 0
+    assert main(argv + ["--efficiency", "0.98"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["torques"]["carrier"] == pytest.approx(-100 * (1 + 0.98**2 * 60 / 24), rel=1e-12)
+
+
+def test_network_torque_efficiency_outside_the_unit_interval_exits_2(capsys):
+    argv = ["network", str(EXAMPLES / "simple_planetary.csv"), "--inputs", "sun", "--torque", "sun=1"]
+    assert main(argv + ["--loads", "carrier", "--efficiency", "1.5"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--efficiency" in err

@@ -15,9 +15,11 @@ exit 2 and one line naming the flag or the CSV row and column.
 
 from __future__ import annotations
 
+import csv
+import io
 import math
-from pathlib import Path
 
+from gearlever._io import read_text_capped
 from gearlever.cli._common import emit, positive_float, to_json
 from gearlever.errors import GearleverError
 
@@ -57,22 +59,14 @@ def read_torque_file(path: str, max_rows: int | None = None):
 
     max_rows = MAX_SAMPLES if max_rows is None else max_rows
     where = f"--torque-file {path!r}"
-    try:
-        size = Path(path).stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise GearleverError(f"{where}: larger than {MAX_FILE_BYTES} bytes")
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = getattr(exc, "strerror", None) or type(exc).__name__
-        raise GearleverError(f"{where} cannot be read: {reason}") from None
+    text = read_text_capped(path, "--torque-file", MAX_FILE_BYTES)
     rows: list[list[float]] = []
     width = None
     seen_data = False
-    for k, raw in enumerate(text.splitlines(), start=1):
-        line = raw.strip()
-        if not line or line.startswith("#"):
+    for k, record in enumerate(csv.reader(io.StringIO(text)), start=1):
+        cells = [c.strip() for c in record]
+        if not any(cells) or cells[0].startswith("#"):
             continue
-        cells = [c.strip() for c in line.split(",")]
         values = []
         for j, cell in enumerate(cells, start=1):
             try:

@@ -42,6 +42,12 @@ def register(sub) -> None:
         metavar="MEMBER",
         help="with --tabular: the member turned +1 (default: the first gear meshing on CARRIER)",
     )
+    p.add_argument("--torque", default="", metavar="M=T,...", help="applied torques, e.g. sun=100 (with --loads)")
+    p.add_argument("--loads", default="", metavar="A,B", help="members whose torques are unknown (one per dof)")
+    p.add_argument(
+        "--speeds", default="", metavar="M=W,...", help="speeds of independent members (default: the inputs at 1)"
+    )
+    p.add_argument("--efficiency", default="1", metavar="ETA", help="mesh efficiency in (0, 1] (default 1)")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--out", default=None, metavar="FILE", help="write to FILE instead of stdout")
     p.set_defaults(func=_run)
@@ -121,6 +127,23 @@ def _run(args) -> int:
             ],
         }
         lines += [""] + tab.lines()
+    if args.torque or args.loads:
+        from gearlever.gears.torques import parse_assignments, parse_number, torque_report
+
+        inputs = result.get("inputs", [])
+        speeds = parse_assignments(args.speeds, "--speeds") or ({k: 1 for k in inputs} if inputs else None)
+        loads = [x.strip() for x in args.loads.split(",") if x.strip()]
+        rep = torque_report(
+            net,
+            parse_assignments(args.torque, "--torque"),
+            loads,
+            speeds=speeds,
+            efficiency=parse_number(args.efficiency, "--efficiency"),
+        )
+        result.update(rep)
+        lines += [""] + [f"torque on {k}: {v}" for k, v in rep["torques"].items()]
+        lines += [f"frame reaction ({k}): {v}" for k, v in rep["frame_reactions"].items()]
+        lines += [f"power of {k}: {v}" for k, v in rep.get("power", {}).items()]
     if args.format == "json":
         emit(to_json(result), args.out)
     else:
