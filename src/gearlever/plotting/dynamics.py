@@ -40,7 +40,8 @@ def plot_turning_moment(res, ax=None):
         ax.annotate(name, (t, ax.get_ylim()[1]), xytext=(3, -12), textcoords="offset points", color=c, fontsize=8)
     ax.set_xlabel("crank angle (deg)")
     ax.set_ylabel("torque")
-    mean = res.mean_torque if abs(res.mean_torque) > 1e-9 * float(np.max(np.abs(T))) else 0.0
+    scale = float(max(np.max(np.abs(T)), np.max(np.abs(L))))
+    mean = res.mean_torque if abs(res.mean_torque) > 1e-9 * scale else 0.0  # no round-off digits in the title
     ax.set_title(f"Turning-moment diagram, mean torque {mean:.4g}")
     ax.legend(loc="lower right", fontsize=8)
     return ax
