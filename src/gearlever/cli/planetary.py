@@ -9,7 +9,7 @@ equal roles): exit 2, one line.
 
 from __future__ import annotations
 
-from gearlever.cli._common import emit, positive_int, to_json
+from gearlever.cli._common import emit, flagged, positive_int, to_json
 
 #: Most solutions --limit may ask for.
 MAX_LIMIT = 100_000
@@ -51,6 +51,9 @@ def register(sub) -> None:
     d.set_defaults(func=_run)
 
 
+_FLAGS = {"max_teeth": "--max-teeth", "min_teeth": "--min-teeth", "planets": "--planets", "ratio": "--ratio"}
+
+
 def _run(args) -> int:
     from gearlever.errors import GearleverError
     from gearlever.gears.planetary import design_planetary
@@ -68,15 +71,7 @@ def _run(args) -> int:
             limit=args.limit,
         )
     except GearleverError as exc:
-        msg = str(exc)
-        for name, flag in (
-            ("max_teeth", "--max-teeth"),
-            ("min_teeth", "--min-teeth"),
-            ("planets", "--planets"),
-            ("ratio", "--ratio"),
-        ):
-            msg = msg.replace(name, flag)
-        raise GearleverError(msg) from None
+        raise flagged(exc, _FLAGS) from None
     if args.format == "json":
         out = {
             "solutions": [s.record() for s in res.solutions],
