@@ -52,6 +52,15 @@ def test_py_typed_marker_ships_with_the_package():
     assert (SRC / "py.typed").is_file()
 
 
+def test_every_data_file_is_declared_as_package_data():
+    import tomllib
+
+    patterns = tomllib.loads((SRC.parents[1] / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]
+    globs = patterns["gearlever"]
+    files = [p for p in (SRC / "data").iterdir() if p.is_file() and p.suffix != ".py"]
+    assert files and all(any(p.match(g) for g in globs) for p in files), [p.name for p in files]
+
+
 def test_the_package_never_calls_matplotlib_use():
     rx = re.compile(r"matplotlib\.use\(")
     assert [p for p in SRC.rglob("*.py") if rx.search(p.read_text(encoding="utf-8"))] == []

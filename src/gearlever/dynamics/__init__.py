@@ -3,13 +3,19 @@
 :mod:`gearlever.dynamics.flywheel` integrates a turning-moment (crank-effort)
 diagram over one cycle and sizes the flywheel that holds the speed within a
 given coefficient of fluctuation (or gives the fluctuation of a given one).
+:mod:`gearlever.dynamics.published` solves published textbook problems of
+engine crank effort and flywheel sizing with the mechanism models and the
+flywheel, beside the printed answers kept in the package data files.
 
 Modules here import numpy, scipy (lazily, inside the functions that need it),
-and gearlever's :mod:`~gearlever.errors`, :mod:`~gearlever._validate` and
-:mod:`~gearlever._result`; never pandas or matplotlib.pyplot (tables and
-figures live in :mod:`gearlever.tables` and :mod:`gearlever.plotting`).
+and gearlever's :mod:`~gearlever.errors`, :mod:`~gearlever._validate`,
+:mod:`~gearlever._result`, :mod:`~gearlever.data` (the published problems) and
+:mod:`~gearlever.mechanism` (lazily, to build the engines); never pandas or
+matplotlib.pyplot (tables and figures live in :mod:`gearlever.tables` and
+:mod:`gearlever.plotting`).
 """
 
 from gearlever.dynamics.flywheel import Flywheel, flywheel
+from gearlever.dynamics.published import TextbookCheck, textbook_checks
 
-__all__ = ["Flywheel", "flywheel"]
+__all__ = ["Flywheel", "TextbookCheck", "flywheel", "textbook_checks"]

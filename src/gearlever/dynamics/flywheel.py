@@ -57,6 +57,8 @@ class Flywheel(Result):
     fluctuation : coefficient of fluctuation of speed ``Cs``, given or ``dE / (I omega^2)``.
     period : length of the cycle (rad).
     load_shift : constant added to the given load so that its mean equals the driving one (0 when they agree).
+    angular_acceleration : (N,) ``(torque - load) / inertia`` (rad/s^2), the flywheel's acceleration at the
+        samples (property; None without an inertia).
     """
 
     theta: np.ndarray
@@ -76,6 +78,17 @@ class Flywheel(Result):
     fluctuation: float | None
     period: float
     load_shift: float
+
+    @property
+    def angular_acceleration(self) -> np.ndarray | None:
+        """Angular acceleration ``(T - L) / I`` at the samples (rad/s^2); None without an inertia.
+
+        The rotating parts are taken as one rigid flywheel of constant inertia, as in the
+        turning-moment method (the excess torque accelerates it, the deficit retards it).
+        """
+        if self.inertia is None:
+            return None
+        return (self.torque - self.load) / self.inertia
 
     @property
     def theta_max_speed_deg(self) -> float:
