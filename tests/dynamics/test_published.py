@@ -1,4 +1,4 @@
-"""Published textbook problems: engine crank effort and flywheel sizing.
+"""Published textbook problems: epicyclic holding torques, engine crank effort and flywheel sizing.
 
 Source of every problem and answer: R. S. Khurmi and J. K. Gupta, *Theory of Machines*,
 14th ed., Eurasia Publishing House, New Delhi, 2009 (example and page named in each test),
@@ -54,6 +54,26 @@ def _book_method_torque(example):
         "crank_pin_tangential_force": abs(float(pin[0] * -e[1] + pin[1] * e[0])),
         "bearing_thrust": abs(float(pin @ e)),
     }
+
+
+# --------------------------------------------------------------------------- epicyclic torques
+
+
+def test_khurmi_gupta_example_13_20_page_465_holding_torque_of_the_internal_gear(checks):
+    """Sun 16, planets 24, internal gear 64 held, 100 N m on the sun (speed ratio 5): the internal gear
+    must be held with 400 N m; the arm gives 500 N m, and the external torques sum to zero."""
+    _assert_rows(checks, "13.20")
+    r = P.epicyclic_problem("13.20")
+    assert r["output_speed"] == pytest.approx(1.0 / 5.0, rel=1e-15)
+    assert r["output_torque"] == pytest.approx(100.0 + r["holding_torque"], rel=1e-15)
+
+
+def test_khurmi_gupta_example_13_22_page_468_compound_epicyclic_holding_torque(checks):
+    """Internal gear A 60 on the input shaft at 740 rad/s with 130 kW, compound planet B 15 / C 20,
+    sun D 25 held: arm X at 563.8 rad/s, holding torque on D 54.9 N m; power in equals power out."""
+    _assert_rows(checks, "13.22")
+    r = P.epicyclic_problem("13.22")
+    assert r["output_torque"] * r["output_speed"] == pytest.approx(130e3, rel=1e-12)
 
 
 # --------------------------------------------------------------------------- engine crank effort
@@ -124,14 +144,14 @@ def test_khurmi_gupta_example_16_13_page_589_three_crank_engine_flywheel(checks)
 
 def test_every_published_answer_is_checked_and_has_a_source_page():
     rows = read_records(P.ANSWERS)
-    tested = {"15.7", "15.12", "15.20", "16.11", "16.12", "16.13"}
-    assert {r["example"] for r in rows} == tested
-    pages = {"15.7": "533", "15.12": "538", "15.20": "555", "16.11": "585", "16.12": "587", "16.13": "589"}
+    pages = {"13.20": "465", "13.22": "468", "15.7": "533", "15.12": "538", "15.20": "555"}
+    pages |= {"16.11": "585", "16.12": "587", "16.13": "589"}
+    assert {r["example"] for r in rows} == set(pages)  # each has its named test above
+    kinds = {"13": "epicyclic", "15": "engine", "16": "flywheel"}
     problems = P.problems()
     for r in rows:
         assert r["page"] == pages[r["example"]]
-        kind = "engine" if r["example"].startswith("15") else "flywheel"
-        assert problems[kind][r["example"]]["page"] == int(r["page"])
+        assert problems[kinds[r["example"][:2]]][r["example"]]["page"] == int(r["page"])
         assert r["basis"], f"{r['example']} {r['quantity']}: the tolerance has no stated reason"
 
 

@@ -4,13 +4,15 @@
 diagram over one cycle and sizes the flywheel that holds the speed within a
 given coefficient of fluctuation (or gives the fluctuation of a given one).
 :mod:`gearlever.dynamics.published` solves published textbook problems of
-engine crank effort and flywheel sizing with the mechanism models and the
-flywheel, beside the printed answers kept in the package data files.
+epicyclic holding torques, engine crank effort and flywheel sizing with the
+gear networks, the mechanism models and the flywheel, beside the printed
+answers kept in the package data files.
 
 Modules here import numpy, scipy (lazily, inside the functions that need it),
 and gearlever's :mod:`~gearlever.errors`, :mod:`~gearlever._validate`,
 :mod:`~gearlever._result`, :mod:`~gearlever.data` (the published problems) and
-:mod:`~gearlever.mechanism` (lazily, to build the engines); never pandas or
+:mod:`~gearlever.mechanism` and :mod:`~gearlever.gears` (lazily, to build the
+engines and trains); never pandas or
 matplotlib.pyplot (tables and figures live in :mod:`gearlever.tables` and
 :mod:`gearlever.plotting`).
 """

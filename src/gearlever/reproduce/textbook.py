@@ -1,4 +1,4 @@
-"""Published textbook problems of engine crank effort and flywheel sizing, solved by the model."""
+"""Published textbook problems of epicyclic torques, engine crank effort and flywheel sizing, solved by the model."""
 
 from __future__ import annotations
 
@@ -17,5 +17,6 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     worst = (df.deviation.abs() / df.tolerance).max()
     return [
         f"textbook: tables/textbook_checks.csv: {int(df.within.sum())}/{len(df)} published answers "
-        f"(6 worked examples, crank effort and flywheel) within tolerance; worst at {worst:.2f} of its tolerance"
+        f"({df.example.nunique()} worked examples: epicyclic torques, crank effort, flywheels) within tolerance; "
+        f"worst at {worst:.2f} of its tolerance"
     ]

@@ -1,4 +1,4 @@
-"""Table of the published textbook problems of crank effort and flywheel sizing, solved by the model."""
+"""Table of the published textbook problems of epicyclic torques, crank effort and flywheels, solved by the model."""
 
 from __future__ import annotations
 
