@@ -31,6 +31,7 @@ __all__ = [
     "SAMPLES",
     "TextbookCheck",
     "crank_effort",
+    "engine_forces",
     "engine_mechanism",
     "epicyclic_problem",
     "flywheel_problem",
@@ -158,6 +159,30 @@ def _gas_force(spec: dict) -> float:
     return float(spec["cover_end_pressure"]) * area - float(spec["crank_end_pressure"]) * annulus
 
 
+def engine_forces(spec: dict, piston_force: float) -> dict[str, float]:
+    """Forces of the engine ``spec`` at its crank angle and constant speed under a piston force (SI units).
+
+    ``piston_force`` pushes the piston towards the crank shaft.  ``crank_torque``
+    is signed (positive driving the crank forward); the forces are magnitudes.
+    See :func:`crank_effort` for the keys.
+    """
+    mech, th = engine_mechanism(spec)
+    omega = float(spec["speed_rpm"]) * math.pi / 30.0
+    loads = [{"link": "piston", "point": "B", "force": [-piston_force, 0.0]}] if piston_force else []
+    d = mech.inverse_dynamics([th], [omega], [0.0], loads=loads)
+    if not bool(d.ok[0]):
+        raise GearleverError("the engine model could not be solved at its crank angle")
+    e = np.array([math.cos(th), math.sin(th)])
+    pin = d.reaction["A"][0]
+    return {
+        "crank_torque": -float(d.input_force[0, 0]),
+        "slide_bar_force": abs(float(d.slider_force["piston"][0])),
+        "rod_thrust": float(np.hypot(*d.reaction["B"][0])),
+        "crank_pin_tangential_force": abs(float(pin[0] * -e[1] + pin[1] * e[0])),
+        "bearing_thrust": abs(float(pin @ e)),
+    }
+
+
 def crank_effort(example: str) -> dict[str, float]:
     """Forces of an engine problem at its crank angle and constant speed (SI units).
 
@@ -188,23 +213,11 @@ def crank_effort(example: str) -> dict[str, float]:
     two-term series.
     """
     spec = _spec("engine", example)
-    mech, th = engine_mechanism(spec)
     omega = float(spec["speed_rpm"]) * math.pi / 30.0
     F = _gas_force(spec)
-    loads = [{"link": "piston", "point": "B", "force": [-F, 0.0]}] if F else []
-    d = mech.inverse_dynamics([th], [omega], [0.0], loads=loads)
-    if not bool(d.ok[0]):
-        raise GearleverError(f"example {example}: the engine model could not be solved at its crank angle")
-    torque = -float(d.input_force[0, 0])
-    e = np.array([math.cos(th), math.sin(th)])
-    pin = d.reaction["A"][0]
-    out = {
-        "crank_torque": abs(torque),
-        "slide_bar_force": abs(float(d.slider_force["piston"][0])),
-        "rod_thrust": float(np.hypot(*d.reaction["B"][0])),
-        "crank_pin_tangential_force": abs(float(pin[0] * -e[1] + pin[1] * e[0])),
-        "bearing_thrust": abs(float(pin @ e)),
-    }
+    out = engine_forces(spec, F)
+    torque = out["crank_torque"]
+    out["crank_torque"] = abs(torque)
     if not F:
         out["inertia_torque"] = abs(torque)
     if "flywheel" in spec:
