@@ -410,7 +410,7 @@ class KinematicSystem:
         Nn = x.shape[1]
         if self.dz == 0:
             return z, x, C, S, np.ones(Nn, dtype=bool)
-        tol = 1e-13 * self.L
+        tol = 1e-14 * self.L
         sel, zl, Nz = self.sel, self.zlinks, self.N[self.zlinks]
         z = z.copy()
         for _ in range(max_iter):
