@@ -33,14 +33,14 @@ def _assert_rows(checks, example):
         assert abs(comp - pub) <= tol, f"example {example} {q}: computed {comp}, published {pub} +- {tol}"
 
 
-def _book_method_torque(example):
+def _book_method_forces(example):
     """The book's own arithmetic run through the model: a massless piston loaded by the gas force less
     the reciprocating mass times the two-term series acceleration w^2 r (cos t + cos 2t / n)."""
     spec = dict(P.problems()["engine"][example])
     mass = spec["reciprocating_mass"]
     spec["reciprocating_mass"] = 0.0
     th = math.radians(spec["crank_angle_deg"])
-    w = spec["speed_rpm"] * math.pi / 30.0
+    w = P._omega(spec)
     n = spec["rod"] / spec["crank"]
     a_series = w**2 * spec["crank"] * (math.cos(th) + math.cos(2 * th) / n)
     return P.engine_forces(spec, P._gas_force(spec) - mass * a_series)
@@ -79,7 +79,7 @@ def test_khurmi_gupta_example_15_7_page_533_horizontal_engine_crank_effort(check
 def test_khurmi_gupta_example_15_7_page_533_book_series_acceleration_gives_the_printed_digits(checks):
     """With the book's series piston acceleration put in, the model's force analysis gives every printed
     answer to its last digit: the remaining deviation of the exact model is the series, nothing else."""
-    book = _book_method_torque("15.7")
+    book = _book_method_forces("15.7")
     for q in ("slide_bar_force", "rod_thrust", "crank_pin_tangential_force"):
         pub = checks.value("15.7", q)[0]
         assert book[q] / 1e3 == pytest.approx(pub, abs=0.005), q
@@ -91,7 +91,7 @@ def test_khurmi_gupta_example_15_12_page_538_double_acting_steam_engine_bearing_
     thrust on the bearings 11.98 kN; with 20 kW taken off and a 60 kg flywheel of k = 0.6 m its
     acceleration is 108.2 rad/s^2."""
     _assert_rows(checks, "15.12")
-    book = _book_method_torque("15.12")
+    book = _book_method_forces("15.12")
     assert book["bearing_thrust"] / 1e3 == pytest.approx(checks.value("15.12", "bearing_thrust")[0], abs=0.005)
 
 
@@ -102,7 +102,7 @@ def test_khurmi_gupta_example_15_20_page_555_connecting_rod_inertia_torque(check
     # the rod's weight is part of it: without gravity the torque is some 425 N m smaller
     spec = dict(P.problems()["engine"]["15.20"], gravity=0.0)
     mech, th = P.engine_mechanism(spec)
-    w = spec["speed_rpm"] * math.pi / 30.0
+    w = P._omega(spec)
     no_weight = abs(float(mech.inverse_dynamics([th], [w], [0.0]).input_force[0, 0]))
     weight_torque = 250.0 * 9.81 * (1.0 / 1.5) * 0.3 * math.cos(th)  # rod mass at the crank pin, m2 g r cos t
     assert checks.value("15.20", "inertia_torque")[1] - no_weight == pytest.approx(weight_torque, rel=1e-12)

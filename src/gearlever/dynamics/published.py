@@ -148,6 +148,11 @@ def engine_mechanism(spec: dict):
     return Mechanism.from_dict(model), th
 
 
+def _omega(spec: dict) -> float:
+    """Crank speed of a problem (rad/s) from its ``speed_rpm``."""
+    return float(spec["speed_rpm"]) * math.pi / 30.0
+
+
 def _gas_force(spec: dict) -> float:
     """Net gas force on the piston towards the crank shaft (N)."""
     if "bore" not in spec:
@@ -165,9 +170,19 @@ def engine_forces(spec: dict, piston_force: float) -> dict[str, float]:
     ``piston_force`` pushes the piston towards the crank shaft.  ``crank_torque``
     is signed (positive driving the crank forward); the forces are magnitudes.
     See :func:`crank_effort` for the keys.
+
+    Examples
+    --------
+    A light piston pushed with 1 kN, crank 0.1 m square to the stroke: the rod is
+    inclined by ``asin(0.1/0.4)`` and the turning moment is ``F r = 100`` N m.
+
+    >>> spec = {"crank": 0.1, "rod": 0.4, "reciprocating_mass": 1e-9, "crank_angle_deg": 90.0, "speed_rpm": 1e-9}
+    >>> f = engine_forces(spec, 1000.0)
+    >>> round(f["crank_torque"], 6), round(f["slide_bar_force"], 3)
+    (100.0, 258.199)
     """
     mech, th = engine_mechanism(spec)
-    omega = float(spec["speed_rpm"]) * math.pi / 30.0
+    omega = _omega(spec)
     loads = [{"link": "piston", "point": "B", "force": [-piston_force, 0.0]}] if piston_force else []
     d = mech.inverse_dynamics([th], [omega], [0.0], loads=loads)
     if not bool(d.ok[0]):
@@ -213,7 +228,7 @@ def crank_effort(example: str) -> dict[str, float]:
     two-term series.
     """
     spec = _spec("engine", example)
-    omega = float(spec["speed_rpm"]) * math.pi / 30.0
+    omega = _omega(spec)
     F = _gas_force(spec)
     out = engine_forces(spec, F)
     torque = out["crank_torque"]
