@@ -44,7 +44,15 @@ class UsageError(Exception):
 
 
 class OneLineParser(argparse.ArgumentParser):
-    """An ArgumentParser whose errors are one line, raised as :class:`UsageError`."""
+    """An ArgumentParser whose errors are one line, raised as :class:`UsageError`.
+
+    Negative numbers in scientific notation (``--torque -1e6``) are taken as
+    values, not as flags (argparse alone knows only ``-5`` and ``-0.5``).
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?$")
 
     def error(self, message):  # noqa: D401 - argparse API
         raise UsageError(f"{self.prog}: {message}")

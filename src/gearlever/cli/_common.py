@@ -30,6 +30,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import math
+import numbers
 import re
 import sys
 import threading
@@ -293,3 +294,102 @@ class StderrProgress:
         if self.shown:
             sys.stderr.write("\r\033[K")
             sys.stderr.flush()
+
+
+def format_number(v, digits: int = 12) -> str:
+    """One number as CSV text: ``digits`` significant digits, ``nan``/``inf`` spelt out, never ``-0``.
+
+    >>> format_number(-0.0), format_number(float("nan")), format_number(1 / 3, 6)
+    ('0', 'nan', '0.333333')
+    """
+    v = float(v)
+    if math.isnan(v):
+        return "nan"
+    if math.isinf(v):
+        return "inf" if v > 0 else "-inf"
+    return f"{v + 0.0:.{digits}g}"  # + 0.0: no "-0"
+
+
+def table_text(cols: dict, fmt: str = "csv", meta: dict | None = None, digits: int = 12) -> str:
+    """Columns of equal length as CSV (the :mod:`csv` module: fields quoted as needed) or strict JSON.
+
+    ``cols`` maps a column name to a sequence: numbers (written with
+    ``digits`` significant digits), bools (1/0 in CSV) or strings (quoted in
+    CSV when they hold a comma, quote or newline).  JSON is
+    ``{**meta, "rows": [{name: value, ...}, ...]}`` with NaN and infinities
+    as null.  The one writer of tabular output for every sub-command.
+
+    >>> print(table_text({"x": [0.5, 2.0], "reason": ["", "dead point: a, b"]}))
+    x,reason
+    0.5,
+    2,"dead point: a, b"
+    """
+    import csv
+    import io
+
+    names = list(cols)
+    columns = [list(cols[k].tolist() if hasattr(cols[k], "tolist") else cols[k]) for k in names]
+    lengths = {len(c) for c in columns}
+    if len(lengths) > 1:
+        raise GearleverError(f"table columns differ in length: {dict(zip(names, map(len, columns)))}")
+    rows = list(zip(*columns)) if columns else []
+    if fmt == "json":
+        recs = [dict(zip(names, row)) for row in rows]
+        return to_json({**(meta or {}), "rows": recs})
+    if fmt != "csv":
+        raise GearleverError(f"format must be 'csv' or 'json', got {fmt!r}")
+
+    def cell(v):
+        if isinstance(v, bool):
+            return str(int(v))
+        if isinstance(v, numbers.Real):
+            return format_number(v, digits)
+        return "" if v is None else str(v)
+
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(names)
+    for row in rows:
+        w.writerow([cell(v) for v in row])
+    return buf.getvalue().rstrip("\n")
+
+
+def named_values(given, flag: str, names, *, parse=None, bare_ok: bool = True) -> dict:
+    """Parse ``NAME=VALUE`` arguments given once per input (``--rpm crank=100 --rpm lever=-30``).
+
+    ``names`` are the valid names (the model's inputs, in order).  A bare
+    ``VALUE`` is accepted when there is exactly one name and ``bare_ok``.
+    Values are parsed by ``parse`` (default: a finite float; ``-1e6`` is a
+    number).  Refused, naming ``flag``: an unknown or repeated name, a bad
+    number.  Returns ``{name: value}`` in the order given.
+
+    >>> named_values(["gear9=100", "lever1=-3e1"], "--rpm", ["gear9", "lever1"])
+    {'gear9': 100.0, 'lever1': -30.0}
+    >>> named_values(["100"], "--rpm", ["crank"])
+    {'crank': 100.0}
+    >>> named_values(["crnak=1"], "--rpm", ["crank"])
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: --rpm: unknown input 'crnak' (inputs: crank)
+    """
+    parse = finite_float if parse is None else parse
+    names = list(names)
+    out: dict = {}
+    for text in given or ():
+        text = str(text)
+        if "=" in text:
+            name, _, value = text.partition("=")
+            name = name.strip()
+            if name not in names:
+                raise GearleverError(f"{flag}: unknown input {name!r} (inputs: {', '.join(names)})")
+        else:
+            if not (bare_ok and len(names) == 1):
+                raise GearleverError(f"{flag} must be NAME=VALUE, once per input ({', '.join(names)}), got {text!r}")
+            name, value = names[0], text
+        if name in out:
+            raise GearleverError(f"{flag}: input {name!r} given twice")
+        try:
+            out[name] = parse(value.strip())
+        except (argparse.ArgumentTypeError, ValueError) as exc:
+            raise GearleverError(f"{flag} {name}: {exc}") from None
+    return out

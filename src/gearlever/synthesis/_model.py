@@ -1,0 +1,113 @@
+"""A synthesized linkage as a model: a dict in the model-file schema and its TOML text.
+
+The point and link names follow one convention for every synthesized
+four-bar: ``O2`` input (crank) pivot, ``O4`` output (rocker) ground pivot,
+``A`` crank pin, ``B`` rocker pin, ``P`` traced point; links ``ground``,
+``crank``, ``coupler``, ``rocker``; the crank is the input.
+"""
+
+from __future__ import annotations
+
+import math
+
+from gearlever.errors import GearleverError
+
+__all__ = ["fourbar_model", "model_toml"]
+
+#: Significant digits of coordinates written to a model file: exact to well
+#: below 1e-9 of any mechanism size, and the same text on every machine.
+DIGITS = 15
+
+
+def _xy(where: str, p) -> list:
+    try:
+        x, y = (float(v) for v in p)
+    except (TypeError, ValueError):
+        raise GearleverError(f"{where} must be a pair of numbers (x, y), got {p!r}") from None
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise GearleverError(f"{where} must be finite, got {p!r}")
+    return [x + 0.0, y + 0.0]
+
+
+def fourbar_model(O2, O4, A, B, P=None, *, name: str = "synthesized four-bar", units: str = "") -> dict:
+    """Model dict of a four-bar with the crank as input, in the pose given.
+
+    Parameters
+    ----------
+    O2, O4, A, B : pair of float
+        Crank pivot, rocker pivot, crank pin, rocker pin (sketch positions).
+    P : pair of float, optional
+        Coupler point (traced point).
+    name, units : str
+        ``[mechanism]`` name and length unit label.
+
+    Returns
+    -------
+    dict
+        Accepted by :func:`gearlever.mechanism.model_from_dict`.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import model_from_dict
+    >>> m = model_from_dict(fourbar_model((0, 0), (4, 0), (1, 0), (4.5, 2.8), (3, 4.5)))
+    >>> m.moving
+    ('crank', 'coupler', 'rocker')
+    """
+    pts = {"O2": _xy("O2", O2), "O4": _xy("O4", O4), "A": _xy("A", A), "B": _xy("B", B)}
+    coupler = ["A", "B"]
+    if P is not None:
+        pts["P"] = _xy("P", P)
+        coupler.append("P")
+    mech = {"name": name}
+    if units:
+        mech["units"] = units
+    return {
+        "mechanism": mech,
+        "points": pts,
+        "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": coupler, "rocker": ["O4", "B"]},
+        "inputs": [{"link": "crank"}],
+    }
+
+
+def _value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if not math.isfinite(v):
+            raise GearleverError(f"a model value must be finite, got {v!r}")
+        text = f"{v + 0.0:.{DIGITS}g}"
+        return text if any(c in text for c in ".en") else text + ".0"
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{_key(k)} = {_value(x)}" for k, x in v.items()) + " }"
+    raise GearleverError(f"cannot write {type(v).__name__} into a model file")
+
+
+def _key(k: str) -> str:
+    k = str(k)
+    return k if k and all(c.isalnum() or c in "_-" for c in k) and k.isascii() else _value(k)
+
+
+def model_toml(model: dict, comment: str = "") -> str:
+    """TOML text of a model dict (tables in the order of the schema; arrays of tables as ``[[...]]``).
+
+    Examples
+    --------
+    >>> import tomllib
+    >>> d = fourbar_model((0, 0), (4, 0), (1, 0), (4.5, 2.8))
+    >>> tomllib.loads(model_toml(d)) == d
+    True
+    """
+    lines = [f"# {c}" for c in comment.splitlines()] if comment else []
+    for table in ("mechanism", "points", "links", "gears", "masses"):
+        if table in model:
+            lines += ["", f"[{table}]"] + [f"{_key(k)} = {_value(v)}" for k, v in model[table].items()]
+    for array in ("sliders", "meshes", "inputs", "loads"):
+        for item in model.get(array, []):
+            lines += ["", f"[[{array}]]"] + [f"{_key(k)} = {_value(v)}" for k, v in item.items()]
+    return "\n".join(lines).lstrip("\n") + "\n"
