@@ -18,7 +18,6 @@ ALIASES = {
     "gearlever.chariot": "gearlever.gears.chariot",
     "gearlever.car": "gearlever.gears.car",
     "gearlever.differential": "gearlever.gears.willis",
-    "gearlever.synthesis": "gearlever.trains.synthesis",
     "gearlever.hooke": "gearlever.trains.hooke",
     "gearlever.structure": "gearlever.mechanism.structure",
     "gearlever.vector_loop": "gearlever.loops.vector_loop",

@@ -6,7 +6,7 @@
 - :mod:`~gearlever.trains.continued`: exact ratios and continued fractions.
 - :mod:`~gearlever.trains.design`: tooth numbers by the classical rules.
 - :mod:`~gearlever.trains.search`: the exhaustive best search, with exact counts.
-- :mod:`~gearlever.trains.synthesis`: the four above under one name.
+- :mod:`~gearlever.trains.teeth`: the four above under one name.
 - :mod:`~gearlever.trains.hooke`: Hooke's (cardan) coupling, single and double
   (radians; ``HookeJoint.from_degrees`` for degrees).
 
