@@ -185,20 +185,65 @@ def _design(args) -> int:
         )
     except GearleverError as exc:
         raise flagged(exc, _FLAGS) from None
+    best, note = _exact_beside(res)
     if args.format == "json":
-        emit(to_json(res.as_dict()), args.out)
+        rec = res.as_dict()
+        rec["exact_optimum"] = None if best is None else _exact_record(best)
+        rec["exact_optimum_note"] = note
+        emit(to_json(rec), args.out)
         return 0
     b = res.bounds
     lines = [
         f"target           {res.target} = {float(res.target):.12g}",
         f"teeth            {res.min_teeth} .. {res.max_teeth}",
         f"pairs            between {b.lower:.3f} and {b.upper:.3f} (Young 3.59: {b.young:.3f})",
-        f"method           {res.method}" + ("" if res.method == "exact" else f", using {res.approximation}"),
+        f"method           {res.method} (classical rules)"
+        + ("" if res.method == "exact" else f", using {res.approximation}"),
         "designs (" + ("least total teeth first" if args.prefer == "teeth" else "least gcd per pair first") + "):",
     ]
     lines += [_design_lines(d) for d in res.designs]
+    if best is None:
+        lines.append(f"exact optimum    {note}")
+    else:
+        lines.append(
+            f"exact optimum    {best.best_ratios[0]} = {float(best.best_ratios[0]):.12g}  error "
+            f"{float(best.best_ratios[0] - res.target):+.3e}  ({note})"
+        )
+        for s in best.solutions:
+            lines.append(f"  drivers {list(s.drivers)} followers {list(s.followers)}")
     emit("\n".join(lines), args.out)
     return 0
+
+
+def _exact_beside(res):
+    """The exhaustive-search optimum for the design's pairs and tooth range, and a note saying what it is."""
+    from gearlever.trains.design import exact_optimum
+
+    pairs = len(res.designs[0].drivers)
+    if res.method == "exact":
+        return None, f"the classical design is exact (error 0): nothing closer with {pairs} pair(s)"
+    try:
+        best = exact_optimum(res, limit=3)
+    except GearleverError as exc:
+        return None, f"not searched: {exc}"
+    verdict = (
+        "the classical design is optimal"
+        if abs(best.best_ratios[0] - res.target) >= abs(res.approximation - res.target)
+        else "closer than the classical design"
+    )
+    return best, f"exhaustive search, {pairs} pair(s), teeth {res.min_teeth} .. {res.max_teeth}: {verdict}"
+
+
+def _exact_record(best) -> dict:
+    r = best.best_ratios[0]
+    return {
+        "ratio": f"{r.numerator}/{r.denominator}",
+        "ratio_float": float(r),
+        "error": float(r - best.target),
+        "pairs": best.pairs,
+        "optimal_sets": best.n_solutions,
+        "solutions": [{"drivers": list(s.drivers), "followers": list(s.followers)} for s in best.solutions],
+    }
 
 
 def _search(args) -> int:

@@ -494,6 +494,58 @@ def design_train(
     )
 
 
+def exact_optimum(res: DesignResult, limit: int = 5, max_space: int | None = None):
+    """The proven best train beside a classical design: the same pairs and tooth range, by exhaustive search.
+
+    The rules of :func:`design_train` build the first continued-fraction
+    approximant that factors into teeth in range; that need not be the
+    closest ratio that any train of as many pairs can give.  This runs
+    :func:`~gearlever.trains.search.search_best` on the same target, number of
+    pairs and tooth range, so the classical design can be shown with the
+    exact optimum beside it.
+
+    Parameters
+    ----------
+    res : DesignResult
+        A result of :func:`design_train`.
+    limit : int
+        Optimal sets listed (the count is always complete).
+    max_space : int, optional
+        Refuse searches with more tooth multisets per side than this (default
+        that of :func:`~gearlever.trains.search.search_best`).
+
+    Returns
+    -------
+    SearchResult
+        With ``best_error`` 0 when the classical design is exact.
+
+    Notes
+    -----
+    Exhaustive search over tooth multisets (:func:`~gearlever.trains.search.search_best`);
+    the classical rules are those of :func:`design_train`.
+
+    Examples
+    --------
+    >>> r = design_train("191/23", min_teeth=24, max_teeth=144)
+    >>> r.approximation, r.designs[0].error < 4.25e-5
+    (Fraction(8512, 1025), True)
+    >>> best = exact_optimum(r)
+    >>> best.best_ratios, float(best.best_error) < 2.72e-5
+    ((Fraction(13287, 1600),), True)
+    """
+    from gearlever.trains.search import DEFAULT_MAX_SPACE, search_best
+
+    pairs = len(res.designs[0].drivers)
+    return search_best(
+        res.target,
+        pairs,
+        res.min_teeth,
+        res.max_teeth,
+        max_space=DEFAULT_MAX_SPACE if max_space is None else max_space,
+        limit=limit,
+    )
+
+
 def _design_columns(designs) -> dict:
     return {
         "drivers": np.array([" ".join(map(str, d.drivers)) for d in designs], dtype=object),
