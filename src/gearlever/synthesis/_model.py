@@ -12,7 +12,7 @@ import math
 
 from gearlever.errors import GearleverError
 
-__all__ = ["fourbar_model", "model_toml"]
+__all__ = ["fourbar_model", "model_toml", "slider_crank_model"]
 
 #: Significant digits of coordinates written to a model file: exact to well
 #: below 1e-9 of any mechanism size, and the same text on every machine.
@@ -65,6 +65,49 @@ def fourbar_model(O2, O4, A, B, P=None, *, name: str = "synthesized four-bar", u
         "mechanism": mech,
         "points": pts,
         "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": coupler, "rocker": ["O4", "B"]},
+        "inputs": [{"link": "crank"}],
+    }
+
+
+def slider_crank_model(O2, A, B, direction=(1.0, 0.0), *, name: str = "synthesized slider-crank", units: str = "") -> dict:
+    """Model dict of a slider-crank with the crank as input, in the pose given.
+
+    Point names: ``O2`` crank pivot, ``A`` crank pin, ``B`` slider pin (wrist
+    pin); links ``ground``, ``crank``, ``rod``, ``slider``; the slider moves
+    on the ground along ``direction`` through B.
+
+    Parameters
+    ----------
+    O2, A, B : pair of float
+        Sketch positions.
+    direction : pair of float
+        Direction of the slider line (not zero).
+    name, units : str
+        ``[mechanism]`` name and length unit label.
+
+    Returns
+    -------
+    dict
+        Accepted by :func:`gearlever.mechanism.model_from_dict`.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import model_from_dict
+    >>> m = model_from_dict(slider_crank_model((0, 0), (10, 0), (44.641016151378, 5.0)))
+    >>> m.moving
+    ('crank', 'rod', 'slider')
+    """
+    u = _xy("direction", direction)
+    if math.hypot(*u) == 0.0:
+        raise GearleverError("direction must not be zero")
+    mech = {"name": name}
+    if units:
+        mech["units"] = units
+    return {
+        "mechanism": mech,
+        "points": {"O2": _xy("O2", O2), "A": _xy("A", A), "B": _xy("B", B)},
+        "links": {"ground": ["O2"], "crank": ["O2", "A"], "rod": ["A", "B"], "slider": ["B"]},
+        "sliders": [{"link": "slider", "on": "ground", "point": "B", "direction": u}],
         "inputs": [{"link": "crank"}],
     }
 
