@@ -1,0 +1,349 @@
+"""``gearlever synthesize function|motion``: dimensional synthesis of linkages, written as model files.
+
+``function``: a four-bar (crank angle -> rocker angle) or slider-crank (crank
+angle -> slider travel) through target pairs from a CSV file, or through
+precision points of a formula.  ``motion``: a four-bar whose coupler passes
+through 3, 4 or 5 poses (x, y, angle).  ``--out`` is a model file that
+``gearlever mechanism analyze`` opens directly, assembled at the first
+target; ``--report`` strict JSON; ``--figure`` a PNG.  Caps: at most
+:data:`~gearlever.synthesis.function.MAX_TARGETS` targets or points, 5 poses,
+formulas of 500 characters.
+
+(``path`` generation is registered beside these by the path module.)
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import time
+
+from gearlever.cli._common import capped_int, check_output, check_output_folder, emit, flagged, to_json
+from gearlever.errors import GearleverError
+
+MAX_ROWS = 10_000
+
+_FLAGS = {
+    "x_range": "--x-range",
+    "input_range": "--input-range",
+    "output_range": "--output-range",
+    "points": "--points",
+    "spacing": "--spacing",
+    "fixed_pivots": "--fixed-pivots",
+    "moving_pivots": "--moving-pivots",
+    "ground_pivot": "--fixed-pivots",
+    "moving_pivot": "--moving-pivots",
+    "ground": "--ground",
+    "expression": "--expr",
+}
+
+
+def register(sub) -> None:
+    p = sub.add_parser("synthesize", help="dimensional synthesis: function and motion generation, written as models")
+    ss = p.add_subparsers(dest="synth_command", metavar="KIND")
+    ss.required = True
+
+    f = ss.add_parser("function", help="a four-bar or slider-crank whose output follows a function of its input")
+    f.add_argument("pairs", nargs="?", help="CSV of targets: input_deg,output_deg (slider-crank: input_deg,output)")
+    f.add_argument("--expr", help='formula y = f(x), e.g. "log10(x)" (numbers, x, + - * / **, sin cos exp log ...)')
+    f.add_argument("--x-range", nargs=2, type=float, metavar=("A", "B"), help="x from, to")
+    f.add_argument("--input-range", nargs=2, type=float, metavar=("DEG", "DEG"), help="crank angle at x from, to")
+    f.add_argument(
+        "--output-range",
+        nargs=2,
+        type=float,
+        metavar=("OUT", "OUT"),
+        help="output at f(x from), f(x to): rocker angle (deg) or slider travel (length)",
+    )
+    f.add_argument("--points", type=capped_int(MAX_ROWS), default=3, help="precision points (default 3: exact)")
+    f.add_argument("--spacing", choices=("chebyshev", "even"), default="chebyshev")
+    f.add_argument("--type", choices=("fourbar", "slider-crank"), default="fourbar", dest="kind")
+    f.add_argument("--ground", type=float, default=1.0, help="four-bar ground link length (scale; default 1)")
+    f.add_argument("--out", required=True, help="model file (TOML) to write")
+    f.add_argument("--report", help="JSON report to write")
+    f.add_argument("--figure", help="PNG figure to write")
+    f.set_defaults(func=_function)
+
+    m = ss.add_parser("motion", help="a four-bar whose coupler passes through 3, 4 or 5 poses")
+    m.add_argument("poses", help="CSV of poses: x,y,angle_deg (coupler point and coupler angle)")
+    g = m.add_mutually_exclusive_group()
+    g.add_argument("--fixed-pivots", nargs=4, type=float, metavar=("X2", "Y2", "X4", "Y4"), help="3 poses: O2, O4")
+    g.add_argument("--moving-pivots", nargs=4, type=float, metavar=("XA", "YA", "XB", "YB"), help="3 poses: A, B")
+    m.add_argument("--out", required=True, help="model file (TOML) of the best four-bar")
+    m.add_argument("--all", metavar="DIR", help="write every ranked solution here (solution_01.toml, ...)")
+    m.add_argument("--report", help="JSON report to write")
+    m.add_argument("--figure", help="PNG figure to write")
+    m.set_defaults(func=_motion)
+    # path generation: registered by gearlever.cli._synthesize_path.register_path(ss) at merge
+
+
+def _read_csv(path: str, flag: str, columns: tuple) -> dict:
+    """Numeric columns of a CSV file (header row), every error naming the file, row and column."""
+    from gearlever._io import read_text_capped
+
+    text = read_text_capped(path, flag)
+    reader = csv.DictReader(io.StringIO(text))
+    header = [h.strip() for h in (reader.fieldnames or [])]
+    missing = [c for c in columns if c not in header]
+    if missing:
+        raise GearleverError(f"{flag} {path!r}: missing column(s) {', '.join(missing)} (header: {','.join(header)})")
+    reader.fieldnames = header
+    out = {c: [] for c in columns}
+    for i, row in enumerate(reader, start=2):
+        if i - 1 > MAX_ROWS:
+            raise GearleverError(f"{flag} {path!r}: more than {MAX_ROWS} rows")
+        for c in columns:
+            cell = (row.get(c) or "").strip()
+            try:
+                v = float(cell)
+            except ValueError:
+                raise GearleverError(f"{flag} {path!r} row {i} column {c}: not a number ({cell!r})") from None
+            if not math.isfinite(v):
+                raise GearleverError(f"{flag} {path!r} row {i} column {c}: must be finite, got {cell!r}")
+            out[c].append(v)
+    return out
+
+
+def _check_outputs(args) -> None:
+    check_output(args.out, "--out")
+    if args.report:
+        check_output(args.report, "--report")
+    if args.figure:
+        check_output(args.figure, "--figure")
+    if getattr(args, "all", None):
+        check_output_folder(args.all, "--all")
+
+
+def _r(v, digits=10):
+    """Rounded for byte-identical output (None for NaN)."""
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return None
+    return float(f"{float(v):.{digits}g}")
+
+
+def _function(args) -> int:
+    import numpy as np
+
+    from gearlever.synthesis._model import model_toml
+    from gearlever.synthesis.function import function_targets, synthesize_function
+
+    _check_outputs(args)
+    t0 = time.perf_counter()
+    slider = args.kind == "slider-crank"
+    out_col = "output" if slider else "output_deg"
+    formula = [args.expr, args.x_range, args.input_range, args.output_range]
+    if (args.pairs is None) == (args.expr is None):
+        raise GearleverError("give either PAIRS.csv or --expr with --x-range, --input-range, --output-range")
+    try:
+        if args.pairs is not None:
+            if any(v is not None for v in formula[1:]):
+                raise GearleverError("--x-range/--input-range/--output-range go with --expr, not with PAIRS.csv")
+            cols = _read_csv(args.pairs, "PAIRS", ("input_deg", out_col))
+            phi = np.radians(cols["input_deg"])
+            out = np.asarray(cols[out_col]) if slider else np.radians(cols[out_col])
+            if phi.size < 3:
+                raise GearleverError(f"PAIRS {args.pairs!r}: function generation needs at least 3 targets, got {phi.size}")
+            seen = {}
+            for i, v in enumerate(cols["input_deg"]):
+                if v in seen:
+                    raise GearleverError(
+                        f"PAIRS {args.pairs!r} row {i + 2} column input_deg: repeats row {seen[v] + 2} ({v!r})"
+                    )
+                seen[v] = i
+            desired, targets = None, None
+        else:
+            for flag, v in zip(("--x-range", "--input-range", "--output-range"), formula[1:]):
+                if v is None:
+                    raise GearleverError(f"--expr needs {flag}")
+            if args.points < 3:
+                raise GearleverError(f"--points must be at least 3, got {args.points}")
+            orange = args.output_range if slider else np.radians(args.output_range)
+            targets = function_targets(
+                args.expr, args.x_range, np.radians(args.input_range), orange, args.points, args.spacing
+            )
+            phi, out, desired = targets.input_angle, targets.output, targets.desired
+        res = synthesize_function(phi, out, kind=args.kind, ground=args.ground, desired=desired)
+    except GearleverError as exc:
+        raise flagged(exc, _FLAGS) from None
+    if res.defect:
+        raise GearleverError(f"synthesize function: refused, {res.defect}; change the ranges or the points")
+    elapsed = time.perf_counter() - t0
+    conv = (lambda v: v) if slider else math.degrees
+    unit = "" if slider else "_deg"
+    comment = (
+        f"gearlever synthesize function ({args.kind}): "
+        + (f"y = {args.expr}" if args.expr else f"pairs from {args.pairs}")
+        + f"; the crank angle of target 1 is {math.degrees(res.input_angle[0]):.10g} deg"
+    )
+    emit(model_toml(res.model, comment), args.out)
+    rep = {
+        "kind": args.kind,
+        "objective": (
+            "exact through 3 precision points"
+            if res.exact
+            else f"least squares of the design equation through {res.input_angle.size} targets"
+        )
+        + (" (Freudenstein's equation)" if not slider else " (slider-crank loop equation)"),
+        "expression": args.expr,
+        "lengths": {k: _r(v) for k, v in res.lengths.items()},
+        "coefficients": [_r(k) for k in res.coefficients],
+        "branch": res.branch,
+        "grashof": res.grashof,
+        "targets": [
+            {
+                "x": _r(targets.x[j]) if targets is not None else None,
+                "input_deg": _r(math.degrees(res.input_angle[j])),
+                f"output{unit}": _r(conv(res.output[j])),
+                f"generated{unit}": _r(conv(res.generated[j])),
+                f"error{unit}": _r(conv(res.error[j]), 4),
+            }
+            for j in range(res.input_angle.size)
+        ],
+        f"max_target_error{unit}": _r(conv(float(np.max(np.abs(res.error)))), 4),
+        f"structural_error_max{unit}": _r(conv(res.structural_error_max), 6),
+        f"structural_error_rms{unit}": _r(conv(res.structural_error_rms), 6),
+        "structural_error_samples": int(res.dense_input.size),
+        "transmission_angle_deg": [
+            _r(math.degrees(res.transmission_angle_min), 6),
+            _r(math.degrees(res.transmission_angle_max), 6),
+        ],
+        "defect": res.defect or None,
+        "model_angle_offsets_deg": _offsets(res),
+        "evaluations": res.evaluations,
+        "time_s": round(elapsed, 2),
+    }
+    if args.report:
+        emit(to_json(rep), args.report, "--report")
+    if args.figure:
+        from gearlever.plotting._common import save
+        from gearlever.plotting.synthesis import function_figure
+
+        save(function_figure(res), args.figure)
+    L = res.lengths
+    lines = [
+        f"type             {args.kind} ({rep['objective']})",
+        "lengths          " + ", ".join(f"{k} {v:.10g}" for k, v in L.items()),
+        f"grashof          {res.grashof}; branch {res.branch}",
+        f"target error     max {rep[f'max_target_error{unit}']:.3g}{' deg' if not slider else ''}",
+        f"structural error max {rep[f'structural_error_max{unit}']:.6g}, rms {rep[f'structural_error_rms{unit}']:.6g}"
+        f"{' deg' if not slider else ''} over {res.dense_input.size} crank angles (engine)",
+        f"transmission     {rep['transmission_angle_deg'][0]:.4g} .. {rep['transmission_angle_deg'][1]:.4g} deg",
+        f"model            {args.out} (crank angle at target 1: {math.degrees(res.input_angle[0]):.10g} deg)",
+    ]
+    print("\n".join(lines))
+    return 0
+
+
+def _offsets(res) -> dict:
+    """Model link angle minus the input (output) angle at target 1: 0 or 180 deg (a link pointing the other way)."""
+    pts = res.model["points"]
+    A = pts["A"]
+    out = {"crank": round(math.degrees(math.atan2(A[1], A[0]) - res.input_angle[0])) % 360}
+    if res.kind == "fourbar":
+        B, O4 = pts["B"], pts["O4"]
+        out["rocker"] = round(math.degrees(math.atan2(B[1] - O4[1], B[0] - O4[0]) - res.output[0])) % 360
+    return out
+
+
+def _motion(args) -> int:
+    import numpy as np
+
+    from gearlever.synthesis._model import model_toml
+    from gearlever.synthesis.motion import MAX_POSES, burmester_curves, synthesize_motion
+
+    _check_outputs(args)
+    t0 = time.perf_counter()
+    cols = _read_csv(args.poses, "POSES", ("x", "y", "angle_deg"))
+    n = len(cols["x"])
+    if n < 3:
+        raise GearleverError(f"POSES {args.poses!r}: motion generation needs at least 3 poses, got {n}")
+    if n > MAX_POSES:
+        raise GearleverError(f"POSES {args.poses!r}: a four-bar is guided through at most {MAX_POSES} poses, got {n}")
+    seen = {}
+    for i, key in enumerate(zip(cols["x"], cols["y"], cols["angle_deg"])):
+        if key in seen:
+            raise GearleverError(f"POSES {args.poses!r} row {i + 2}: repeats row {seen[key] + 2}")
+        seen[key] = i
+    pts = np.column_stack([cols["x"], cols["y"]])
+    ang = np.radians(cols["angle_deg"])
+    if n == 3 and args.fixed_pivots is None and args.moving_pivots is None:
+        raise GearleverError("POSES has 3 poses: give --fixed-pivots X2 Y2 X4 Y4 or --moving-pivots XA YA XB YB")
+    if n > 3 and (args.fixed_pivots is not None or args.moving_pivots is not None):
+        raise GearleverError(f"--fixed-pivots/--moving-pivots are for 3 poses; POSES has {n}")
+
+    def two(v):
+        return None if v is None else [(v[0], v[1]), (v[2], v[3])]
+
+    try:
+        res = synthesize_motion(pts, ang, fixed_pivots=two(args.fixed_pivots), moving_pivots=two(args.moving_pivots))
+    except GearleverError as exc:
+        raise flagged(exc, _FLAGS) from None
+    best = res.best
+    if best.defect:
+        raise GearleverError(f"synthesize motion: refused, every four-bar found has a defect (best: {best.defect})")
+    elapsed = time.perf_counter() - t0
+    emit(model_toml(best.model, f"gearlever synthesize motion ({res.method}) through the poses of {args.poses}"), args.out)
+    if args.all:
+        from gearlever._io import check_folder, write_text_atomic
+
+        folder = check_folder(args.all, create=True)
+        for k, s in enumerate(res.solutions, start=1):
+            write_text_atomic(folder / f"solution_{k:02d}.toml", model_toml(s.model, f"rank {k}: {s.defect or 'no defect'}"))
+
+    def sol_rec(k, s):
+        return {
+            "rank": k,
+            "ground_pivots": [[_r(v) for v in s.crank.ground_pivot], [_r(v) for v in s.rocker.ground_pivot]],
+            "moving_pivots": [[_r(v) for v in s.crank.moving_pivot], [_r(v) for v in s.rocker.moving_pivot]],
+            "lengths": {k2: _r(v) for k2, v in s.lengths.items()},
+            "grashof": s.grashof,
+            "crank_turns": s.crank_turns,
+            "input_deg": [_r(math.degrees(q)) for q in s.input_angle],
+            "point_error": [_r(e, 3) for e in s.point_error],
+            "angle_error_deg": [_r(math.degrees(e), 3) for e in s.angle_error],
+            "residual_relative": _r(s.residual, 3),
+            "transmission_angle_deg": [
+                _r(math.degrees(s.transmission_angle_min), 6),
+                _r(math.degrees(s.transmission_angle_max), 6),
+            ],
+            "defect": s.defect or None,
+        }
+
+    rep = {
+        "objective": f"exact rigid-body guidance through {n} poses ({res.method})",
+        "poses": n,
+        "dyads_found": len(res.dyads),
+        "solutions": [sol_rec(k, s) for k, s in enumerate(res.solutions, start=1)],
+        "evaluations": res.evaluations,
+        "time_s": round(elapsed, 2),
+    }
+    if args.report:
+        emit(to_json(rep), args.report, "--report")
+    if args.figure:
+        from gearlever.mechanism import Mechanism
+        from gearlever.plotting._common import save
+        from gearlever.plotting.synthesis import motion_figure
+
+        q0 = best.input_angle[0]
+        span = best.input_angle[-1] - q0
+        sweep = q0 + np.linspace(0.0, 2 * np.pi if best.crank_turns else span, 361)
+        path = Mechanism.from_dict(best.model).solve(sweep[:, None]).point["P"]
+        curves = burmester_curves(pts, ang) if n == 4 else None
+        save(motion_figure(res, curves, path), args.figure)
+    b = rep["solutions"][0]
+    lines = [
+        f"method           {res.method}: {len(res.dyads)} dyad(s), {len(res.solutions)} four-bar(s) ranked",
+        f"ground pivots    O2 ({b['ground_pivots'][0][0]:.10g}, {b['ground_pivots'][0][1]:.10g}), "
+        f"O4 ({b['ground_pivots'][1][0]:.10g}, {b['ground_pivots'][1][1]:.10g})",
+        f"moving pivots    A ({b['moving_pivots'][0][0]:.10g}, {b['moving_pivots'][0][1]:.10g}), "
+        f"B ({b['moving_pivots'][1][0]:.10g}, {b['moving_pivots'][1][1]:.10g})",
+        "lengths          " + ", ".join(f"{k} {v:.10g}" for k, v in b["lengths"].items()),
+        f"grashof          {best.grashof}; crank turns fully: {'yes' if best.crank_turns else 'no'}",
+        f"residual         {best.residual:.2g} of the size (engine, at every pose)",
+        f"transmission     {b['transmission_angle_deg'][0]:.4g} .. {b['transmission_angle_deg'][1]:.4g} deg",
+        "input at poses   " + ", ".join(f"{v:.8g}" for v in b["input_deg"]) + " deg",
+        f"model            {args.out}",
+    ]
+    print("\n".join(lines))
+    return 0
