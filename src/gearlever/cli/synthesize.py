@@ -143,7 +143,9 @@ def _function(args) -> int:
             phi = np.radians(cols["input_deg"])
             out = np.asarray(cols[out_col]) if slider else np.radians(cols[out_col])
             if phi.size < 3:
-                raise GearleverError(f"PAIRS {args.pairs!r}: function generation needs at least 3 targets, got {phi.size}")
+                raise GearleverError(
+                    f"PAIRS {args.pairs!r}: function generation needs at least 3 targets, got {phi.size}"
+                )
             seen = {}
             for i, v in enumerate(cols["input_deg"]):
                 if v in seen:
@@ -283,13 +285,18 @@ def _motion(args) -> int:
     if best.defect:
         raise GearleverError(f"synthesize motion: refused, every four-bar found has a defect (best: {best.defect})")
     elapsed = time.perf_counter() - t0
-    emit(model_toml(best.model, f"gearlever synthesize motion ({res.method}) through the poses of {args.poses}"), args.out)
+    emit(
+        model_toml(best.model, f"gearlever synthesize motion ({res.method}) through the poses of {args.poses}"),
+        args.out,
+    )
     if args.all:
         from gearlever._io import check_folder, write_text_atomic
 
         folder = check_folder(args.all, create=True)
         for k, s in enumerate(res.solutions, start=1):
-            write_text_atomic(folder / f"solution_{k:02d}.toml", model_toml(s.model, f"rank {k}: {s.defect or 'no defect'}"))
+            write_text_atomic(
+                folder / f"solution_{k:02d}.toml", model_toml(s.model, f"rank {k}: {s.defect or 'no defect'}")
+            )
 
     def sol_rec(k, s):
         return {

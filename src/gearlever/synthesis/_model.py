@@ -69,7 +69,9 @@ def fourbar_model(O2, O4, A, B, P=None, *, name: str = "synthesized four-bar", u
     }
 
 
-def slider_crank_model(O2, A, B, direction=(1.0, 0.0), *, name: str = "synthesized slider-crank", units: str = "") -> dict:
+def slider_crank_model(
+    O2, A, B, direction=(1.0, 0.0), *, name: str = "synthesized slider-crank", units: str = ""
+) -> dict:
     """Model dict of a slider-crank with the crank as input, in the pose given.
 
     Point names: ``O2`` crank pivot, ``A`` crank pin, ``B`` slider pin (wrist

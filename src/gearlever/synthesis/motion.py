@@ -190,7 +190,12 @@ def _cofactors(z, th, idx):
 
 def _wz(z, th, j, k, bj, bk):
     """W, Z from poses j and k (indices) with crank rotations bj, bk."""
-    M = np.array([[np.exp(1j * bj) - 1, np.exp(1j * (th[j] - th[0])) - 1], [np.exp(1j * bk) - 1, np.exp(1j * (th[k] - th[0])) - 1]])
+    M = np.array(
+        [
+            [np.exp(1j * bj) - 1, np.exp(1j * (th[j] - th[0])) - 1],
+            [np.exp(1j * bk) - 1, np.exp(1j * (th[k] - th[0])) - 1],
+        ]
+    )
     rhs = np.array([z[j] - z[0], z[k] - z[0]])
     if abs(np.linalg.det(M)) < 1e-13:
         return None
@@ -703,9 +708,7 @@ def synthesize_motion(
         sols.append(s)
         evals += e
     sols.sort(key=lambda s: _rank_key(s, spread))
-    return MotionSynthesis(
-        np.column_stack([z.real, z.imag]), th, method, tuple(dyads), tuple(sols[:keep]), evals
-    )
+    return MotionSynthesis(np.column_stack([z.real, z.imag]), th, method, tuple(dyads), tuple(sols[:keep]), evals)
 
 
 def z_pts(z):
