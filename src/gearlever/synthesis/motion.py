@@ -118,7 +118,7 @@ def moving_pivot(points, angles, ground_pivot) -> Dyad:
     --------
     >>> d = moving_pivot([(0, 0), (1, 0.5), (2, 0.5)], np.radians([0, 20, 45]), (0.0, -2.0))
     >>> [round(v, 6) for v in d.moving_pivot]
-    [0.893386, -0.710651]
+    [-0.906013, 0.147035]
     """
     z, th = _poses(points, angles)
     if z.size != 3:
@@ -148,8 +148,8 @@ def fixed_pivot(points, angles, moving_pivot) -> Dyad:
 
     Examples
     --------
-    >>> d = fixed_pivot([(0, 0), (1, 0.5), (2, 0.5)], np.radians([0, 20, 45]), (0.893386, -0.710651))
-    >>> [round(v, 4) for v in d.ground_pivot]
+    >>> d = fixed_pivot([(0, 0), (1, 0.5), (2, 0.5)], np.radians([0, 20, 45]), (-0.906013, 0.147035))
+    >>> [round(v, 4) + 0.0 for v in d.ground_pivot]
     [0.0, -2.0]
     """
     z, th = _poses(points, angles)
