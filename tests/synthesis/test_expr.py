@@ -13,7 +13,10 @@ from gearlever.synthesis.expr import parse_expression
         ("log10(x)", np.log10),
         ("x**2 - 3*sin(pi*x)", lambda x: x**2 - 3 * np.sin(np.pi * x)),
         ("-x + (2.5e-1 / x)", lambda x: -x + 0.25 / x),
-        ("sqrt(abs(x)) * exp(-x) + tanh(x) - arctan(x)", lambda x: np.sqrt(np.abs(x)) * np.exp(-x) + np.tanh(x) - np.arctan(x)),
+        (
+            "sqrt(abs(x)) * exp(-x) + tanh(x) - arctan(x)",
+            lambda x: np.sqrt(np.abs(x)) * np.exp(-x) + np.tanh(x) - np.arctan(x),
+        ),
         ("3", lambda x: np.full_like(x, 3.0)),
     ],
 )
