@@ -198,11 +198,11 @@ def _function(args) -> int:
                 "input_deg": _r(math.degrees(res.input_angle[j])),
                 f"output{unit}": _r(conv(res.output[j])),
                 f"generated{unit}": _r(conv(res.generated[j])),
-                f"error{unit}": _r(conv(res.error[j]), 4),
+                f"error{unit}": _r(conv(res.error[j]), 8),
             }
             for j in range(res.input_angle.size)
         ],
-        f"max_target_error{unit}": _r(conv(float(np.max(np.abs(res.error)))), 4),
+        f"max_target_error{unit}": _r(conv(float(np.max(np.abs(res.error)))), 8),
         f"structural_error_max{unit}": _r(conv(res.structural_error_max), 6),
         f"structural_error_rms{unit}": _r(conv(res.structural_error_rms), 6),
         "structural_error_samples": int(res.dense_input.size),
