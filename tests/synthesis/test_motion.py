@@ -95,3 +95,15 @@ def test_repeated_pose_refused():
     pts[2], ang[2] = pts[0], ang[0]
     with pytest.raises(GearleverError, match="same pose"):
         synthesize_motion(pts, ang, fixed_pivots=[O2, O4])
+
+
+def test_order_defect_when_a_rocking_crank_meets_the_poses_out_of_order():
+    m = Mechanism.from_dict(fourbar_model(O2, O4, (2.0, 1.0), B, P))  # triple-rocker: the crank rocks
+    q = m.sketch_inputs[0] + np.linspace(0.0, 0.5, 3)
+    r = m.solve(q[:, None])
+    pts, ang = r.point["P"], r.angle["coupler"]
+    ok = synthesize_motion(pts, ang, fixed_pivots=[O2, O4]).best
+    assert ok.defect == "" and not ok.crank_turns
+    swapped = synthesize_motion(pts[[0, 2, 1]], ang[[0, 2, 1]], fixed_pivots=[O2, O4]).best
+    assert swapped.defect.startswith("order defect")
+    assert swapped.residual < 1e-9  # the poses are still met, but not in order

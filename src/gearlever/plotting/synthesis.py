@@ -87,7 +87,7 @@ def burmester_plot(curves, ax=None):
     if ok.any():
         ax.set_xlim(mid[0] - pad, mid[0] + pad)
         ax.set_ylim(mid[1] - pad, mid[1] + pad)
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")
     ax.set_title("Burmester curves (four poses)")
     ax.legend(fontsize=8, markerscale=4)
     return ax

@@ -52,8 +52,8 @@ def precision_points(a: float, b: float, n: int, spacing: str = "chebyshev") -> 
     -----
     Chebyshev spacing ``x_j = (a + b)/2 - (b - a)/2 cos((2j - 1) pi / (2n))``,
     ``j = 1..n`` (Freudenstein, "Approximate synthesis of four-bar
-    linkages", Trans. ASME 77, 1955, pp. 853-861; Norton, *Design of
-    Machinery*, eq. 5.x "Chebyshev spacing"); even spacing puts the points
+    linkages", Trans. ASME 77, 1955, pp. 853-861, where the precision points
+    are spaced by the zeros of a Chebyshev polynomial); even spacing puts the points
     at the ends and evenly between.
 
     Examples
@@ -327,8 +327,8 @@ def synthesize_function(
     Four-bar: with ground ``d``, crank ``a``, coupler ``b``, rocker ``c``,
     crank angle ``phi`` and rocker angle ``psi``, the loop closure gives
     Freudenstein's equation (F. Freudenstein, "Approximate synthesis of
-    four-bar linkages", Trans. ASME 77, 1955, pp. 853-861; Norton, *Design of
-    Machinery*, eq. 5.x)::
+    four-bar linkages", Trans. ASME 77, 1955, pp. 853-861; also Norton,
+    *Design of Machinery*, chapter on analytical linkage synthesis)::
 
         K1 cos(psi) - K2 cos(phi) + K3 = cos(phi - psi),
         K1 = d/a, K2 = d/c, K3 = (a^2 - b^2 + c^2 + d^2) / (2 a c),

@@ -5,8 +5,8 @@ differences matter.  Each side of the four-bar is a dyad: a ground pivot
 (centre point) ``G``, a moving pivot (circle point) ``M`` on the coupler.
 With ``delta_j = P_j - P_1``, ``alpha_j = angle_j - angle_1`` and the crank
 rotation ``beta_j``, a dyad ``W = M_1 - G``, ``Z = P_1 - M_1`` (complex)
-satisfies the standard dyad equations (Erdman & Sandor, *Advanced Mechanism
-Design: Analysis and Synthesis* vol. 2, ch. 3)::
+satisfies the standard-form dyad equations (A. G. Erdman and G. N. Sandor,
+*Advanced Mechanism Design: Analysis and Synthesis*, vol. 2, Prentice-Hall, 1984)::
 
     W (e^{i beta_j} - 1) + Z (e^{i alpha_j} - 1) = delta_j,   j = 2..n.
 
@@ -112,7 +112,7 @@ def moving_pivot(points, angles, ground_pivot) -> Dyad:
     for ``j = 2, 3``; ``|u|^2`` cancels, leaving two linear equations
     ``2 Re([conj(P_j - G) e^{i alpha_j} - conj(P_1 - G)] u) = |P_1 - G|^2 -
     |P_j - G|^2`` (the inversion of Erdman & Sandor, *Advanced Mechanism
-    Design* vol. 2, sec. 3.4).
+    Design* vol. 2, the specified ground-pivot case of three-position synthesis).
 
     Examples
     --------
@@ -143,7 +143,8 @@ def fixed_pivot(points, angles, moving_pivot) -> Dyad:
     Notes
     -----
     The centre-point construction of three-position synthesis (Norton,
-    *Design of Machinery*, sec. 5.x; Erdman & Sandor vol. 2, sec. 3.3): the
+    *Design of Machinery*, chapter on graphical linkage synthesis; Erdman & Sandor
+    vol. 2, three-position synthesis): the
     circumcentre of ``M_1, M_2, M_3``.
 
     Examples
@@ -237,7 +238,7 @@ def burmester_curves(points, angles, samples: int = 720) -> BurmesterCurves:
     Notes
     -----
     The compatibility of the dyad equations for poses 1-4 (Erdman & Sandor,
-    *Advanced Mechanism Design* vol. 2, sec. 3.7): the determinant of
+    *Advanced Mechanism Design* vol. 2, four-position Burmester theory): the determinant of
     ``[e^{i beta_j} - 1, e^{i alpha_j} - 1, delta_j]`` (j = 2, 3, 4) vanishes,
     ``C_2 e^{i beta_2} + C_3 e^{i beta_3} + C_4 e^{i beta_4} = C_2 + C_3 + C_4``
     with ``C_j`` its cofactors: for each ``beta_2`` a triangle with sides
@@ -310,7 +311,7 @@ def burmester_points(points, angles) -> tuple:
     two is a polynomial of degree at most 8 in ``u`` whose roots on the unit
     circle, other than the trivial ``u = 1`` and the spurious ``u = 0``,
     are the Burmester solutions (Erdman & Sandor, *Advanced Mechanism Design*
-    vol. 2, sec. 3.8: at most four real).  All its roots are found
+    vol. 2, five-position Burmester theory: at most four real).  All its roots are found
     (:func:`numpy.roots`), the matching ``v`` from the quadratic, and each
     pair is polished by Newton steps on the two real equations.
 
@@ -524,17 +525,20 @@ def _check_pair(z, th, d1: Dyad, d2: Dyad, engine: bool = True):
             break
     if branch is None:
         return None
-    # order: the crank must reach the poses in order turning one way
-    rel = np.mod(phi - phi[0], 2 * np.pi)
-    if np.all(np.diff(rel) > 0):
-        sense = 1.0
-    elif np.all(np.diff(np.mod(phi[0] - phi, 2 * np.pi)) > 0):
-        sense = -1.0
-        rel = np.mod(phi[0] - phi, 2 * np.pi)
-    else:
-        sense = 0.0
-        defect = defect or "order defect: the crank does not reach the poses in order turning one way"
+    # order: the crank must reach the poses in order turning one way (within its arc when it rocks)
     g = grashof(d, a, b, c)
+    if g.crank_rotates:
+        fwd, bwd = np.mod(phi - phi[0], 2 * np.pi), np.mod(phi[0] - phi, 2 * np.pi)
+    else:
+        fwd = np.angle(np.exp(1j * (phi - phi[0])))
+        bwd = -fwd
+    if np.all(np.diff(fwd) > 0):
+        sense, rel = 1.0, fwd
+    elif np.all(np.diff(bwd) > 0):
+        sense, rel = -1.0, bwd
+    else:
+        sense, rel = 0.0, fwd
+        defect = defect or "order defect: the crank does not reach the poses in order turning one way"
     sweep = phi[0] + (sense or 1.0) * np.linspace(0.0, float(rel[-1]) if sense else 0.0, 181)
     rs = fourbar(d, a, b, c, sweep, branch=branch)
     if not defect and not rs.valid.all():
