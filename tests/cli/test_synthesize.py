@@ -151,3 +151,18 @@ def test_motion_duplicate_and_missing_column(tmp_path, capsys):
     p = _write(tmp_path, "c.csv", "x,y\n0,0\n1,1\n2,0\n")
     assert main(["synthesize", "motion", p, "--out", str(tmp_path / "m.toml")]) == 2
     assert "missing column(s) angle_deg" in capsys.readouterr().err
+
+
+def test_function_branch_defect_refused_exit_2(tmp_path, capsys):
+    from gearlever.loops.fourbar import fourbar
+
+    phi = np.radians([20.0, 60.0, 100.0])
+    psi = fourbar(1.0, 0.4, 1.1, 0.9, phi).theta4
+    psi[2] = fourbar(1.0, 0.4, 1.1, 0.9, phi[2:], branch="crossed").theta4[0]
+    rows = "".join(f"{float(np.degrees(p))!r},{float(np.degrees(v))!r}\n" for p, v in zip(phi, psi))
+    pairs = _write(tmp_path, "p.csv", "input_deg,output_deg\n" + rows)
+    out = tmp_path / "m.toml"
+    assert main(["synthesize", "function", pairs, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "branch defect" in err and "\n" not in err
+    assert not out.exists()

@@ -106,3 +106,13 @@ def test_zero_width_ranges_refused():
         function_targets("x", (1, 2), (1, 1), (0, 1))
     with pytest.raises(GearleverError, match="same value"):
         function_targets("cos(x)", (-1, 1), (0, 1), (0, 1))
+
+
+def test_slider_crank_branch_defect_flagged():
+    a, b, e = 2.0, 5.0, 1.0
+    phi = np.radians([10.0, 60.0, 110.0])
+    root = np.sqrt(b * b - (e - a * np.sin(phi)) ** 2)
+    s = a * np.cos(phi) + root
+    s[1] = a * np.cos(phi[1]) - root[1]  # the slider behind the crank pin at target 2
+    r = synthesize_function(phi, s, kind="slider-crank")
+    assert "branch defect" in r.defect

@@ -107,3 +107,9 @@ def test_order_defect_when_a_rocking_crank_meets_the_poses_out_of_order():
     swapped = synthesize_motion(pts[[0, 2, 1]], ang[[0, 2, 1]], fixed_pivots=[O2, O4]).best
     assert swapped.defect.startswith("order defect")
     assert swapped.residual < 1e-9  # the poses are still met, but not in order
+
+
+def test_three_poses_moving_pivot_on_a_line_refused():
+    # a pure translation along x: a moving pivot's three positions are collinear
+    with pytest.raises(GearleverError, match="on a line"):
+        synthesize_motion([(0, 0), (1, 0), (2, 0)], [0.0, 0.0, 0.0], moving_pivots=[(0, 1), (1, 1)])

@@ -19,7 +19,15 @@ import io
 import math
 import time
 
-from gearlever.cli._common import capped_int, check_output, check_output_folder, emit, flagged, to_json
+from gearlever.cli._common import (
+    capped_float,
+    capped_int,
+    check_output,
+    check_output_folder,
+    emit,
+    flagged,
+    to_json,
+)
 from gearlever.errors import GearleverError
 
 MAX_ROWS = 10_000
@@ -59,7 +67,9 @@ def register(sub) -> None:
     f.add_argument("--points", type=capped_int(MAX_ROWS), default=3, help="precision points (default 3: exact)")
     f.add_argument("--spacing", choices=("chebyshev", "even"), default="chebyshev")
     f.add_argument("--type", choices=("fourbar", "slider-crank"), default="fourbar", dest="kind")
-    f.add_argument("--ground", type=float, default=1.0, help="four-bar ground link length (scale; default 1)")
+    f.add_argument(
+        "--ground", type=capped_float(1e12), default=1.0, help="four-bar ground link length (scale; default 1)"
+    )
     f.add_argument("--out", required=True, help="model file (TOML) to write")
     f.add_argument("--report", help="JSON report to write")
     f.add_argument("--figure", help="PNG figure to write")

@@ -111,7 +111,7 @@ def motion_figure(result, curves=None, coupler_path=None):
     if coupler_path is not None:
         ax.plot(coupler_path[:, 0], coupler_path[:, 1], "-", color="tab:purple", lw=1, label="coupler point path")
     draw_linkage(best.model, ax, label="linkage at pose 1")
-    _poses(ax, result.points, result.angles, 0.15 * span)
+    _poses(ax, result.points, result.angles, 0.3 * span)
     ax.set_title(
         f"Motion generation ({result.method}): residual {best.residual:.2g}, "
         f"{best.grashof}{', ' + best.defect if best.defect else ''}",
@@ -121,7 +121,7 @@ def motion_figure(result, curves=None, coupler_path=None):
     ax.grid(True, alpha=0.3)
     if curves is not None:
         burmester_plot(curves, axs[0, 1])
-        _poses(axs[0, 1], result.points, result.angles, 0.15 * span)
+        _poses(axs[0, 1], result.points, result.angles, 0.3 * span)
         for d in (best.crank, best.rocker):
             axs[0, 1].plot(*d.ground_pivot, "k^", ms=9)
             axs[0, 1].plot(*d.moving_pivot, "ko", ms=6, mfc="none")
