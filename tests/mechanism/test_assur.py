@@ -15,6 +15,11 @@ from gearlever.mechanism.assur import plan_dyads
 from ._models import all_examples, sweep
 
 TOL = 1e-12
+#: Tolerance by derivative order: positions agree to the Newton stopping rule
+#: (1e-14 L); each derivative is one more linear solve with the same Jacobian,
+#: whose condition number (1/sin of the transmission angle) multiplies the
+#: round-off, so velocities and accelerations get one and two decades more.
+TOL_BY_ORDER = {0: 1e-12, 1: 1e-11, 2: 1e-10}
 
 
 def newton_and_fast(m, q, qd=None, qdd=None):
@@ -34,25 +39,28 @@ def used_fast(r) -> bool:
     return "_fast_points" in r.__dict__
 
 
-def close(a, b, what):
+def close(a, b, what, order=0):
     a, b = np.asarray(a), np.asarray(b)
+    tol = TOL_BY_ORDER[order]
     scale = max(1.0, float(np.nanmax(np.abs(b))))
     np.testing.assert_array_equal(np.isnan(a), np.isnan(b), err_msg=what)
     err = float(np.nanmax(np.abs(a - b))) if a.size else 0.0
-    assert err <= TOL * scale, f"{what}: {err:.3e} > {TOL} * {scale:.3g}"
+    assert err <= tol * scale, f"{what}: {err:.3e} > {tol} * {scale:.3g}"
 
 
 def assert_same(fast, slow, model):
     np.testing.assert_array_equal(fast.closed, slow.closed)
     np.testing.assert_array_equal(fast.reason, slow.reason)
-    for a in ("x", "xdot", "xddot", "pose", "pose_velocity", "pose_acceleration"):
-        close(getattr(fast, a), getattr(slow, a), a)
-    for d in ("point", "velocity", "acceleration"):
+    for order, a in enumerate(("x", "xdot", "xddot")):
+        close(getattr(fast, a), getattr(slow, a), a, order)
+    for order, a in enumerate(("pose", "pose_velocity", "pose_acceleration")):
+        close(getattr(fast, a), getattr(slow, a), a, order)
+    for order, d in enumerate(("point", "velocity", "acceleration")):
         for p in model.points:
-            close(getattr(fast, d)[p], getattr(slow, d)[p], f"{d}[{p}]")
-    for d in ("angle", "omega", "alpha"):
+            close(getattr(fast, d)[p], getattr(slow, d)[p], f"{d}[{p}]", order)
+    for order, d in enumerate(("angle", "omega", "alpha")):
         for k in model.links:
-            close(getattr(fast, d)[k], getattr(slow, d)[k], f"{d}[{k}]")
+            close(getattr(fast, d)[k], getattr(slow, d)[k], f"{d}[{k}]", order)
 
 
 PLANNED = {"engine", "fourbar", "slider_crank", "watt_sixbar"}
