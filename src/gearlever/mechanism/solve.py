@@ -23,6 +23,7 @@ Jacobian.  Pure numpy; no solver call per point.
 
 from __future__ import annotations
 
+import warnings
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -32,7 +33,7 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever._validate import finite_array
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.mechanism.constraints import mesh_coefficients
 from gearlever.mechanism.model import GROUND, MechanismModel
 from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independent_rows, numeric_rank
@@ -46,6 +47,10 @@ SINGULAR_TOL = 1e-9
 
 REASON_UNREACHED = "not reached continuously from the sketch (past a dead point, or no assembly there)"
 REASON_DEAD = "dead point: the constraint Jacobian is singular (velocities undefined)"
+REASON_STOP = (
+    "dead point between {frm} and this row{where}: the continuation stops there, it never changes branch "
+    "(the input reverses at a dead point, or the assembly ends); not reached"
+)
 
 
 def _null_space(A: np.ndarray, ncols: int) -> np.ndarray:
@@ -485,7 +490,12 @@ class KinematicSystem:
 
     # ------------------------------------------------------------- continuation
     def _walk(self, dq0, z0, target, h):
-        """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,); None if it cannot get there."""
+        """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,).
+
+        Returns ``(z, None)`` at the target, or ``(None, dq)`` with the last
+        input reached when it cannot get there (a dead point or the end of
+        the assembly on the way: the step shrank below 1e-7).
+        """
         cur_dq, cur_z = dq0.copy(), z0.copy()
         step = h
         zeros = np.zeros((self.W, 1))
@@ -493,12 +503,12 @@ class KinematicSystem:
             delta = target - cur_dq
             dist = float(np.max(np.abs(delta / self.qscale)))
             if dist == 0.0:
-                return cur_z
+                return cur_z, None
             t = min(step, dist) / dist
             x = self.coordinates(cur_dq[:, None], cur_z[:, None])
             xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
             if dead[0]:
-                return None
+                return None, cur_dq
             zd, zdd = self.N.T @ xd[:, 0], self.N.T @ xdd[:, 0]  # N: orthonormal columns, orthogonal to X_p
             pred = cur_z + zd * t + 0.5 * zdd * t * t
             new_dq = target.copy() if t >= 1.0 else cur_dq + t * delta
@@ -514,7 +524,7 @@ class KinematicSystem:
             else:
                 step /= 2
                 if step < 1e-7:
-                    return None
+                    return None, cur_dq
 
     def solve(self, q, qd, qdd):
         """Reduced coordinates and rates over the input rows; arrays (nx, N), see :func:`solve`.
@@ -535,7 +545,8 @@ class KinematicSystem:
         else:
             x = np.full((self.nx, Nn), np.nan)
             closed = np.zeros(Nn, dtype=bool)
-            CS = self._positions(dq, x, closed)
+            stuck = []
+            CS = self._positions(dq, x, closed, stuck)
         if closed.all():
             xs = x
         else:
@@ -545,10 +556,36 @@ class KinematicSystem:
         reason = np.full(Nn, "", dtype=object)
         reason[closed & dead] = REASON_DEAD
         reason[~closed] = REASON_UNREACHED
+        if self.dz:
+            for i in np.flatnonzero(~closed & np.concatenate([[True], closed[:-1]])):
+                reason[i] = self._stop_reason(dq, i, stuck)
         if not closed.all():
             xd[:, ~closed] = np.nan
             xdd[:, ~closed] = np.nan
         return x, xd, xdd, closed, reason, CS
+
+    def _stop_reason(self, dq, i, stuck):
+        """Reason of the first row ``i`` not reached after a reached one (or the first row)."""
+        a = dq[:, i - 1] if i > 0 else np.zeros(self.W)
+        b = dq[:, i]
+        where = ""
+        span = b - a
+        nn = float(span @ span)
+        for at in stuck:
+            t = float((at - a) @ span) / nn if nn > 0 else 0.0
+            if -1e-9 <= t <= 1 + 1e-9 and np.max(np.abs(a + t * span - at) / self.qscale) <= 1e-6:
+                vals = at + self.q0
+                where = (
+                    " (at "
+                    + ", ".join(
+                        f"{spec.label} = {v:.6g} {'rad' if spec.kind == 'link' else 'length'}"
+                        for spec, v in zip(self.model.inputs, vals)
+                    )
+                    + ")"
+                )
+                break
+        frm = f"row {i - 1}" if i > 0 else "the sketch"
+        return REASON_STOP.format(frm=frm, where=where)
 
     def _state(self, dq, z):
         """Derivatives of ``z`` at one point: first per input (dz, W) and, for one input, second (dz,)."""
@@ -566,20 +603,25 @@ class KinematicSystem:
                 Zpp = self.N.T @ xdd[:, 0]
         return Zp, Zpp
 
-    def _coarse(self, cdq, cz, cok, h, block: int = 8):
+    def _coarse(self, cdq, cz, cok, h, stuck, block: int = 8):
         """Continuation through the coarse points ``cdq`` (W, nb) from the sketch, in batched blocks.
 
-        From the last accepted state the next ``block`` coarse points are
-        predicted (Taylor, second order for one input), corrected together by
-        batched Newton, and the longest prefix that passes the checks
-        (converged, same sign of det J, correction within the trust radius)
-        is accepted; when none passes, the next point is walked to in small
-        sequential steps (:meth:`_walk`).
+        Consecutive coarse points (and the sketch and the first point) are at
+        most ``h`` apart (:meth:`_positions` inserts points where rows are
+        farther apart).  From the last accepted state the next ``block``
+        coarse points are predicted (Taylor, second order for one input),
+        corrected together by batched Newton, and the longest prefix that
+        passes the checks (converged, same sign of det J, correction within
+        the trust radius, each point within ``h`` of the one accepted before
+        it) is accepted; when none passes, the next point is walked to in
+        small sequential steps (:meth:`_walk`).  The inputs where a walk
+        stopped are appended to ``stuck``.
         """
         nb = cdq.shape[1]
         st_dq, st_z = np.zeros(self.W), np.zeros(self.dz)
         st = self._state(st_dq, st_z)
         blocked = None  # (from, at) input values of a failed walk (one input only)
+        reach = h * (1.0 + 1e-9)
         k = 0
         while k < nb:
             if blocked is not None and self.W == 1:
@@ -599,10 +641,18 @@ class KinematicSystem:
                 z, x, C, S, conv = self.newton(cdq[:, ks], pred)
                 ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
                 dist = np.max(np.abs(d / self.qscale[:, None]), axis=0)
+                # chain: every point within h of the one before it (the first: of the state), so that no
+                # dead point or gap in the assembly wider than h is stepped over
+                prev = np.concatenate([st_dq[:, None], cdq[:, ks[:-1]]], axis=1)
+                near = np.max(np.abs((cdq[:, ks] - prev) / self.qscale[:, None]), axis=0) <= reach
                 trust = 0.2 * np.maximum(dist, 1e-3) * (1.0 + np.max(np.abs(Zp * self.qscale[None, :])))
                 with np.errstate(invalid="ignore"):
                     good = (
-                        conv & (ratio > SINGULAR_TOL) & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=0) <= trust)
+                        conv
+                        & near
+                        & (ratio > SINGULAR_TOL)
+                        & (sgn == self.sgn0)
+                        & (np.max(np.abs(z - pred), axis=0) <= trust)
                     )
                 m = int(np.argmin(good)) if not good.all() else good.size
                 if m:
@@ -616,9 +666,10 @@ class KinematicSystem:
                         blocked = None
                         k += m
                         continue
-            zk = self._walk(st_dq, st_z, cdq[:, k], h)
+            zk, at = self._walk(st_dq, st_z, cdq[:, k], h)
             if zk is None:
                 blocked = (st_dq[0], cdq[0, k])
+                stuck.append(at)
             else:
                 nst = self._state(cdq[:, k], zk)
                 cz[:, k], cok[k] = zk, True
@@ -627,8 +678,11 @@ class KinematicSystem:
                 blocked = None
             k += 1
 
-    def _positions(self, dq, x_out, closed):
-        """Fill ``x_out`` (nx, N) and ``closed`` by continuation; return (C, S) of the points when all closed."""
+    def _positions(self, dq, x_out, closed, stuck):
+        """Fill ``x_out`` (nx, N) and ``closed`` by continuation; return (C, S) of the points when all closed.
+
+        The inputs where the continuation stopped (dead points) are appended to ``stuck``.
+        """
         Nn, h = dq.shape[1], COARSE_STEP
         qs = np.abs(dq / self.qscale[:, None])
         step = np.empty(Nn)
@@ -640,10 +694,25 @@ class KinematicSystem:
         starts = np.concatenate([[0], np.flatnonzero(newbin) + 1])
         nb = starts.size
         counts = np.diff(np.concatenate([starts, [Nn]]))
-        cz = np.full((self.dz, nb), np.nan)
-        cok = np.zeros(nb, dtype=bool)
         cdq = dq[:, starts]
-        self._coarse(cdq, cz, cok, h)
+        # coarse points at most h apart, from the sketch: a large step between rows (a coarse sweep,
+        # degrees given for radians) is subdivided, so the continuation never steps over a dead point
+        prev = np.concatenate([np.zeros((self.W, 1)), cdq[:, :-1]], axis=1)
+        gap = np.max(np.abs((cdq - prev) / self.qscale[:, None]), axis=0)
+        sub = np.maximum(np.ceil(gap / h * (1.0 - 1e-12)), 1).astype(int)
+        if sub.max() > 1:
+            frac = np.concatenate([np.arange(1, m + 1) / m for m in sub])
+            seg = np.repeat(np.arange(nb), sub)
+            ecdq = prev[:, seg] + frac * (cdq[:, seg] - prev[:, seg])
+            real = np.cumsum(sub) - 1
+            ecdq[:, real] = cdq  # exactly the rows
+        else:
+            ecdq, real = cdq, np.arange(nb)
+        ecz = np.full((self.dz, ecdq.shape[1]), np.nan)
+        ecok = np.zeros(ecdq.shape[1], dtype=bool)
+        self._coarse(ecdq, ecz, ecok, h, stuck)
+        cz, cok = ecz[:, real], ecok[real]
+
         if not cok.any():
             return None
         # first (per input) and, for one input, second derivatives of z at the coarse points
@@ -722,8 +791,9 @@ class KinematicSystem:
                 src_dq, src_z = dq[:, prev], zfull[:, prev]
             else:
                 src_dq, src_z = cdq[:, bid[i]], cz[:, bid[i]]
-            zi = self._walk(src_dq, src_z, dq[:, i], h)
+            zi, at = self._walk(src_dq, src_z, dq[:, i], h)
             if zi is None:
+                stuck.append(at)
                 skip_bin = bid[i]
                 continue
             zfull[:, i] = zi
@@ -743,6 +813,26 @@ def _as_rows(name, v, N, W):
     if a.shape != (N, W):
         raise GearleverError(f"{name} must have shape ({N},) or ({N}, {W}) like q, got {a.shape}")
     return a
+
+
+def _warn_degrees(system: KinematicSystem, qa: np.ndarray) -> None:
+    """One :class:`~gearlever.errors.GearleverWarning` when a link input's rows look like degrees.
+
+    Looks like degrees: at least two distinct values, all whole numbers, and
+    the largest magnitude beyond a full turn (``0, 10, ..., 360``).
+    """
+    for j, spec in enumerate(system.model.inputs):
+        v = qa[:, j]
+        if spec.kind != "link" or v.size < 2 or not np.all(v == np.round(v)):
+            continue
+        if np.max(np.abs(v)) > 2 * np.pi and np.ptp(v) > 0:
+            warnings.warn(
+                f"q: input {spec.label!r} runs {v.min():g} .. {v.max():g} in whole numbers: this looks like "
+                "degrees, but link inputs are radians (np.radians converts)",
+                GearleverWarning,
+                stacklevel=3,
+            )
+            return
 
 
 def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
@@ -774,6 +864,16 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     correction moves farther than the predictor explains, or where the sign
     of ``det J`` differs from the sketch's (the other assembly branch), is
     re-walked sequentially and otherwise left NaN with ``closed`` False.
+    Rows farther apart than :data:`COARSE_STEP` (a coarse sweep) are joined
+    by intermediate continuation points, so the result does not depend on
+    how densely the rows sample the path: the continuation never steps over
+    a dead point onto the other branch.  Where it meets one (the input
+    reverses, the branch would change, or the assembly ends), it stops: the
+    first row not reached says so in :attr:`MechanismResult.reason` (with
+    the input where it stopped), :attr:`MechanismResult.dead_rows` lists it,
+    and the later rows stay NaN.  Link inputs given as whole numbers beyond a
+    full turn (degrees by mistake) give a
+    :class:`~gearlever.errors.GearleverWarning`.
 
     A mechanism made of drivers and RRR/RRP dyads is first offered to the
     closed-form path (:mod:`gearlever.mechanism.assur`); it answers (equal to
@@ -800,6 +900,7 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     if qa.shape[0] == 0:
         raise GearleverError("q must hold at least one input row")
     N = qa.shape[0]
+    _warn_degrees(system, qa)
     qd = np.ones((N, W)) if qdot is None else _as_rows("qdot", qdot, N, W)
     qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
     plan = system.dyad_plan
@@ -859,6 +960,18 @@ class MechanismResult(Result):
     @property
     def model(self) -> MechanismModel:
         return self.system.model
+
+    @property
+    def dead_rows(self) -> np.ndarray:
+        """Rows (indices) at which, or in the step to which, the continuation met a dead point.
+
+        A row closed exactly at a dead point (rates undefined) or the first row
+        the continuation could not reach, because a dead point or the end of
+        the assembly lies in the step from the row before it (or from the
+        sketch); :attr:`reason` says which and where.  The rows after a stop
+        are not reached either (NaN): the branch never changes silently.
+        """
+        return np.flatnonzero(np.array([r.startswith("dead point") for r in self.reason], dtype=bool))
 
     def _links(self, arr, ground_value):
         m = self.model
