@@ -38,7 +38,7 @@ from gearlever.mechanism.constraints import mesh_coefficients
 from gearlever.mechanism.model import GROUND, MechanismModel
 from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independent_rows, numeric_rank
 
-__all__ = ["KinematicSystem", "MechanismResult", "solve"]
+__all__ = ["KinematicSystem", "MechanismResult", "input_name", "solve"]
 
 #: Largest step (rad, or length / model length scale) of the sequential continuation.
 COARSE_STEP = 0.25
@@ -815,6 +815,13 @@ def _as_rows(name, v, N, W):
     return a
 
 
+def input_name(spec) -> str:
+    """Column name of an input: the link (``crank``, ``crank_rel_ground2``) or the slider (``piston``)."""
+    if spec.kind == "slider":
+        return spec.name
+    return spec.name if spec.relative_to is None else f"{spec.name}_rel_{spec.relative_to}"
+
+
 def _warn_degrees(system: KinematicSystem, qa: np.ndarray) -> None:
     """One :class:`~gearlever.errors.GearleverWarning` when a link input's rows look like degrees.
 
@@ -913,6 +920,7 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
         x, xd, xdd, closed, reason, CS = system.solve(qa.T, qd.T, qdd.T)
         points = None
     r = MechanismResult(qa, qd, qdd, x.T, xd.T, xdd.T, closed, reason, system)
+    object.__setattr__(r, "_analogues", qdot is None)
     object.__setattr__(r, "_cs", CS)
     if points is not None:
         object.__setattr__(r, "_fast_points", points)
@@ -1092,37 +1100,82 @@ class MechanismResult(Result):
         """``(N, n, 3)``: second time derivative of :attr:`pose`."""
         return self._pose(2)
 
-    def columns(self, degrees: bool = False) -> dict:
-        """The result as named columns, each name ending in its unit (``coupler_omega_rad_s``).
+    @property
+    def analogues(self) -> bool:
+        """True when ``qdot`` was not given to :func:`solve` (rates 1: the rates are analogues, not velocities)."""
+        return bool(self.__dict__.get("_analogues", False))
 
-        One row per input point.  Angles in radians (``_rad``), or in degrees
-        (``_deg``) when ``degrees`` is true (the command line); lengths in the
-        model's ``units`` label (``len`` when it gives none).  This is the one
-        naming of result columns: :meth:`to_frame` and ``gearlever mechanism
-        analyze`` both use it.
+    def columns(self, degrees: bool = False, per: str | None = None) -> dict:
+        """The result as named columns: the model's names, each column name ending in its unit.
+
+        Parameters
+        ----------
+        degrees : bool
+            Angles in degrees (``_deg``, the command line) instead of radians
+            (``_rad``); angular rates stay in rad.
+        per : str, optional
+            Name the rates as *analogues* per unit rate of this input
+            (``omega_coupler_per_crank``: ``d theta_coupler / d crank``;
+            accelerations ``..._per_crank_sq``): the caller's ``qdot`` is 1 for
+            that input (and the others move in proportion) and ``qddot`` 0.
+            When None: analogues per the input (or ``per_unit_rates`` for
+            several inputs) when ``qdot`` was not given to :func:`solve`,
+            velocities otherwise (``omega_coupler_rad_s``, ``v_P_x_mm_s``:
+            ``qdot`` in rad/s or length/s).
+
+        Returns
+        -------
+        dict
+            One row per input point: ``input_<name>_rad`` (or ``_deg``, or the
+            length unit for a slider input), ``qdot_<name>_...``,
+            ``qddot_<name>_...``; per moving link ``<link>_angle_rad``,
+            ``omega_<link>_...``, ``alpha_<link>_...``; per slider
+            ``<slider>_s_<u>``, ``v_<slider>_...``, ``a_<slider>_...``; per
+            point ``<P>_x_<u>``, ``<P>_y_<u>``, ``v_<P>_x_...``, ``v_<P>_y_...``,
+            ``a_<P>_x_...``, ``a_<P>_y_...``.  Lengths in the model's
+            ``units`` label (``len`` when it gives none).  This is the one
+            naming of result columns: :meth:`to_frame` and ``gearlever
+            mechanism analyze`` both use it.
+
+        Examples
+        --------
+        >>> from gearlever.mechanism.model import model_from_dict
+        >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]}, "mechanism": {"units": "mm"},
+        ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+        >>> list(solve(KinematicSystem(m), [0.0, 1.0]).columns())[3:6]
+        ['crank_angle_rad', 'omega_crank_per_crank', 'alpha_crank_per_crank_sq']
+        >>> list(solve(KinematicSystem(m), [0.0, 1.0], qdot=[2.0, 2.0]).columns())[4]
+        'omega_crank_rad_s'
         """
         m = self.model
         u = m.units or "len"
         ang, conv = ("deg", np.degrees) if degrees else ("rad", lambda x: x)
+        names = [input_name(spec) for spec in m.inputs]
+        if per is None and self.analogues:
+            per = names[0] if len(names) == 1 else "unit_rates"
+        if per is None:
+            r1, r2, l1, l2 = "rad_s", "rad_s2", f"{u}_s", f"{u}_s2"
+        else:
+            r1, r2, l1, l2 = f"per_{per}", f"per_{per}_sq", f"{u}_per_{per}", f"{u}_per_{per}_sq"
         cols = {}
         for i, spec in enumerate(m.inputs):
-            name = spec.label.replace("/", "_rel_")
-            cols[f"in_{name}_{u}" if spec.kind == "slider" else f"in_{name}_{ang}"] = (
-                self.q[:, i] if spec.kind == "slider" else conv(self.q[:, i])
-            )
+            slider = spec.kind == "slider"
+            cols[f"input_{names[i]}_{u if slider else ang}"] = self.q[:, i] if slider else conv(self.q[:, i])
+            cols[f"qdot_{names[i]}_{l1 if slider else r1}"] = self.qdot[:, i]
+            cols[f"qddot_{names[i]}_{l2 if slider else r2}"] = self.qddot[:, i]
         for k in m.moving:
-            cols[f"{k}_{ang}"] = conv(self.angle[k])
-            cols[f"{k}_omega_rad_s"] = self.omega[k]
-            cols[f"{k}_alpha_rad_s2"] = self.alpha[k]
+            cols[f"{k}_angle_{ang}"] = conv(self.angle[k])
+            cols[f"omega_{k}_{r1}"] = self.omega[k]
+            cols[f"alpha_{k}_{r2}"] = self.alpha[k]
         for sname in self.displacement:
             cols[f"{sname}_s_{u}"] = self.displacement[sname]
-            cols[f"{sname}_v_{u}_s"] = self.slider_velocity[sname]
-            cols[f"{sname}_a_{u}_s2"] = self.slider_acceleration[sname]
+            cols[f"v_{sname}_{l1}"] = self.slider_velocity[sname]
+            cols[f"a_{sname}_{l2}"] = self.slider_acceleration[sname]
         for p in m.points:
             P, V, A = self.point[p], self.velocity[p], self.acceleration[p]
             cols[f"{p}_x_{u}"], cols[f"{p}_y_{u}"] = P[:, 0], P[:, 1]
-            cols[f"{p}_vx_{u}_s"], cols[f"{p}_vy_{u}_s"] = V[:, 0], V[:, 1]
-            cols[f"{p}_ax_{u}_s2"], cols[f"{p}_ay_{u}_s2"] = A[:, 0], A[:, 1]
+            cols[f"v_{p}_x_{l1}"], cols[f"v_{p}_y_{l1}"] = V[:, 0], V[:, 1]
+            cols[f"a_{p}_x_{l2}"], cols[f"a_{p}_y_{l2}"] = A[:, 0], A[:, 1]
         return cols
 
     def _frame_columns(self) -> dict:
