@@ -7,7 +7,7 @@ Sub-commands::
                                       [--format csv|json] [--out FILE]
     gearlever mechanism draw MODEL --out FILE.png [--points N] [--input START STOP ...]
     gearlever mechanism animate MODEL --out FILE.gif [--frames N] [--input START STOP ...]
-    gearlever mechanism assemble MODEL --out EXACT.toml
+    gearlever mechanism assemble MODEL [--out EXACT.toml] [--free-inputs]
 
 The sweep rule (:func:`sweep`; every command that sweeps uses it, and so
 will the viewer):
@@ -101,6 +101,24 @@ def register(sub) -> None:
     )
     _sweep_args(g, points=False)
     g.set_defaults(func=_animate)
+
+    x = ms.add_parser(
+        "assemble",
+        help="close a rough sketch to the exact lengths of its [lengths] table; write the exact model",
+        description="Move the sketch points the least needed to make every [lengths] entry exact, on the "
+        "sketch's assembly branch (ground points stay; link inputs keep their sketch angle when they can), "
+        "and write the model with exact points as TOML.",
+    )
+    x.add_argument("model", help="model file (TOML) with a [lengths] table")
+    x.add_argument(
+        "--out", default=None, help="write the exact model (TOML) to this file (atomically) instead of stdout"
+    )
+    x.add_argument(
+        "--free-inputs",
+        action="store_true",
+        help="let the inputs move too (default: keep their sketch angles, freed only when the lengths need it)",
+    )
+    x.set_defaults(func=_assemble)
 
     from gearlever.cli._mechanism_dynamics import register_dynamics
 
@@ -261,6 +279,23 @@ def _analyze(args) -> int:
         rates = f"analogues per unit rate of {per}" if per else "velocities (rad/s, length/s) at the --rpm speeds"
         text = table_text(cols, "json", {"mechanism": mech.model.name, "rates": rates})
     emit(text, args.out)
+    return 0
+
+
+def _assemble(args) -> int:
+    from gearlever.mechanism import assemble
+    from gearlever.synthesis._model import model_toml
+
+    mech = _load(args.model)
+    exact = assemble(mech.model, hold_inputs=not args.free_inputs)
+    lengths = exact.pop("lengths", {})
+    moved = max(math.dist(mech.model.points[p], xy) for p, xy in exact["points"].items())
+    given = ", ".join(f"{k} = {v}" for k, v in lengths.items())
+    comment = (
+        f"{mech.model.name}: the sketch of {Path(args.model).name} closed to the lengths {given}\n"
+        f"by gearlever mechanism assemble (largest point move {moved:.6g} {mech.model.units or ''})".rstrip()
+    )
+    emit(model_toml(exact, comment), args.out)
     return 0
 
 
