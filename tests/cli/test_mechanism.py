@@ -197,3 +197,17 @@ def test_rpm_per_input_of_a_two_input_model(capsys):
         assert abs(r["omega_gear8_rad_s"] - (w1 - 20 / 25 * (w9 - w1))) < 1e-9
     assert main(argv[:-2] + ["--rpm", "lever2=1"]) == 2
     assert "--rpm: unknown input 'lever2' (inputs: gear9, lever1)" in capsys.readouterr().err
+
+
+def test_slider_input_model_needs_a_range_and_says_so(tmp_path, capsys):
+    text = (EXAMPLES / "slider_crank.toml").read_text()
+    text = text.replace('[[inputs]]\nlink = "crank"', '[[inputs]]\nslider = "piston"')
+    model = tmp_path / "sc.toml"
+    model.write_text(text)
+    assert main(["mechanism", "analyze", str(model), "--points", "4"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the first input of model 'offset slider-crank' (piston) is a slider" in err
+    assert main(["mechanism", "analyze", str(model), "--points", "3", "--input", "0", "-10", "--format", "json"]) == 0
+    rows = _rows(capsys)
+    assert [r["input_piston_mm"] for r in rows] == [0.0, -5.0, -10.0]
+    assert all(r["qdot_piston_mm_per_piston"] == 1.0 for r in rows) and "omega_rod_per_piston" in rows[0]
