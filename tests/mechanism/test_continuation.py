@@ -112,3 +112,14 @@ def test_inputs_in_degrees_warn_once_and_radians_do_not():
         warnings.simplefilter("error", GearleverWarning)
         m.solve(np.linspace(0.0, 4 * np.pi, 50))
         m.solve(np.array([0.0, 1.0, 2.0, 3.0]))
+
+
+def test_first_row_beyond_a_dead_point_from_the_sketch_says_so():
+    # the sketch is at 90 deg; 180 deg lies in the dead zone of the narrow triple-rocker
+    m = _triple_rocker(12.99)
+    r = m.solve(np.array([np.pi, np.pi / 2]))
+    assert not r.closed[0] and r.dead_rows.tolist() == [0]
+    assert r.reason[0].startswith("dead point between the sketch and this row (at crank = ")
+    # row 1 is the sketch itself: reached again from the sketch, on the sketch's branch
+    assert r.closed[1] and r.reason[1] == ""
+    assert abs(r.angle["rocker"][1] - m.model.links["rocker"].angle0) < 1e-12

@@ -854,7 +854,8 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
         ``relative_to``), slider displacements in length units from the sketch.
     qdot, qddot : array_like, optional
         Input velocities and accelerations, same shape (default 1 and 0: the
-        results are then the velocity and acceleration analogues).
+        results are then the velocity and acceleration analogues, and
+        :meth:`MechanismResult.columns` names them so: ``omega_coupler_per_crank``).
 
     Returns
     -------
