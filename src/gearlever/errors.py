@@ -3,6 +3,8 @@
 Every refusal of bad input raises :class:`GearleverError`, a :class:`ValueError`
 whose message names the parameter (or file element) and what it must be.  A
 loop that cannot close at a requested input raises :class:`ClosureError`.
+Input that is accepted but probably not what was meant (degrees where
+radians are expected) gives a :class:`GearleverWarning`.
 The command line turns both, and any :class:`OSError`, into exit status 2 and
 one line on stderr.
 
@@ -15,7 +17,7 @@ True
 
 from __future__ import annotations
 
-__all__ = ["ClosureError", "GearleverError"]
+__all__ = ["ClosureError", "GearleverError", "GearleverWarning"]
 
 
 class GearleverError(ValueError):
@@ -28,3 +30,7 @@ class GearleverError(ValueError):
 
 class ClosureError(GearleverError):
     """A vector loop or mechanism cannot be closed at the requested input."""
+
+
+class GearleverWarning(UserWarning):
+    """Input accepted but probably not meant, e.g. angles that look like degrees where radians are expected."""

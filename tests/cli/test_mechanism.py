@@ -29,7 +29,8 @@ def test_analyze_csv_and_json(tmp_path, capsys):
     out = tmp_path / "a.csv"
     assert main(["mechanism", "analyze", str(EXAMPLES / "fourbar.toml"), "--points", "12", "--out", str(out)]) == 0
     lines = out.read_text().splitlines()
-    assert len(lines) == 13 and lines[0].startswith("in_crank_deg,crank_deg")
+    assert len(lines) == 13 and lines[0].startswith("input_crank_deg,qdot_crank_per_crank,")
+    assert "omega_coupler_per_crank" in lines[0] and "v_P_x_mm_per_crank" in lines[0]
     assert (
         main(
             [
@@ -51,7 +52,7 @@ def test_analyze_csv_and_json(tmp_path, capsys):
         == 0
     )
     d = json.loads(capsys.readouterr().out)
-    assert len(d["rows"]) == 5 and d["rows"][-1]["in_gear9_deg"] == 90.0
+    assert len(d["rows"]) == 5 and d["rows"][-1]["input_gear9_deg"] == 90.0
 
 
 def test_rows_that_do_not_close_stay_with_nulls(tmp_path, capsys):
@@ -65,7 +66,8 @@ def test_rows_that_do_not_close_stay_with_nulls(tmp_path, capsys):
     rows = json.loads(capsys.readouterr().out)["rows"]
     assert len(rows) == 36
     bad = [r for r in rows if not r["closed"]]
-    assert bad and bad[0]["rocker_deg"] is None and bad[0]["reason"]
+    assert bad and bad[0]["rocker_angle_deg"] is None and bad[0]["reason"]
+    assert bad[0]["reason"].startswith("dead point between row")
 
 
 @pytest.mark.parametrize(
@@ -120,3 +122,92 @@ def test_draw_and_animate_write_files(tmp_path):
     assert main(["mechanism", "draw", str(EXAMPLES / "geared_fivebar.toml"), "--out", str(png), "--points", "40"]) == 0
     assert main(["mechanism", "animate", str(EXAMPLES / "slider_crank.toml"), "--out", str(gif), "--frames", "4"]) == 0
     assert png.read_bytes()[:4] == b"\x89PNG" and gif.read_bytes()[:3] == b"GIF"
+
+
+def _rows(capsys):
+    return json.loads(capsys.readouterr().out)["rows"]
+
+
+def test_sweep_rule_full_turn_excludes_the_end_and_a_range_includes_it(capsys):
+    model = str(EXAMPLES / "fourbar.toml")
+    assert main(["mechanism", "analyze", model, "--format", "json"]) == 0
+    rows = _rows(capsys)
+    assert len(rows) == 360 and rows[0]["input_crank_deg"] == 0.0 and rows[-1]["input_crank_deg"] == 359.0
+    assert main(["mechanism", "analyze", model, "--points", "5", "--input", "10", "50", "--format", "json"]) == 0
+    assert [r["input_crank_deg"] for r in _rows(capsys)] == pytest.approx([10.0, 20.0, 30.0, 40.0, 50.0], abs=1e-12)
+
+
+def test_draw_uses_the_same_default_count_as_analyze():
+    from gearlever.cli import build_parser
+
+    p = build_parser()
+    d = p.parse_args(["mechanism", "draw", "m.toml", "--out", "m.png"])
+    a = p.parse_args(["mechanism", "analyze", "m.toml"])
+    assert d.points == a.points == 360
+
+
+def test_two_input_model_sweeps_the_first_input_and_holds_the_other_without_input(capsys):
+    # gear 9 turns a full turn, lever 1 stays at the sketch: gear 8 turns at -z9/z8 = -20/25 (Willis, carrier still)
+    assert (
+        main(["mechanism", "analyze", str(EXAMPLES / "zrdpm_gear_contour.toml"), "--points", "8", "--format", "json"])
+        == 0
+    )
+    rows = _rows(capsys)
+    assert len(rows) == 8 and all(r["closed"] for r in rows)
+    assert all(r["input_lever1_deg"] == 0.0 and r["qdot_lever1_per_gear9"] == 0.0 for r in rows)
+    assert all(abs(r["omega_gear8_per_gear9"] + 20 / 25) < 1e-12 for r in rows)
+    assert abs(rows[1]["gear8_angle_deg"] + 45.0 * 20 / 25) < 1e-9
+
+
+def test_draw_of_a_two_input_model_with_one_range_names_what_is_missing(tmp_path, capsys):
+    png = tmp_path / "z.png"
+    model = str(EXAMPLES / "zrdpm_gear_contour.toml")
+    assert main(["mechanism", "draw", model, "--out", str(png), "--input", "0", "90"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and not png.exists()
+    assert "--input: model 'ZRDPM gear contour 9-8 on lever 1' has 2 inputs (gear9, lever1); " in err
+    assert "give --input START STOP once per input" in err
+    assert main(["mechanism", "draw", model, "--out", str(png), "--points", "24"]) == 0
+    assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_rpm_gives_velocities_in_time_named_as_such(capsys):
+    model = str(EXAMPLES / "fourbar.toml")
+    assert main(["mechanism", "analyze", model, "--points", "6", "--format", "json"]) == 0
+    ana = _rows(capsys)
+    assert main(["mechanism", "analyze", model, "--points", "6", "--rpm", "120", "--format", "json"]) == 0
+    vel = _rows(capsys)
+    w = 120 * 2 * 3.141592653589793 / 60
+    assert "omega_coupler_per_crank" in ana[0] and "omega_coupler_rad_s" not in ana[0]
+    for a, v in zip(ana, vel):
+        assert v["qdot_crank_rad_s"] == w
+        assert abs(v["omega_coupler_rad_s"] - w * a["omega_coupler_per_crank"]) < 1e-9
+        assert abs(v["v_P_x_mm_s"] - w * a["v_P_x_mm_per_crank"]) < 1e-9
+        assert abs(v["a_P_y_mm_s2"] - w * w * a["a_P_y_mm_per_crank_sq"]) < 1e-6
+
+
+def test_rpm_per_input_of_a_two_input_model(capsys):
+    model = str(EXAMPLES / "zrdpm_gear_contour.toml")
+    argv = ["mechanism", "analyze", model, "--points", "3", "--rpm", "gear9=100", "--rpm", "lever1=-30"]
+    assert main(argv + ["--format", "json"]) == 0
+    rows = _rows(capsys)
+    w9, w1 = 100 * 3.141592653589793 / 30, -30 * 3.141592653589793 / 30
+    # Willis: (w8 - w1) / (w9 - w1) = -z9 / z8
+    for r in rows:
+        assert abs(r["omega_gear8_rad_s"] - (w1 - 20 / 25 * (w9 - w1))) < 1e-9
+    assert main(argv[:-2] + ["--rpm", "lever2=1"]) == 2
+    assert "--rpm: unknown input 'lever2' (inputs: gear9, lever1)" in capsys.readouterr().err
+
+
+def test_slider_input_model_needs_a_range_and_says_so(tmp_path, capsys):
+    text = (EXAMPLES / "slider_crank.toml").read_text()
+    text = text.replace('[[inputs]]\nlink = "crank"', '[[inputs]]\nslider = "piston"')
+    model = tmp_path / "sc.toml"
+    model.write_text(text)
+    assert main(["mechanism", "analyze", str(model), "--points", "4"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the first input of model 'offset slider-crank' (piston) is a slider" in err
+    assert main(["mechanism", "analyze", str(model), "--points", "3", "--input", "0", "-10", "--format", "json"]) == 0
+    rows = _rows(capsys)
+    assert [r["input_piston_mm"] for r in rows] == [0.0, -5.0, -10.0]
+    assert all(r["qdot_piston_mm_per_piston"] == 1.0 for r in rows) and "omega_rod_per_piston" in rows[0]

@@ -182,7 +182,23 @@ def test_to_frame_has_unit_columns_and_one_row_per_input():
     m = gearlever.Mechanism.load(example("fourbar"))
     df = m.solve(np.linspace(0, 1, 7)).to_frame()
     assert len(df) == 7
-    assert {"coupler_rad", "coupler_omega_rad_s", "coupler_alpha_rad_s2", "P_x_mm", "P_vx_mm_s"} <= set(df.columns)
+    # qdot not given: analogues per unit crank rate, and the name says so
+    assert {
+        "input_crank_rad",
+        "qdot_crank_per_crank",
+        "coupler_angle_rad",
+        "omega_coupler_per_crank",
+        "alpha_coupler_per_crank_sq",
+        "P_x_mm",
+        "v_P_x_mm_per_crank",
+    } <= set(df.columns)
+    assert (df["qdot_crank_per_crank"] == 1.0).all()
+    # qdot given: velocities in rad/s and mm/s
+    dv = m.solve(np.linspace(0, 1, 7), qdot=np.full(7, 10.0)).to_frame()
+    assert {"qdot_crank_rad_s", "omega_coupler_rad_s", "alpha_coupler_rad_s2", "v_P_x_mm_s", "a_P_y_mm_s2"} <= set(
+        dv.columns
+    )
+    assert np.allclose(dv["omega_coupler_rad_s"], 10.0 * df["omega_coupler_per_crank"], rtol=1e-12, atol=0)
 
 
 @settings(max_examples=25, deadline=None)

@@ -3,17 +3,36 @@
 Sub-commands::
 
     gearlever mechanism structure MODEL [--format table|json]
-    gearlever mechanism analyze MODEL [--points N] [--input START STOP ...] [--format csv|json] [--out FILE]
+    gearlever mechanism analyze MODEL [--points N] [--input START STOP ...] [--rpm NAME=VALUE ...]
+                                      [--format csv|json] [--out FILE]
     gearlever mechanism draw MODEL --out FILE.png [--points N] [--input START STOP ...]
     gearlever mechanism animate MODEL --out FILE.gif [--frames N] [--input START STOP ...]
+    gearlever mechanism assemble MODEL [--out EXACT.toml] [--free-inputs]
 
-Sweep: one rotary input turns a full turn from its sketch angle by default;
-otherwise ``--input START STOP`` is given once per input, in the order of
-``[[inputs]]`` (degrees for a link, length for a slider), and all inputs move
-together, linearly, over the points.  Velocities and accelerations are then
-derivatives with respect to the first input (rad or length): the other
-inputs move at ``(stop_i - start_i) / (stop_1 - start_1)`` (with respect to
-the sweep fraction 0..1 if the first input does not move).
+The sweep rule (:func:`sweep`; every command that sweeps uses it, and so
+will the viewer):
+
+- rows: ``--points`` (default :data:`DEFAULT_POINTS` = 360) for analyze and
+  draw, ``--frames`` (default 36) for animate;
+- no ``--input``: the *first* input of ``[[inputs]]`` turns one full turn
+  from its sketch angle, the end excluded (it would repeat the first row),
+  and any other input is held at its sketch value;
+- ``--input START STOP`` given once per input, in ``[[inputs]]`` order
+  (degrees for a link, length for a slider): all inputs move together,
+  linearly, from START to STOP, the end included.  Giving it for some
+  inputs only is refused, naming the inputs.
+
+Rates (analyze): without ``--rpm`` the columns are *analogues*, derivatives
+with respect to the first input (``omega_coupler_per_crank``, rad per rad;
+``v_P_x_mm_per_crank``, mm per rad; accelerations ``..._per_crank_sq``): the
+first input moves at rate 1, the others at ``(stop_i - start_i) / (stop_1 -
+start_1)`` (or 0 when held), and the names end in ``_per_<first input>``
+(``_per_sweep``: per unit fraction of the sweep, when the first input does
+not move).  With ``--rpm NAME=VALUE`` (once per rotary input; a bare value
+for a model with one input) they are velocities and accelerations in time
+at those constant input speeds, at every swept position
+(``omega_coupler_rad_s``, ``v_P_x_mm_s``; an input not given turns at 0).
+Angles are in degrees (``_deg``), angular rates in rad.
 Caps: ``--points`` at most :data:`MAX_POINTS`, ``--frames`` at most :data:`MAX_FRAMES`.
 """
 
@@ -24,14 +43,17 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, positive_int, to_json
+from gearlever.cli._common import emit, finite_float, named_values, positive_int, table_text, to_json
 from gearlever.errors import GearleverError
 
 #: Largest ``--points`` accepted (rows of a sweep).
 MAX_POINTS = 100_000
 #: Largest ``--frames`` accepted (GIF frames).
 MAX_FRAMES = 360
-DRAW_POINTS = 361
+#: Rows of a sweep when ``--points`` is not given (analyze, draw, the viewer).
+DEFAULT_POINTS = 360
+#: GIF frames when ``--frames`` is not given.
+DEFAULT_FRAMES = 36
 
 
 def register(sub) -> None:
@@ -51,6 +73,13 @@ def register(sub) -> None:
     a = ms.add_parser("analyze", help="positions, velocities and accelerations over a sweep of the inputs")
     a.add_argument("model", help="model file (TOML)")
     _sweep_args(a, points=True)
+    a.add_argument(
+        "--rpm",
+        action="append",
+        metavar="NAME=VALUE",
+        help="speed of a rotary input (rev/min), once per input (a bare VALUE for one input): "
+        "velocities in time instead of analogues per unit rate of the first input",
+    )
     a.add_argument("--format", choices=("csv", "json"), default="csv")
     a.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
     a.set_defaults(func=_analyze)
@@ -58,25 +87,51 @@ def register(sub) -> None:
     d = ms.add_parser("draw", help="PNG: the sketch, joints, gears as pitch circles and the point paths")
     d.add_argument("model", help="model file (TOML)")
     d.add_argument("--out", required=True, help="output image (.png, .svg or .pdf)")
-    _sweep_args(d, points=True, default=DRAW_POINTS)
+    _sweep_args(d, points=True)
     d.set_defaults(func=_draw)
 
     g = ms.add_parser("animate", help="GIF of the mechanism over the sweep")
     g.add_argument("model", help="model file (TOML)")
     g.add_argument("--out", required=True, help="output GIF")
-    g.add_argument("--frames", type=positive_int, default=36, help=f"frames (default 36, at most {MAX_FRAMES})")
+    g.add_argument(
+        "--frames",
+        type=positive_int,
+        default=DEFAULT_FRAMES,
+        help=f"frames: the rows of the sweep (default {DEFAULT_FRAMES}, at most {MAX_FRAMES})",
+    )
     _sweep_args(g, points=False)
     g.set_defaults(func=_animate)
+
+    x = ms.add_parser(
+        "assemble",
+        help="close a rough sketch to the exact lengths of its [lengths] table; write the exact model",
+        description="Move the sketch points the least needed to make every [lengths] entry exact, on the "
+        "sketch's assembly branch (ground points stay; link inputs keep their sketch angle when they can), "
+        "and write the model with exact points as TOML.",
+    )
+    x.add_argument("model", help="model file (TOML) with a [lengths] table")
+    x.add_argument(
+        "--out", default=None, help="write the exact model (TOML) to this file (atomically) instead of stdout"
+    )
+    x.add_argument(
+        "--free-inputs",
+        action="store_true",
+        help="let the inputs move too (default: keep their sketch angles, freed only when the lengths need it)",
+    )
+    x.set_defaults(func=_assemble)
 
     from gearlever.cli._mechanism_dynamics import register_dynamics
 
     register_dynamics(ms)
 
 
-def _sweep_args(p, points: bool, default: int = 360):
+def _sweep_args(p, points: bool):
     if points:
         p.add_argument(
-            "--points", type=positive_int, default=default, help=f"input rows (default {default}, at most {MAX_POINTS})"
+            "--points",
+            type=positive_int,
+            default=DEFAULT_POINTS,
+            help=f"input rows (default {DEFAULT_POINTS}, at most {MAX_POINTS})",
         )
     p.add_argument(
         "--input",
@@ -84,34 +139,94 @@ def _sweep_args(p, points: bool, default: int = 360):
         type=finite_float,
         action="append",
         metavar=("START", "STOP"),
-        help="range of one input (deg, or length for a slider); once per input, in [[inputs]] order",
+        help="range of one input (deg, or length for a slider), end included; once per input, in [[inputs]] "
+        "order (default: the first input turns a full turn from the sketch, the others stay at the sketch)",
     )
 
 
-def sweep(mech, points: int, ranges=None):
-    """Input rows ``q`` (N, W), their rates ``qdot`` and the CLI's input column names."""
+def sweep(mech, points: int = DEFAULT_POINTS, ranges=None):
+    """Input rows of a sweep and their rates: the one sweep rule of the ``mechanism`` commands.
+
+    Parameters
+    ----------
+    mech : gearlever.Mechanism
+    points : int
+        Rows, at most :data:`MAX_POINTS`.
+    ranges : sequence of (start, stop), optional
+        One per input in ``[[inputs]]`` order, degrees for a link and length
+        for a slider (the ``--input`` values).
+
+    Returns
+    -------
+    q : ndarray
+        ``(points, W)`` inputs for :meth:`~gearlever.mechanism.Mechanism.solve`
+        (rad for a link, length for a slider).
+    qdot : ndarray
+        ``(points, W)`` rates per unit rate of the first input (1 for it):
+        analogues; per unit fraction of the sweep when the first input does
+        not move.
+
+    Raises
+    ------
+    GearleverError
+        Too many points; ranges given for some inputs only; no ranges and
+        the first input is a slider (a slider has no full turn).
+
+    Notes
+    -----
+    Without ``ranges`` the first input turns one full turn from its sketch
+    angle, end excluded (``points`` rows ``2 pi / points`` apart; the row
+    after the last would repeat the first), and the other inputs are held
+    at their sketch values (rate 0).  With ``ranges`` every input moves
+    linearly from start to stop, both ends included.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> q, qdot = sweep(m, 4)
+    >>> np.degrees(q[:, 0]).round(9).tolist(), qdot[:, 0].tolist()
+    ([0.0, 90.0, 180.0, 270.0], [1.0, 1.0, 1.0, 1.0])
+    >>> np.degrees(sweep(m, 3, [(0.0, 90.0)])[0][:, 0]).round(9).tolist()
+    [0.0, 45.0, 90.0]
+    """
     if points > MAX_POINTS:
         raise GearleverError(f"--points must be at most {MAX_POINTS}, got {points}")
     m = mech.model
     W = len(m.inputs)
+    labels = ", ".join(input_labels(mech))
+    if not ranges:
+        if m.inputs[0].kind == "slider":
+            raise GearleverError(
+                f"--input: the first input of model {m.name!r} ({labels}) is a slider, which has no full turn; "
+                "give --input START STOP once per input"
+            )
+        q = np.broadcast_to(mech.sketch_inputs, (points, W)).copy()
+        q[:, 0] += np.linspace(0.0, 2 * np.pi, points, endpoint=False)
+        qdot = np.zeros((points, W))
+        qdot[:, 0] = 1.0
+        return q, qdot
+    if len(ranges) != W:
+        raise GearleverError(
+            f"--input: model {m.name!r} has {W} input{'s' if W != 1 else ''} ({labels}); give --input START STOP "
+            f"once per input (got {len(ranges)}), or none to turn the first a full turn with the others held"
+        )
     conv = [1.0 if spec.kind == "slider" else math.pi / 180.0 for spec in m.inputs]
-    if ranges is None:
-        if W != 1 or m.inputs[0].kind == "slider":
-            raise GearleverError(f"--input START STOP must be given once per input ({W} input(s), in [[inputs]] order)")
-        q0 = mech.sketch_inputs[0]
-        q = (q0 + np.linspace(0.0, 2 * np.pi, points, endpoint=False))[:, None]
-        qdot = np.ones((points, 1))
-    else:
-        if len(ranges) != W:
-            raise GearleverError(f"--input must be given once per input: {W} expected, got {len(ranges)}")
-        start = np.array([r[0] * c for r, c in zip(ranges, conv)])
-        stop = np.array([r[1] * c for r, c in zip(ranges, conv)])
-        t = np.linspace(0.0, 1.0, points)
-        q = start + t[:, None] * (stop - start)
-        span = stop - start
-        rates = span / span[0] if span[0] != 0 else span
-        qdot = np.broadcast_to(rates, (points, W)).copy()
-    return q, qdot
+    start = np.array([r[0] * c for r, c in zip(ranges, conv)])
+    stop = np.array([r[1] * c for r, c in zip(ranges, conv)])
+    t = np.linspace(0.0, 1.0, points)
+    q = start + t[:, None] * (stop - start)
+    span = stop - start
+    rates = span / span[0] if span[0] != 0 else span
+    return q, np.broadcast_to(rates, (points, W)).copy()
+
+
+def input_labels(mech) -> list:
+    """Names of the model's inputs, as in ``--rpm NAME=VALUE`` and the result columns."""
+    from gearlever.mechanism.solve import input_name
+
+    return [input_name(spec) for spec in mech.model.inputs]
 
 
 def _load(path):
@@ -134,33 +249,53 @@ def _structure(args) -> int:
     return 0
 
 
-def _fmt(v) -> str:
-    return "nan" if not math.isfinite(v) else f"{v + 0.0:.12g}"  # + 0.0: no "-0"
+def _rates(mech, args, q, qdot):
+    """Rates of analyze: ``(qdot, per)``, analogues per the first input, or velocities from ``--rpm``."""
+    names = input_labels(mech)
+    if not args.rpm:
+        moving_first = args.input is None or args.input[0][0] != args.input[0][1]
+        return qdot, (names[0] if moving_first else "sweep")
+    rotary = [n for n, spec in zip(names, mech.model.inputs) if spec.kind == "link"]
+    if not rotary:
+        raise GearleverError(f"--rpm: model {mech.model.name!r} has no rotary input ({', '.join(names)} are sliders)")
+    rpm = named_values(args.rpm, "--rpm", rotary)
+    rates = np.array([rpm.get(n, 0.0) * math.pi / 30.0 for n in names])
+    return np.broadcast_to(rates, q.shape).copy(), None
 
 
 def _analyze(args) -> int:
     mech = _load(args.model)
     q, qdot = sweep(mech, args.points, args.input)
+    qdot, per = _rates(mech, args, q, qdot)
     r = mech.solve(q, qdot)
-    cols = r.columns(degrees=True)
-    names = list(cols)
-    arr = np.column_stack([cols[k] for k in names])
+    cols = r.columns(degrees=True, per=per)
     if args.format == "csv":
-        lines = [",".join(names + ["closed", "reason"])]
-        for i in range(arr.shape[0]):
-            lines.append(
-                ",".join(_fmt(v) for v in arr[i].tolist()) + f",{int(r.closed[i])},{r.reason[i].split(':')[0]}"
-            )
-        text = "\n".join(lines)
+        cols["closed"] = r.closed
+        cols["reason"] = [s.split(":")[0] for s in r.reason]
+        text = table_text(cols, "csv")
     else:
-        recs = []
-        for i in range(arr.shape[0]):
-            rec = dict(zip(names, arr[i].tolist()))
-            rec["closed"] = bool(r.closed[i])
-            rec["reason"] = r.reason[i] or None
-            recs.append(rec)
-        text = to_json({"mechanism": mech.model.name, "rows": recs})
+        cols["closed"] = r.closed.tolist()
+        cols["reason"] = [s or None for s in r.reason]
+        rates = f"analogues per unit rate of {per}" if per else "velocities (rad/s, length/s) at the --rpm speeds"
+        text = table_text(cols, "json", {"mechanism": mech.model.name, "rates": rates})
     emit(text, args.out)
+    return 0
+
+
+def _assemble(args) -> int:
+    from gearlever.mechanism import assemble
+    from gearlever.synthesis._model import model_toml
+
+    mech = _load(args.model)
+    exact = assemble(mech.model, hold_inputs=not args.free_inputs)
+    lengths = exact.pop("lengths", {})
+    moved = max(math.dist(mech.model.points[p], xy) for p, xy in exact["points"].items())
+    given = ", ".join(f"{k} = {v}" for k, v in lengths.items())
+    comment = (
+        f"{mech.model.name}: the sketch of {Path(args.model).name} closed to the lengths {given}\n"
+        f"by gearlever mechanism assemble (largest point move {moved:.6g} {mech.model.units or ''})".rstrip()
+    )
+    emit(model_toml(exact, comment), args.out)
     return 0
 
 
@@ -173,10 +308,8 @@ def _check_suffix(out, allowed):
 def _draw(args) -> int:
     _check_suffix(args.out, ("png", "svg", "pdf"))
     mech = _load(args.model)
-    r = None
-    if args.input is not None or (len(mech.model.inputs) == 1 and mech.model.inputs[0].kind == "link"):
-        q, qdot = sweep(mech, args.points, args.input)
-        r = mech.solve(q, qdot)
+    q, qdot = sweep(mech, args.points, args.input)
+    r = mech.solve(q, qdot)
     from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import draw_mechanism
 

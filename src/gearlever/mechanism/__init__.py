@@ -10,11 +10,14 @@
   constraints from the Jacobian's rank.
 - :mod:`~gearlever.mechanism.solve`: positions, velocities, accelerations,
   batched over the inputs; :mod:`~gearlever.mechanism.core`: :class:`Mechanism`.
+- :func:`assemble`: a rough sketch closed to the exact lengths of its
+  ``[lengths]`` table (:mod:`gearlever.mechanism.assemble`).
 
 Numeric core: may import numpy, :mod:`gearlever.loops`, :mod:`gearlever.gears`,
 :mod:`gearlever.errors`, :mod:`gearlever._validate`; never pandas or matplotlib.
 """
 
+from gearlever.mechanism.assemble import assemble
 from gearlever.mechanism.core import Mechanism
 from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict
 from gearlever.mechanism.solve import MechanismResult
@@ -22,6 +25,7 @@ from gearlever.mechanism.structural import MechanismStructure
 from gearlever.mechanism.structure import mobility, redundant_constraints
 
 __all__ = [
+    "assemble",
     "mobility",
     "redundant_constraints",
     "Mechanism",

@@ -78,6 +78,15 @@ class Mechanism:
         """Positions, velocities, accelerations over the input rows (:func:`~gearlever.mechanism.solve.solve`)."""
         return solve(self.system, q, qdot, qddot)
 
+    def assemble(self, hold_inputs: bool = True) -> dict:
+        """The model with its sketch closed to its ``[lengths]`` (:func:`~gearlever.mechanism.assemble.assemble`).
+
+        Returns the exact model as a dict; :meth:`from_dict` loads it.
+        """
+        from gearlever.mechanism.assemble import assemble
+
+        return assemble(self.model, hold_inputs=hold_inputs)
+
     def inverse_dynamics(self, q, qdot=None, qddot=None, loads=None, **kw):
         """Driver torques and pair forces (:func:`~gearlever.mechanism.dynamics.inverse_dynamics`)."""
         from gearlever.mechanism.dynamics import inverse_dynamics

@@ -18,7 +18,18 @@ Schema (top-level tables)::
     [gears]      NAME = { link, centre, teeth [, internal] }
     [[meshes]]   gears = ["a", "b"] [, carrier]
     [[inputs]]   link [, relative_to]   or   slider
+    [lengths]    LINK = length   or   "LINK.P-Q" = length   (see below)
     [masses], [[loads]]   not read here: kept raw in MechanismModel.extra
+
+``[lengths]`` (optional) gives exact link lengths for a rough sketch, read by
+:func:`gearlever.mechanism.assemble.assemble`: ``crank = 10.0`` is the
+distance between the first two points of link ``crank``; ``"coupler.A-P" =
+30.0`` (or, unquoted, ``coupler.A-P = 30.0``) the distance between points
+``A`` and ``P`` of link ``coupler``.
+Values are positive numbers in the model's length unit; each pair of points
+at most once.  The loader checks the names and values
+(:func:`parse_lengths`) and keeps the table raw in ``MechanismModel.extra``;
+solving uses the sketch as it is.
 
 Standard library and numpy only.
 """
@@ -36,6 +47,7 @@ from gearlever.errors import GearleverError
 
 __all__ = [
     "GROUND",
+    "parse_lengths",
     "Link",
     "Slider",
     "Gear",
@@ -51,7 +63,7 @@ GROUND = "ground"
 
 NEWLINE = b"\n"
 _TOP = ("mechanism", "points", "links", "sliders", "gears", "meshes", "inputs")
-_KEPT_TABLES = ("masses", "loads")
+_KEPT_TABLES = ("masses", "loads", "lengths")
 _MECH_KEYS = ("name", "units", "module")
 _KEPT_MECH_KEYS = ("gravity", "pressure_angle")
 
@@ -543,6 +555,10 @@ def model_from_dict(d) -> MechanismModel:
     if not inputs:
         raise GearleverError("missing [[inputs]]: give one per degree of freedom")
 
+    # [lengths]: checked here, used by gearlever.mechanism.assemble (kept raw in extra)
+    if "lengths" in d:
+        parse_lengths(d["lengths"], links)
+
     return MechanismModel(
         name=name,
         units=units,
@@ -592,3 +608,75 @@ def _check_connected(links, joints, sliders) -> None:
     for n in links:
         if n not in seen:
             raise GearleverError(f"links.{n}: not joined to ground by pins or sliders")
+
+
+# --------------------------------------------------------------------------- [lengths]
+def parse_lengths(raw, links: dict) -> dict:
+    """Check a ``[lengths]`` table and resolve its keys to point pairs.
+
+    Parameters
+    ----------
+    raw : dict
+        ``{key: length}``: ``LINK`` (its first two points) or ``"LINK.P-Q"``.
+    links : dict
+        Link name -> :class:`Link` (or list of point names).
+
+    Returns
+    -------
+    dict
+        Key -> ``(link, P, Q, length)``, in the order given.
+
+    Raises
+    ------
+    GearleverError
+        Naming the entry (``lengths.crank``): not a table, unknown link, a
+        link with fewer than two points, points not on the link or equal, a
+        value that is not a positive finite number, a pair given twice.
+
+    Examples
+    --------
+    >>> parse_lengths({"crank": 10, "coupler.A-P": 30.5}, {"crank": ["O2", "A"], "coupler": ["A", "B", "P"]})
+    {'crank': ('crank', 'O2', 'A', 10.0), 'coupler.A-P': ('coupler', 'A', 'P', 30.5)}
+    """
+    if not isinstance(raw, dict):
+        raise GearleverError('[lengths] must be a table of LINK = length or "LINK.P-Q" = length')
+    flat = []
+    for key, value in raw.items():
+        if isinstance(value, dict):  # coupler.A-P = 30 unquoted is the table coupler = { A-P = 30 }
+            flat += [(f"{key}.{k}", v) for k, v in value.items()]
+        else:
+            flat.append((str(key), value))
+    out: dict = {}
+    seen: dict = {}
+    for key, value in flat:
+        where = f"lengths.{key}" if "." not in key else f'lengths."{key}"'
+        lname, _, pair = str(key).partition(".")
+        if lname not in links:
+            raise GearleverError(f"{where}: unknown link {lname!r}")
+        pts = links[lname].points if hasattr(links[lname], "points") else tuple(links[lname])
+        if not pair:
+            if len(pts) < 2:
+                raise GearleverError(f"{where}: link {lname!r} has one point; a length needs two")
+            p, q = pts[0], pts[1]
+        else:
+            cands = [
+                (pair[:i], pair[i + 1 :])
+                for i, c in enumerate(pair)
+                if c == "-" and pair[:i] in pts and pair[i + 1 :] in pts
+            ]
+            if len(cands) != 1:
+                raise GearleverError(
+                    f'{where}: must name two points of link {lname!r} as "{lname}.P-Q" (points: {", ".join(pts)})'
+                )
+            p, q = cands[0]
+            if p == q:
+                raise GearleverError(f"{where}: the two points must differ")
+        length = _num(where, value)
+        if length <= 0:
+            raise GearleverError(f"{where} must be a positive length, got {value!r}")
+        ident = (lname, frozenset((p, q)))
+        if ident in seen:
+            raise GearleverError(f"{where}: the pair {p}-{q} of link {lname!r} is already given as {seen[ident]!r}")
+        seen[ident] = key
+        out[key] = (lname, p, q, length)
+    return out

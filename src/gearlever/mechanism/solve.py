@@ -23,6 +23,7 @@ Jacobian.  Pure numpy; no solver call per point.
 
 from __future__ import annotations
 
+import warnings
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -32,12 +33,12 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever._validate import finite_array
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.mechanism.constraints import mesh_coefficients
 from gearlever.mechanism.model import GROUND, MechanismModel
 from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independent_rows, numeric_rank
 
-__all__ = ["KinematicSystem", "MechanismResult", "solve"]
+__all__ = ["KinematicSystem", "MechanismResult", "input_name", "solve"]
 
 #: Largest step (rad, or length / model length scale) of the sequential continuation.
 COARSE_STEP = 0.25
@@ -46,6 +47,10 @@ SINGULAR_TOL = 1e-9
 
 REASON_UNREACHED = "not reached continuously from the sketch (past a dead point, or no assembly there)"
 REASON_DEAD = "dead point: the constraint Jacobian is singular (velocities undefined)"
+REASON_STOP = (
+    "dead point between {frm} and this row{where}: the continuation stops there, it never changes branch "
+    "(the input reverses at a dead point, or the assembly ends); not reached"
+)
 
 
 def _null_space(A: np.ndarray, ncols: int) -> np.ndarray:
@@ -485,7 +490,12 @@ class KinematicSystem:
 
     # ------------------------------------------------------------- continuation
     def _walk(self, dq0, z0, target, h):
-        """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,); None if it cannot get there."""
+        """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,).
+
+        Returns ``(z, None)`` at the target, or ``(None, dq)`` with the last
+        input reached when it cannot get there (a dead point or the end of
+        the assembly on the way: the step shrank below 1e-7).
+        """
         cur_dq, cur_z = dq0.copy(), z0.copy()
         step = h
         zeros = np.zeros((self.W, 1))
@@ -493,12 +503,12 @@ class KinematicSystem:
             delta = target - cur_dq
             dist = float(np.max(np.abs(delta / self.qscale)))
             if dist == 0.0:
-                return cur_z
+                return cur_z, None
             t = min(step, dist) / dist
             x = self.coordinates(cur_dq[:, None], cur_z[:, None])
             xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
             if dead[0]:
-                return None
+                return None, cur_dq
             zd, zdd = self.N.T @ xd[:, 0], self.N.T @ xdd[:, 0]  # N: orthonormal columns, orthogonal to X_p
             pred = cur_z + zd * t + 0.5 * zdd * t * t
             new_dq = target.copy() if t >= 1.0 else cur_dq + t * delta
@@ -514,7 +524,7 @@ class KinematicSystem:
             else:
                 step /= 2
                 if step < 1e-7:
-                    return None
+                    return None, cur_dq
 
     def solve(self, q, qd, qdd):
         """Reduced coordinates and rates over the input rows; arrays (nx, N), see :func:`solve`.
@@ -535,7 +545,8 @@ class KinematicSystem:
         else:
             x = np.full((self.nx, Nn), np.nan)
             closed = np.zeros(Nn, dtype=bool)
-            CS = self._positions(dq, x, closed)
+            stuck = []
+            CS = self._positions(dq, x, closed, stuck)
         if closed.all():
             xs = x
         else:
@@ -545,10 +556,36 @@ class KinematicSystem:
         reason = np.full(Nn, "", dtype=object)
         reason[closed & dead] = REASON_DEAD
         reason[~closed] = REASON_UNREACHED
+        if self.dz:
+            for i in np.flatnonzero(~closed & np.concatenate([[True], closed[:-1]])):
+                reason[i] = self._stop_reason(dq, i, stuck)
         if not closed.all():
             xd[:, ~closed] = np.nan
             xdd[:, ~closed] = np.nan
         return x, xd, xdd, closed, reason, CS
+
+    def _stop_reason(self, dq, i, stuck):
+        """Reason of the first row ``i`` not reached after a reached one (or the first row)."""
+        a = dq[:, i - 1] if i > 0 else np.zeros(self.W)
+        b = dq[:, i]
+        where = ""
+        span = b - a
+        nn = float(span @ span)
+        for at in stuck:
+            t = float((at - a) @ span) / nn if nn > 0 else 0.0
+            if -1e-9 <= t <= 1 + 1e-9 and np.max(np.abs(a + t * span - at) / self.qscale) <= 1e-6:
+                vals = at + self.q0
+                where = (
+                    " (at "
+                    + ", ".join(
+                        f"{spec.label} = {v:.6g} {'rad' if spec.kind == 'link' else 'length'}"
+                        for spec, v in zip(self.model.inputs, vals)
+                    )
+                    + ")"
+                )
+                break
+        frm = f"row {i - 1}" if i > 0 else "the sketch"
+        return REASON_STOP.format(frm=frm, where=where)
 
     def _state(self, dq, z):
         """Derivatives of ``z`` at one point: first per input (dz, W) and, for one input, second (dz,)."""
@@ -566,20 +603,25 @@ class KinematicSystem:
                 Zpp = self.N.T @ xdd[:, 0]
         return Zp, Zpp
 
-    def _coarse(self, cdq, cz, cok, h, block: int = 8):
+    def _coarse(self, cdq, cz, cok, h, stuck, block: int = 8):
         """Continuation through the coarse points ``cdq`` (W, nb) from the sketch, in batched blocks.
 
-        From the last accepted state the next ``block`` coarse points are
-        predicted (Taylor, second order for one input), corrected together by
-        batched Newton, and the longest prefix that passes the checks
-        (converged, same sign of det J, correction within the trust radius)
-        is accepted; when none passes, the next point is walked to in small
-        sequential steps (:meth:`_walk`).
+        Consecutive coarse points (and the sketch and the first point) are at
+        most ``h`` apart (:meth:`_positions` inserts points where rows are
+        farther apart).  From the last accepted state the next ``block``
+        coarse points are predicted (Taylor, second order for one input),
+        corrected together by batched Newton, and the longest prefix that
+        passes the checks (converged, same sign of det J, correction within
+        the trust radius, each point within ``h`` of the one accepted before
+        it) is accepted; when none passes, the next point is walked to in
+        small sequential steps (:meth:`_walk`).  The inputs where a walk
+        stopped are appended to ``stuck``.
         """
         nb = cdq.shape[1]
         st_dq, st_z = np.zeros(self.W), np.zeros(self.dz)
         st = self._state(st_dq, st_z)
         blocked = None  # (from, at) input values of a failed walk (one input only)
+        reach = h * (1.0 + 1e-9)
         k = 0
         while k < nb:
             if blocked is not None and self.W == 1:
@@ -599,10 +641,18 @@ class KinematicSystem:
                 z, x, C, S, conv = self.newton(cdq[:, ks], pred)
                 ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
                 dist = np.max(np.abs(d / self.qscale[:, None]), axis=0)
+                # chain: every point within h of the one before it (the first: of the state), so that no
+                # dead point or gap in the assembly wider than h is stepped over
+                prev = np.concatenate([st_dq[:, None], cdq[:, ks[:-1]]], axis=1)
+                near = np.max(np.abs((cdq[:, ks] - prev) / self.qscale[:, None]), axis=0) <= reach
                 trust = 0.2 * np.maximum(dist, 1e-3) * (1.0 + np.max(np.abs(Zp * self.qscale[None, :])))
                 with np.errstate(invalid="ignore"):
                     good = (
-                        conv & (ratio > SINGULAR_TOL) & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=0) <= trust)
+                        conv
+                        & near
+                        & (ratio > SINGULAR_TOL)
+                        & (sgn == self.sgn0)
+                        & (np.max(np.abs(z - pred), axis=0) <= trust)
                     )
                 m = int(np.argmin(good)) if not good.all() else good.size
                 if m:
@@ -616,9 +666,10 @@ class KinematicSystem:
                         blocked = None
                         k += m
                         continue
-            zk = self._walk(st_dq, st_z, cdq[:, k], h)
+            zk, at = self._walk(st_dq, st_z, cdq[:, k], h)
             if zk is None:
                 blocked = (st_dq[0], cdq[0, k])
+                stuck.append(at)
             else:
                 nst = self._state(cdq[:, k], zk)
                 cz[:, k], cok[k] = zk, True
@@ -627,8 +678,11 @@ class KinematicSystem:
                 blocked = None
             k += 1
 
-    def _positions(self, dq, x_out, closed):
-        """Fill ``x_out`` (nx, N) and ``closed`` by continuation; return (C, S) of the points when all closed."""
+    def _positions(self, dq, x_out, closed, stuck):
+        """Fill ``x_out`` (nx, N) and ``closed`` by continuation; return (C, S) of the points when all closed.
+
+        The inputs where the continuation stopped (dead points) are appended to ``stuck``.
+        """
         Nn, h = dq.shape[1], COARSE_STEP
         qs = np.abs(dq / self.qscale[:, None])
         step = np.empty(Nn)
@@ -640,10 +694,25 @@ class KinematicSystem:
         starts = np.concatenate([[0], np.flatnonzero(newbin) + 1])
         nb = starts.size
         counts = np.diff(np.concatenate([starts, [Nn]]))
-        cz = np.full((self.dz, nb), np.nan)
-        cok = np.zeros(nb, dtype=bool)
         cdq = dq[:, starts]
-        self._coarse(cdq, cz, cok, h)
+        # coarse points at most h apart, from the sketch: a large step between rows (a coarse sweep,
+        # degrees given for radians) is subdivided, so the continuation never steps over a dead point
+        prev = np.concatenate([np.zeros((self.W, 1)), cdq[:, :-1]], axis=1)
+        gap = np.max(np.abs((cdq - prev) / self.qscale[:, None]), axis=0)
+        sub = np.maximum(np.ceil(gap / h * (1.0 - 1e-12)), 1).astype(int)
+        if sub.max() > 1:
+            frac = np.concatenate([np.arange(1, m + 1) / m for m in sub])
+            seg = np.repeat(np.arange(nb), sub)
+            ecdq = prev[:, seg] + frac * (cdq[:, seg] - prev[:, seg])
+            real = np.cumsum(sub) - 1
+            ecdq[:, real] = cdq  # exactly the rows
+        else:
+            ecdq, real = cdq, np.arange(nb)
+        ecz = np.full((self.dz, ecdq.shape[1]), np.nan)
+        ecok = np.zeros(ecdq.shape[1], dtype=bool)
+        self._coarse(ecdq, ecz, ecok, h, stuck)
+        cz, cok = ecz[:, real], ecok[real]
+
         if not cok.any():
             return None
         # first (per input) and, for one input, second derivatives of z at the coarse points
@@ -722,8 +791,9 @@ class KinematicSystem:
                 src_dq, src_z = dq[:, prev], zfull[:, prev]
             else:
                 src_dq, src_z = cdq[:, bid[i]], cz[:, bid[i]]
-            zi = self._walk(src_dq, src_z, dq[:, i], h)
+            zi, at = self._walk(src_dq, src_z, dq[:, i], h)
             if zi is None:
+                stuck.append(at)
                 skip_bin = bid[i]
                 continue
             zfull[:, i] = zi
@@ -745,6 +815,33 @@ def _as_rows(name, v, N, W):
     return a
 
 
+def input_name(spec) -> str:
+    """Column name of an input: the link (``crank``, ``crank_rel_ground2``) or the slider (``piston``)."""
+    if spec.kind == "slider":
+        return spec.name
+    return spec.name if spec.relative_to is None else f"{spec.name}_rel_{spec.relative_to}"
+
+
+def _warn_degrees(system: KinematicSystem, qa: np.ndarray) -> None:
+    """One :class:`~gearlever.errors.GearleverWarning` when a link input's rows look like degrees.
+
+    Looks like degrees: at least two distinct values, all whole numbers, and
+    the largest magnitude beyond a full turn (``0, 10, ..., 360``).
+    """
+    for j, spec in enumerate(system.model.inputs):
+        v = qa[:, j]
+        if spec.kind != "link" or v.size < 2 or not np.all(v == np.round(v)):
+            continue
+        if np.max(np.abs(v)) > 2 * np.pi and np.ptp(v) > 0:
+            warnings.warn(
+                f"q: input {spec.label!r} runs {v.min():g} .. {v.max():g} in whole numbers: this looks like "
+                "degrees, but link inputs are radians (np.radians converts)",
+                GearleverWarning,
+                stacklevel=3,
+            )
+            return
+
+
 def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     """Positions, velocities and accelerations of every link and point over the input rows.
 
@@ -757,7 +854,8 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
         ``relative_to``), slider displacements in length units from the sketch.
     qdot, qddot : array_like, optional
         Input velocities and accelerations, same shape (default 1 and 0: the
-        results are then the velocity and acceleration analogues).
+        results are then the velocity and acceleration analogues, and
+        :meth:`MechanismResult.columns` names them so: ``omega_coupler_per_crank``).
 
     Returns
     -------
@@ -774,6 +872,16 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     correction moves farther than the predictor explains, or where the sign
     of ``det J`` differs from the sketch's (the other assembly branch), is
     re-walked sequentially and otherwise left NaN with ``closed`` False.
+    Rows farther apart than :data:`COARSE_STEP` (a coarse sweep) are joined
+    by intermediate continuation points, so the result does not depend on
+    how densely the rows sample the path: the continuation never steps over
+    a dead point onto the other branch.  Where it meets one (the input
+    reverses, the branch would change, or the assembly ends), it stops: the
+    first row not reached says so in :attr:`MechanismResult.reason` (with
+    the input where it stopped), :attr:`MechanismResult.dead_rows` lists it,
+    and the later rows stay NaN.  Link inputs given as whole numbers beyond a
+    full turn (degrees by mistake) give a
+    :class:`~gearlever.errors.GearleverWarning`.
 
     A mechanism made of drivers and RRR/RRP dyads is first offered to the
     closed-form path (:mod:`gearlever.mechanism.assur`); it answers (equal to
@@ -800,6 +908,7 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     if qa.shape[0] == 0:
         raise GearleverError("q must hold at least one input row")
     N = qa.shape[0]
+    _warn_degrees(system, qa)
     qd = np.ones((N, W)) if qdot is None else _as_rows("qdot", qdot, N, W)
     qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
     plan = system.dyad_plan
@@ -812,6 +921,7 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
         x, xd, xdd, closed, reason, CS = system.solve(qa.T, qd.T, qdd.T)
         points = None
     r = MechanismResult(qa, qd, qdd, x.T, xd.T, xdd.T, closed, reason, system)
+    object.__setattr__(r, "_analogues", qdot is None)
     object.__setattr__(r, "_cs", CS)
     if points is not None:
         object.__setattr__(r, "_fast_points", points)
@@ -859,6 +969,18 @@ class MechanismResult(Result):
     @property
     def model(self) -> MechanismModel:
         return self.system.model
+
+    @property
+    def dead_rows(self) -> np.ndarray:
+        """Rows (indices) at which, or in the step to which, the continuation met a dead point.
+
+        A row closed exactly at a dead point (rates undefined) or the first row
+        the continuation could not reach, because a dead point or the end of
+        the assembly lies in the step from the row before it (or from the
+        sketch); :attr:`reason` says which and where.  The rows after a stop
+        are not reached either (NaN): the branch never changes silently.
+        """
+        return np.flatnonzero(np.array([r.startswith("dead point") for r in self.reason], dtype=bool))
 
     def _links(self, arr, ground_value):
         m = self.model
@@ -979,37 +1101,82 @@ class MechanismResult(Result):
         """``(N, n, 3)``: second time derivative of :attr:`pose`."""
         return self._pose(2)
 
-    def columns(self, degrees: bool = False) -> dict:
-        """The result as named columns, each name ending in its unit (``coupler_omega_rad_s``).
+    @property
+    def analogues(self) -> bool:
+        """True when ``qdot`` was not given to :func:`solve` (rates 1: the rates are analogues, not velocities)."""
+        return bool(self.__dict__.get("_analogues", False))
 
-        One row per input point.  Angles in radians (``_rad``), or in degrees
-        (``_deg``) when ``degrees`` is true (the command line); lengths in the
-        model's ``units`` label (``len`` when it gives none).  This is the one
-        naming of result columns: :meth:`to_frame` and ``gearlever mechanism
-        analyze`` both use it.
+    def columns(self, degrees: bool = False, per: str | None = None) -> dict:
+        """The result as named columns: the model's names, each column name ending in its unit.
+
+        Parameters
+        ----------
+        degrees : bool
+            Angles in degrees (``_deg``, the command line) instead of radians
+            (``_rad``); angular rates stay in rad.
+        per : str, optional
+            Name the rates as *analogues* per unit rate of this input
+            (``omega_coupler_per_crank``: ``d theta_coupler / d crank``;
+            accelerations ``..._per_crank_sq``): the caller's ``qdot`` is 1 for
+            that input (and the others move in proportion) and ``qddot`` 0.
+            When None: analogues per the input (or ``per_unit_rates`` for
+            several inputs) when ``qdot`` was not given to :func:`solve`,
+            velocities otherwise (``omega_coupler_rad_s``, ``v_P_x_mm_s``:
+            ``qdot`` in rad/s or length/s).
+
+        Returns
+        -------
+        dict
+            One row per input point: ``input_<name>_rad`` (or ``_deg``, or the
+            length unit for a slider input), ``qdot_<name>_...``,
+            ``qddot_<name>_...``; per moving link ``<link>_angle_rad``,
+            ``omega_<link>_...``, ``alpha_<link>_...``; per slider
+            ``<slider>_s_<u>``, ``v_<slider>_...``, ``a_<slider>_...``; per
+            point ``<P>_x_<u>``, ``<P>_y_<u>``, ``v_<P>_x_...``, ``v_<P>_y_...``,
+            ``a_<P>_x_...``, ``a_<P>_y_...``.  Lengths in the model's
+            ``units`` label (``len`` when it gives none).  This is the one
+            naming of result columns: :meth:`to_frame` and ``gearlever
+            mechanism analyze`` both use it.
+
+        Examples
+        --------
+        >>> from gearlever.mechanism.model import model_from_dict
+        >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]}, "mechanism": {"units": "mm"},
+        ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+        >>> list(solve(KinematicSystem(m), [0.0, 1.0]).columns())[3:6]
+        ['crank_angle_rad', 'omega_crank_per_crank', 'alpha_crank_per_crank_sq']
+        >>> list(solve(KinematicSystem(m), [0.0, 1.0], qdot=[2.0, 2.0]).columns())[4]
+        'omega_crank_rad_s'
         """
         m = self.model
         u = m.units or "len"
         ang, conv = ("deg", np.degrees) if degrees else ("rad", lambda x: x)
+        names = [input_name(spec) for spec in m.inputs]
+        if per is None and self.analogues:
+            per = names[0] if len(names) == 1 else "unit_rates"
+        if per is None:
+            r1, r2, l1, l2 = "rad_s", "rad_s2", f"{u}_s", f"{u}_s2"
+        else:
+            r1, r2, l1, l2 = f"per_{per}", f"per_{per}_sq", f"{u}_per_{per}", f"{u}_per_{per}_sq"
         cols = {}
         for i, spec in enumerate(m.inputs):
-            name = spec.label.replace("/", "_rel_")
-            cols[f"in_{name}_{u}" if spec.kind == "slider" else f"in_{name}_{ang}"] = (
-                self.q[:, i] if spec.kind == "slider" else conv(self.q[:, i])
-            )
+            slider = spec.kind == "slider"
+            cols[f"input_{names[i]}_{u if slider else ang}"] = self.q[:, i] if slider else conv(self.q[:, i])
+            cols[f"qdot_{names[i]}_{l1 if slider else r1}"] = self.qdot[:, i]
+            cols[f"qddot_{names[i]}_{l2 if slider else r2}"] = self.qddot[:, i]
         for k in m.moving:
-            cols[f"{k}_{ang}"] = conv(self.angle[k])
-            cols[f"{k}_omega_rad_s"] = self.omega[k]
-            cols[f"{k}_alpha_rad_s2"] = self.alpha[k]
+            cols[f"{k}_angle_{ang}"] = conv(self.angle[k])
+            cols[f"omega_{k}_{r1}"] = self.omega[k]
+            cols[f"alpha_{k}_{r2}"] = self.alpha[k]
         for sname in self.displacement:
             cols[f"{sname}_s_{u}"] = self.displacement[sname]
-            cols[f"{sname}_v_{u}_s"] = self.slider_velocity[sname]
-            cols[f"{sname}_a_{u}_s2"] = self.slider_acceleration[sname]
+            cols[f"v_{sname}_{l1}"] = self.slider_velocity[sname]
+            cols[f"a_{sname}_{l2}"] = self.slider_acceleration[sname]
         for p in m.points:
             P, V, A = self.point[p], self.velocity[p], self.acceleration[p]
             cols[f"{p}_x_{u}"], cols[f"{p}_y_{u}"] = P[:, 0], P[:, 1]
-            cols[f"{p}_vx_{u}_s"], cols[f"{p}_vy_{u}_s"] = V[:, 0], V[:, 1]
-            cols[f"{p}_ax_{u}_s2"], cols[f"{p}_ay_{u}_s2"] = A[:, 0], A[:, 1]
+            cols[f"v_{p}_x_{l1}"], cols[f"v_{p}_y_{l1}"] = V[:, 0], V[:, 1]
+            cols[f"a_{p}_x_{l2}"], cols[f"a_{p}_y_{l2}"] = A[:, 0], A[:, 1]
         return cols
 
     def _frame_columns(self) -> dict:
