@@ -30,7 +30,7 @@ def test_function_model_reproduces_reported_errors_under_mechanism_analyze(tmp_p
     off = r["model_angle_offsets_deg"]
     for t in r["targets"]:
         rows = _analyze(capsys, out, t["input_deg"] + off["crank"], t["input_deg"] + off["crank"], 1)
-        rocker = float(rows[0]["rocker_deg"]) + off["rocker"]
+        rocker = float(rows[0]["rocker_angle_deg"]) + off["rocker"]
         err = (rocker - t["output_deg"] + 180) % 360 - 180
         assert err == pytest.approx(t["error_deg"], abs=1e-6)
     if points == "3":
