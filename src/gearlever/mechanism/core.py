@@ -78,6 +78,12 @@ class Mechanism:
         """Positions, velocities, accelerations over the input rows (:func:`~gearlever.mechanism.solve.solve`)."""
         return solve(self.system, q, qdot, qddot)
 
+    def instant_centres(self, q, qdot=None):
+        """Instant centres of every pair of links (:func:`~gearlever.mechanism.centres.instant_centres`)."""
+        from gearlever.mechanism.centres import instant_centres
+
+        return instant_centres(self.solve(q, qdot))
+
     def inverse_dynamics(self, q, qdot=None, qddot=None, loads=None, **kw):
         """Driver torques and pair forces (:func:`~gearlever.mechanism.dynamics.inverse_dynamics`)."""
         from gearlever.mechanism.dynamics import inverse_dynamics
