@@ -53,6 +53,7 @@ def register(sub) -> None:
     _sweep_args(a, points=True)
     a.add_argument("--format", choices=("csv", "json"), default="csv")
     a.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
+    a.add_argument("--centres", action="store_true", help="add the instant centres of every pair of links")
     a.set_defaults(func=_analyze)
 
     d = ms.add_parser("draw", help="PNG: the sketch, joints, gears as pitch circles and the point paths")
@@ -71,6 +72,9 @@ def register(sub) -> None:
     from gearlever.cli._mechanism_dynamics import register_dynamics
 
     register_dynamics(ms)
+    from gearlever.cli._mechanism_view import register_view
+
+    register_view(ms)
 
 
 def _sweep_args(p, points: bool, default: int = 360):
@@ -143,6 +147,10 @@ def _analyze(args) -> int:
     q, qdot = sweep(mech, args.points, args.input)
     r = mech.solve(q, qdot)
     cols = r.columns(degrees=True)
+    if args.centres:
+        from gearlever.mechanism.centres import centre_columns
+
+        cols.update(centre_columns(r))
     names = list(cols)
     arr = np.column_stack([cols[k] for k in names])
     if args.format == "csv":
