@@ -14,6 +14,7 @@ The page template (HTML, CSS, JavaScript) is package data in
 from __future__ import annotations
 
 import math
+import re
 from importlib import resources
 
 import numpy as np
@@ -331,14 +332,14 @@ def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
     (True, True)
     """
     data = viewer_data(mech, frames, rpm, inputs)
-    payload = to_json(data, indent=None).replace("</", "<\\/")
-    html = _template("viewer.html")
-    out = (
-        html.replace("/*__CSS__*/", _template("viewer.css"))
-        .replace("/*__JS__*/", _template("viewer.js"))
-        .replace("__TITLE__", _escape(mech.model.name))
-    )
-    return out.replace("__DATA__", payload)
+    fill = {
+        "__DATA__": to_json(data, indent=None).replace("</", "<\\/"),
+        "__TITLE__": _escape(mech.model.name),
+        "/*__CSS__*/": _template("viewer.css"),
+        "/*__JS__*/": _template("viewer.js"),
+    }
+    # one pass: a model name holding a marker is not expanded
+    return re.sub("|".join(re.escape(k) for k in fill), lambda mt: fill[mt.group(0)], _template("viewer.html"))
 
 
 def _escape(text: str) -> str:
