@@ -202,7 +202,7 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
             }
         )
 
-    # one arrow scale for every point and frame: the longest arrow is 0.35 L
+    # one arrow scale for every point and frame: the longest arrow is L / 2
     def longest(attr):
         best = 0.0
         for p in points:
@@ -250,8 +250,8 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
         "gears": gears,
         "closed": "".join("1" if c else "0" for c in closed),
         "S": series,
-        "vscale": 0.35 * L / vmax if vmax > 0 else 0.0,
-        "ascale": 0.35 * L / amax if amax > 0 else 0.0,
+        "vscale": 0.5 * L / vmax if vmax > 0 else 0.0,
+        "ascale": 0.5 * L / amax if amax > 0 else 0.0,
         "ic": None,
     }
     if W == 1:

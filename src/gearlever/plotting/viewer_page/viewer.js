@@ -183,8 +183,6 @@
     t.textContent = `${g.name}: z = ${g.teeth}${g.internal ? " (internal)" : ""}`;
     return { g: g, t: t };
   });
-  let inputLabel = null;
-  if (pivotName) { inputLabel = el("text", { class: "input-label" }, labelsG); inputLabel.textContent = "input " + D.inputs[0].label; }
 
   // instant centres (one-input models)
   const icEls = {}, icLabels = {};
@@ -298,20 +296,17 @@
         setLine(Gd.e, ox + s.smin * ux, oy + s.smin * uy, ox + s.smax * ux, oy + s.smax * uy);
       });
       if (names) {
-        let cx = 0, cy = 0;
-        xy.forEach((q) => { cx += q[0]; cy += q[1]; });
-        cx /= xy.length; cy /= xy.length;
+        const [cx, cy] = labelAnchor(lk, parts, xy, k);
         placeText(linkLabels[lk.name], cx, cy, 8, 16);
       } else show(linkLabels[lk.name], false);
     });
     if (inputMark) {
       const [x, y] = P(pivotName, k);
       if (ok && x !== null) { inputMark.setAttribute("cx", x); inputMark.setAttribute("cy", y); show(inputMark, true); } else show(inputMark, false);
-      if (inputLabel) { if (ok && names) placeText(inputLabel, x, y, -20, 0.16 * L * st.s + 16); else show(inputLabel, false); }
     }
     gearLabels.forEach(({ g, t }) => {
       const [x, y] = P(g.centre, k);
-      if (ok && names) placeText(t, x, y - g.r * 0.7071, 4, 12); else show(t, false);
+      if (ok && names) placeText(t, x + g.r * 0.5, y - g.r * 0.866, 4, 14); else show(t, false);
     });
     // arrows: one scale for every point and frame
     const vOn = $("show-velocity").checked, aOn = $("show-acceleration").checked;
@@ -319,8 +314,9 @@
       const [x, y] = P(p, k);
       const vx = at(S.vx[p], k), vy = at(S.vy[p], k), ax = at(S.ax[p], k), ay = at(S.ay[p], k);
       const good = ok && x !== null;
-      if (vOn && good && vx !== null) { setLine(velEls[p], x, y, x + D.vscale * vx, y + D.vscale * vy); show(velEls[p], true); } else show(velEls[p], false);
-      if (aOn && good && ax !== null) { setLine(accEls[p], x, y, x + D.ascale * ax, y + D.ascale * ay); show(accEls[p], true); } else show(accEls[p], false);
+      const tiny = 1e-4 * L;  // an arrow shorter than this is only its head: hide it
+      if (vOn && good && vx !== null && D.vscale * Math.hypot(vx, vy) > tiny) { setLine(velEls[p], x, y, x + D.vscale * vx, y + D.vscale * vy); show(velEls[p], true); } else show(velEls[p], false);
+      if (aOn && good && ax !== null && D.ascale * Math.hypot(ax, ay) > tiny) { setLine(accEls[p], x, y, x + D.ascale * ax, y + D.ascale * ay); show(accEls[p], true); } else show(accEls[p], false);
     });
     // instant centres
     const icOn = IC && $("show-centres").checked;
@@ -339,6 +335,30 @@
     readout();
     plotCursor();
     scheduleUrl();
+  }
+
+  // where a link's name goes: the centroid of a real polygon, else the middle of its first bar,
+  // else (one point) beside its gear rim or its block
+  function labelAnchor(lk, parts, xy, k) {
+    if (xy.length >= 3) {
+      let area = 0, per = 0;
+      for (let i = 0; i < xy.length; i++) {
+        const a = xy[i], b = xy[(i + 1) % xy.length];
+        area += a[0] * b[1] - b[0] * a[1];
+        per += Math.hypot(b[0] - a[0], b[1] - a[1]);
+      }
+      if (Math.abs(area) / 2 > 0.02 * per * per / 9) {
+        let cx = 0, cy = 0;
+        xy.forEach((q) => { cx += q[0]; cy += q[1]; });
+        return [cx / xy.length, cy / xy.length];
+      }
+    }
+    if (xy.length >= 2) return [(xy[0][0] + xy[1][0]) / 2, (xy[0][1] + xy[1][1]) / 2];
+    if (parts.gears.length) {
+      const r = parts.gears[0].gr.r;
+      return [xy[0][0] + 0.75 * r, xy[0][1] + 0.75 * r];
+    }
+    return [xy[0][0] + 0.05 * L, xy[0][1] - 0.05 * L];
   }
 
   function icAt(pair, k) {
@@ -398,6 +418,7 @@
   }
   function legend() {
     const parts = [];
+    if (pivotName) parts.push(`<span class="ring"></span>input: ${D.inputs[0].label} (thick, drag it)`);
     if ($("show-velocity").checked && D.vscale > 0)
       parts.push(`<span class="key" style="border-color:#0b6e4f"></span>velocity: 1 ${U} of arrow = ${fmt(1 / D.vscale, 4)} ${velUnit}`);
     if ($("show-acceleration").checked && D.ascale > 0)
