@@ -296,8 +296,9 @@
         setLine(Gd.e, ox + s.smin * ux, oy + s.smin * uy, ox + s.smax * ux, oy + s.smax * uy);
       });
       if (names) {
-        const [cx, cy] = labelAnchor(lk, parts, xy, k);
-        placeText(linkLabels[lk.name], cx, cy, 8, 16);
+        const [cx, cy, anchor] = labelAnchor(lk, parts, xy, k);
+        linkLabels[lk.name].setAttribute("text-anchor", anchor || "start");
+        placeText(linkLabels[lk.name], cx, cy, anchor ? -4 : 8, anchor ? -4 : 16);
       } else show(linkLabels[lk.name], false);
     });
     if (inputMark) {
@@ -356,7 +357,7 @@
     if (xy.length >= 2) return [(xy[0][0] + xy[1][0]) / 2, (xy[0][1] + xy[1][1]) / 2];
     if (parts.gears.length) {
       const r = parts.gears[0].gr.r;
-      return [xy[0][0] + 0.75 * r, xy[0][1] + 0.75 * r];
+      return [xy[0][0] - 0.75 * r, xy[0][1] + 0.75 * r, "end"];
     }
     return [xy[0][0] + 0.05 * L, xy[0][1] - 0.05 * L];
   }
