@@ -9,7 +9,6 @@ from __future__ import annotations
 import io
 import math
 import os
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -48,7 +47,7 @@ link = "crank"
 
 
 def _have_browser() -> bool:
-    return all(Path(p).exists() or shutil.which(Path(p).name) for p in (CHROMIUM, CHROMEDRIVER))
+    return all(Path(p).is_file() for p in (CHROMIUM, CHROMEDRIVER))
 
 
 @pytest.fixture(scope="module")

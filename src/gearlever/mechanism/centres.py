@@ -108,8 +108,8 @@ def instant_centres(result) -> InstantCentres:
     and ``j`` gives ``(w_i - w_j) k x P = a_j - a_i`` with
     ``a_k = v_k(O_k) - w_k k x O_k``: the instant centre (J. J. Uicker,
     G. R. Pennock and J. E. Shigley, *Theory of Machines and Mechanisms*,
-    5th ed., Oxford University Press, 2017, sec. 3.13-3.15, the instant
-    centre as the point of equal velocity of two bodies).  When
+    5th ed., Oxford University Press, 2017, ch. 3, the instant centre of
+    velocity as the point of equal velocity of two bodies).  When
     ``|w_i - w_j| <= EQUAL_OMEGA_TOL * max_k |w_k|`` the pair is in
     relative translation and its centre is at infinity, in the direction
     normal to ``a_j - a_i``.
@@ -181,7 +181,8 @@ def kennedy_defect(ic: InstantCentres) -> tuple:
     -----
     Aronhold-Kennedy theorem: the three instant centres of three bodies in
     plane motion lie on one straight line (Uicker, Pennock and Shigley,
-    *Theory of Machines and Mechanisms*, 5th ed., sec. 3.16).
+    *Theory of Machines and Mechanisms*, 5th ed., ch. 3, the theorem of
+    three centres).
 
     Examples
     --------
@@ -229,6 +230,14 @@ def centre_columns(result) -> dict:
 
     Lengths carry the model's ``units`` label (``len`` when none); a centre
     at infinity is NaN (``nan`` in CSV, null in JSON).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"mechanism": {"units": "mm"}, "points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> list(centre_columns(m.solve([0.0, 1.0])))
+    ['ic_ground/crank_x_mm', 'ic_ground/crank_y_mm']
     """
     ic = instant_centres(result)
     u = result.model.units or "len"

@@ -32,9 +32,16 @@ GRID_STEPS = 24
 SIGNIFICANT_DIGITS = 6
 
 
-def _round(a):
-    """Values rounded to :data:`SIGNIFICANT_DIGITS` significant digits (None for NaN); one value if all equal."""
+def _round(a, scale=None):
+    """Values rounded to :data:`SIGNIFICANT_DIGITS` significant digits (None for NaN); one value if all equal.
+
+    Values below ``1e-12 scale`` (default: the array's largest) are rounding noise: written as 0.
+    """
     a = np.asarray(a, dtype=float).ravel()
+    fin = np.isfinite(a)
+    if fin.any():
+        ref = np.max(np.abs(a[fin])) if scale is None else scale
+        a = np.where(fin & (np.abs(a) < 1e-12 * ref), 0.0, a)
     out = [float(f"{v:.{SIGNIFICANT_DIGITS}g}") if math.isfinite(v) else None for v in a.tolist()]
     out = [int(v) if v is not None and v.is_integer() and abs(v) < 1e15 else v for v in out]
     out = [0 if v == 0 else v for v in out]  # no -0.0
@@ -43,9 +50,9 @@ def _round(a):
     return out
 
 
-def _slices(a, M: int) -> list:
+def _slices(a, M: int, scale=None) -> list:
     """``M`` slices of a flat array (grid index major), each a list of frames or one value when constant."""
-    return [_round(part) for part in np.split(np.asarray(a, dtype=float), M)]
+    return [_round(part, scale) for part in np.split(np.asarray(a, dtype=float), M)]
 
 
 def _frames_inputs(mech, frames: int, inputs) -> tuple:
@@ -116,6 +123,15 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     -------
     dict
         Strict-JSON-ready (see :func:`viewer_html`).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> d = viewer_data(m, frames=4)
+    >>> d["S"]["x"]["A"], d["S"]["y"]["A"]
+    ([[1, 0, -1, 0]], [[0, 1, 0, -1]])
     """
     from gearlever.mechanism.centres import instant_centres
     from gearlever.mechanism.model import GROUND
@@ -147,12 +163,13 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
         return np.concatenate([np.asarray(a, dtype=float) for a in parts])
 
     points = [p for p in results[0].point]
+    L = m.length_scale
     closed = np.concatenate([r.closed for r in results])
     series = {k: {} for k in ("x", "y", "vx", "vy", "ax", "ay", "phi", "w", "al", "s", "sv", "sa")}
     for p in points:
         P, V, A = cat("point", p), cat("velocity", p), cat("acceleration", p)
         for key, arr, c in (("x", P, 0), ("y", P, 1), ("vx", V, 0), ("vy", V, 1), ("ax", A, 0), ("ay", A, 1)):
-            series[key][p] = _slices(arr[:, c], M)
+            series[key][p] = _slices(arr[:, c], M, L if key in ("x", "y") else None)
     for k in m.moving:
         i = mech.system.idx[k]
         series["phi"][k] = _slices(cat("x")[:, i], M)
@@ -163,7 +180,6 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
         series["sv"][sl.name] = _slices(cat("slider_velocity", sl.name), M)
         series["sa"][sl.name] = _slices(cat("slider_acceleration", sl.name), M)
 
-    L = m.length_scale
     # extent of the drawing over every frame: points and gear rims
     xy = np.concatenate([cat("point", p) for p in points])
     xy = xy[np.all(np.isfinite(xy), axis=1)]
@@ -259,8 +275,8 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
         data["ic"] = {
             "links": list(ic.links),
             "pairs": list(ic.pairs),
-            "x": {k: _slices(ic.xy[:, p, 0], 1) for p, k in enumerate(ic.pairs)},
-            "y": {k: _slices(ic.xy[:, p, 1], 1) for p, k in enumerate(ic.pairs)},
+            "x": {k: _slices(ic.xy[:, p, 0], 1, L) for p, k in enumerate(ic.pairs)},
+            "y": {k: _slices(ic.xy[:, p, 1], 1, L) for p, k in enumerate(ic.pairs)},
             "inf": {
                 k: [
                     [int(i), round(float(ic.direction[i, p, 0]), 6), round(float(ic.direction[i, p, 1]), 6)]
