@@ -82,6 +82,7 @@ def register(sub) -> None:
     )
     a.add_argument("--format", choices=("csv", "json"), default="csv")
     a.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
+    a.add_argument("--centres", action="store_true", help="add the instant centres of every pair of links")
     a.set_defaults(func=_analyze)
 
     d = ms.add_parser("draw", help="PNG: the sketch, joints, gears as pitch circles and the point paths")
@@ -123,6 +124,9 @@ def register(sub) -> None:
     from gearlever.cli._mechanism_dynamics import register_dynamics
 
     register_dynamics(ms)
+    from gearlever.cli._mechanism_view import register_view
+
+    register_view(ms)
 
 
 def _sweep_args(p, points: bool):
@@ -269,6 +273,10 @@ def _analyze(args) -> int:
     qdot, per = _rates(mech, args, q, qdot)
     r = mech.solve(q, qdot)
     cols = r.columns(degrees=True, per=per)
+    if args.centres:
+        from gearlever.mechanism.centres import centre_columns
+
+        cols.update(centre_columns(r))
     if args.format == "csv":
         cols["closed"] = r.closed
         cols["reason"] = [s.split(":")[0] for s in r.reason]

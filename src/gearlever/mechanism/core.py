@@ -87,6 +87,12 @@ class Mechanism:
 
         return assemble(self.model, hold_inputs=hold_inputs)
 
+    def instant_centres(self, q, qdot=None):
+        """Instant centres of every pair of links (:func:`~gearlever.mechanism.centres.instant_centres`)."""
+        from gearlever.mechanism.centres import instant_centres
+
+        return instant_centres(self.solve(q, qdot))
+
     def inverse_dynamics(self, q, qdot=None, qddot=None, loads=None, **kw):
         """Driver torques and pair forces (:func:`~gearlever.mechanism.dynamics.inverse_dynamics`)."""
         from gearlever.mechanism.dynamics import inverse_dynamics

@@ -1,0 +1,77 @@
+"""``gearlever mechanism view``: one self-contained HTML page that animates a model file.
+
+Sub-command (added to ``gearlever mechanism`` by :func:`register_view`)::
+
+    gearlever mechanism view MODEL --out PAGE.html [--frames N] [--rpm NAME=R ...] [--input NAME=VALUE ...]
+
+The first input turns one full turn from its sketch angle (or from
+``--input`` for it) over ``--frames`` frames (end excluded); the other inputs
+stay at their sketch values (or ``--input``; degrees for a link, length for a
+slider); for two or more inputs the page offers
+:data:`gearlever.plotting.viewer.GRID_STEPS` values of the second.  With
+``--rpm`` (one per input, ``NAME=VALUE``; a bare value for a one-input model)
+the page shows time and velocities per second.  Cap: ``--frames`` at most
+:data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from gearlever.cli._common import capped_int, emit, named_values
+from gearlever.errors import GearleverError
+
+#: Largest ``--frames`` (same as :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`, kept here so ``--help`` stays fast).
+MAX_VIEW_FRAMES = 3600
+
+
+def register_view(ms) -> None:
+    v = ms.add_parser("view", help="interactive HTML page (one self-contained file) that animates the model")
+    v.add_argument("model", help="model file (TOML)")
+    v.add_argument("--out", required=True, help="output page (.html)")
+    v.add_argument(
+        "--frames",
+        type=capped_int(MAX_VIEW_FRAMES, low=2),
+        default=360,
+        help=f"frames over one turn of the first input (default 360, at most {MAX_VIEW_FRAMES})",
+    )
+    v.add_argument(
+        "--rpm", action="append", metavar="NAME=VALUE", help="speed of an input (rev/min), once per input that moves"
+    )
+    v.add_argument(
+        "--input",
+        action="append",
+        metavar="NAME=VALUE",
+        help="start of the first input / held value of another (deg, or length for a slider)",
+    )
+    v.set_defaults(func=_view)
+
+
+def _view(args) -> int:
+    if Path(args.out).suffix.lower() not in (".html", ".htm"):
+        raise GearleverError(f"--out must end with .html, got {args.out!r}")
+    from gearlever.cli.mechanism import _load
+    from gearlever.plotting.viewer import viewer_html
+
+    mech = _load(args.model)
+    specs = mech.model.inputs
+    labels = [s.label for s in specs]
+    rpm = named_values(args.rpm, "--rpm", labels) if args.rpm else None
+    given = named_values(args.input, "--input", labels)
+    inputs = {
+        name: value * (math.pi / 180.0 if specs[labels.index(name)].kind == "link" else 1.0)
+        for name, value in given.items()
+    }
+    if rpm is not None and labels[0] not in rpm:
+        raise GearleverError(f"--rpm must give the first input {labels[0]!r} (it sets the time)")
+    try:
+        page = viewer_html(mech, frames=args.frames, rpm=rpm, inputs=inputs or None)
+    except GearleverError as exc:
+        text = str(exc)
+        for lib, flag in (("rpm:", "--rpm:"), ("inputs:", "--input:")):
+            if text.startswith(lib):
+                text = flag + text[len(lib) :]
+        raise GearleverError(text) from None
+    emit(page, args.out)
+    return 0

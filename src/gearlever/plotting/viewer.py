@@ -1,0 +1,362 @@
+"""An interactive page that shows any mechanism model move: one self-contained HTML file.
+
+:func:`viewer_html` solves the model over one turn of its first input (and,
+for two or more inputs, over a grid of values of the second), and writes one
+HTML page with inline SVG, JavaScript and JSON: no network, no other file.
+The page draws the links, joints, sliders and guides, gears and ground, and
+animates them; see :func:`viewer_html` for what it shows and for the
+attributes a test can read.
+
+The page template (HTML, CSS, JavaScript) is package data in
+``gearlever/plotting/viewer_page/``.  No matplotlib here.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from importlib import resources
+
+import numpy as np
+
+from gearlever._io import to_json
+from gearlever.errors import GearleverError
+
+__all__ = ["viewer_html", "viewer_data", "MAX_VIEW_FRAMES", "GRID_STEPS", "SIGNIFICANT_DIGITS"]
+
+#: Largest number of frames of a page (about 0.8 kB per frame for a six-bar: a 3 MB page at the cap).
+MAX_VIEW_FRAMES = 3600
+#: Values of the second input offered by the page's extra slider (models with two or more inputs).
+GRID_STEPS = 24
+#: Significant digits of the coordinates stored in the page.
+SIGNIFICANT_DIGITS = 6
+
+
+def _round(a, scale=None):
+    """Values rounded to :data:`SIGNIFICANT_DIGITS` significant digits (None for NaN); one value if all equal.
+
+    Values below ``1e-12 scale`` (default: the array's largest) are rounding noise: written as 0.
+    """
+    a = np.asarray(a, dtype=float).ravel()
+    fin = np.isfinite(a)
+    if fin.any():
+        ref = np.max(np.abs(a[fin])) if scale is None else scale
+        a = np.where(fin & (np.abs(a) < 1e-12 * ref), 0.0, a)
+    out = [float(f"{v:.{SIGNIFICANT_DIGITS}g}") if math.isfinite(v) else None for v in a.tolist()]
+    out = [int(v) if v is not None and v.is_integer() and abs(v) < 1e15 else v for v in out]
+    out = [0 if v == 0 else v for v in out]  # no -0.0
+    if out and all(v == out[0] for v in out):
+        return out[0]
+    return out
+
+
+def _slices(a, M: int, scale=None) -> list:
+    """``M`` slices of a flat array (grid index major), each a list of frames or one value when constant."""
+    return [_round(part, scale) for part in np.split(np.asarray(a, dtype=float), M)]
+
+
+def _frames_inputs(mech, frames: int, inputs) -> tuple:
+    """Start values of the inputs (rad or length) and the grid of the second input."""
+    m = mech.model
+    labels = [s.label for s in m.inputs]
+    start = mech.sketch_inputs.astype(float)
+    for name, value in (inputs or {}).items():
+        if name not in labels:
+            raise GearleverError(f"inputs: unknown input {name!r} (inputs: {', '.join(labels)})")
+        v = float(value)
+        if not math.isfinite(v):
+            raise GearleverError(f"inputs: {name} must be a finite number, got {value!r}")
+        start[labels.index(name)] = v
+    if m.inputs[0].kind != "link":
+        raise GearleverError(
+            f"inputs: the viewer turns the first input a full turn; {labels[0]!r} is a slider "
+            "(put a rotary input first)"
+        )
+    if len(m.inputs) == 1:
+        return start, None, 0
+    spec = m.inputs[1]
+    j = np.arange(GRID_STEPS)
+    if spec.kind == "link":
+        values, default = start[1] + 2 * np.pi * j / GRID_STEPS, 0
+    else:
+        half = GRID_STEPS // 2
+        values, default = start[1] + 0.5 * m.length_scale * (j - half) / half, half
+    return start, values, default
+
+
+def _rates(mech, rpm) -> tuple:
+    """Input rates (rad/s or length/s) and the period of one turn (s), or analogues (per rad) and None."""
+    m = mech.model
+    W = len(m.inputs)
+    labels = [s.label for s in m.inputs]
+    if rpm is None:
+        rates = np.zeros(W)
+        rates[0] = 1.0
+        return rates, None
+    if not isinstance(rpm, dict):
+        if W != 1:
+            raise GearleverError(f"rpm: give one value per input as a dict {{name: rpm}} ({', '.join(labels)})")
+        rpm = {labels[0]: rpm}
+    rates = np.zeros(W)
+    for name, value in rpm.items():
+        if name not in labels:
+            raise GearleverError(f"rpm: unknown input {name!r} (inputs: {', '.join(labels)})")
+        v = float(value)
+        if not math.isfinite(v):
+            raise GearleverError(f"rpm: {name} must be a finite number, got {value!r}")
+        i = labels.index(name)
+        rates[i] = v * math.pi / 30.0 if m.inputs[i].kind == "link" else v / 60.0
+    if labels[0] not in rpm or rates[0] == 0:
+        raise GearleverError(f"rpm: the first input {labels[0]!r} needs a non-zero speed (it sets the time)")
+    return rates, 2 * math.pi / abs(rates[0])
+
+
+def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
+    """The data of the page: model geometry and, per frame, every position, rate and instant centre.
+
+    Parameters are those of :func:`viewer_html`.  Arrays are flat lists over
+    ``grid index * frames + frame`` with :data:`SIGNIFICANT_DIGITS` digits,
+    ``None`` where the model does not assemble (a constant array is stored
+    as one value).
+
+    Returns
+    -------
+    dict
+        Strict-JSON-ready (see :func:`viewer_html`).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> d = viewer_data(m, frames=4)
+    >>> d["S"]["x"]["A"], d["S"]["y"]["A"]
+    ([[1, 0, -1, 0]], [[0, 1, 0, -1]])
+    """
+    from gearlever.mechanism.centres import instant_centres
+    from gearlever.mechanism.model import GROUND
+
+    if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or not 2 <= frames <= MAX_VIEW_FRAMES:
+        raise GearleverError(f"frames must be an integer from 2 to {MAX_VIEW_FRAMES}, got {frames!r}")
+    frames = int(frames)
+    m = mech.model
+    W = len(m.inputs)
+    start, grid, grid_default = _frames_inputs(mech, frames, inputs)
+    rates, period = _rates(mech, rpm)
+    turn = start[0] + 2 * np.pi * np.arange(frames) / frames
+    slices = [start.copy()] if grid is None else []
+    if grid is not None:
+        for v in grid:
+            s = start.copy()
+            s[1] = v
+            slices.append(s)
+    M = len(slices)
+    results = []
+    for s in slices:
+        q = np.tile(s, (frames, 1))
+        q[:, 0] = turn
+        results.append(mech.solve(q, np.tile(rates, (frames, 1))))
+
+    def cat(attr, key=None):
+        """``result.attr[key]`` (or ``result.attr``) of every grid slice, concatenated."""
+        parts = [getattr(r, attr) if key is None else getattr(r, attr)[key] for r in results]
+        return np.concatenate([np.asarray(a, dtype=float) for a in parts])
+
+    points = [p for p in results[0].point]
+    L = m.length_scale
+    closed = np.concatenate([r.closed for r in results])
+    series = {k: {} for k in ("x", "y", "vx", "vy", "ax", "ay", "phi", "w", "al", "s", "sv", "sa")}
+    for p in points:
+        P, V, A = cat("point", p), cat("velocity", p), cat("acceleration", p)
+        for key, arr, c in (("x", P, 0), ("y", P, 1), ("vx", V, 0), ("vy", V, 1), ("ax", A, 0), ("ay", A, 1)):
+            series[key][p] = _slices(arr[:, c], M, L if key in ("x", "y") else None)
+    for k in m.moving:
+        i = mech.system.idx[k]
+        series["phi"][k] = _slices(cat("x")[:, i], M)
+        series["w"][k] = _slices(cat("omega", k), M)
+        series["al"][k] = _slices(cat("alpha", k), M)
+    for sl in m.sliders:
+        series["s"][sl.name] = _slices(cat("displacement", sl.name), M)
+        series["sv"][sl.name] = _slices(cat("slider_velocity", sl.name), M)
+        series["sa"][sl.name] = _slices(cat("slider_acceleration", sl.name), M)
+
+    # extent of the drawing over every frame: points and gear rims
+    xy = np.concatenate([cat("point", p) for p in points])
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    if xy.size == 0:
+        xy = np.array(list(m.points.values()), dtype=float)
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    gears = []
+    for g in m.gears.values():
+        r = m.pitch_radius(g.name)
+        gears.append(
+            {"name": g.name, "link": g.link, "centre": g.centre, "teeth": g.teeth, "internal": g.internal, "r": r}
+        )
+        if r is not None:
+            c = cat("point", g.centre)
+            c = c[np.all(np.isfinite(c), axis=1)]
+            if c.size:
+                lo = np.minimum(lo, c.min(axis=0) - r)
+                hi = np.maximum(hi, c.max(axis=0) + r)
+    pad = 0.12 * L
+    bbox = [float(lo[0] - pad), float(lo[1] - pad), float(hi[0] + pad), float(hi[1] + pad)]
+
+    sliders = []
+    for sl in m.sliders:
+        s = cat("displacement", sl.name)
+        s = s[np.isfinite(s)]
+        smin, smax = (float(s.min()), float(s.max())) if s.size else (0.0, 0.0)
+        sliders.append(
+            {
+                "name": sl.name,
+                "link": sl.link,
+                "on": sl.on,
+                "point": sl.point,
+                "dir": list(sl.direction),
+                "smin": smin - 0.08 * L,
+                "smax": smax + 0.08 * L,
+            }
+        )
+
+    # one arrow scale for every point and frame: the longest arrow is L / 2
+    def longest(attr):
+        best = 0.0
+        for p in points:
+            v = cat(attr, p)
+            a = np.hypot(v[:, 0], v[:, 1])
+            a = a[np.isfinite(a)]
+            if a.size:
+                best = max(best, float(a.max()))
+        return best
+
+    vmax, amax = longest("velocity"), longest("acceleration")
+
+    ground_pts = set(m.links[GROUND].points)
+    joints = sorted({p for p, _, _ in m.joints}, key=list(m.points).index)
+    units = m.units or "len"
+    spec0 = m.inputs
+    data = {
+        "name": m.name,
+        "units": units,
+        "N": frames,
+        "M": len(slices),
+        "L": L,
+        "bbox": bbox,
+        "inputs": [
+            {
+                "label": s.label,
+                "kind": s.kind,
+                "link": s.name if s.kind == "link" else None,
+                "relative_to": s.relative_to,
+                "start": float(start[i]),
+                "rate": float(rates[i]),
+            }
+            for i, s in enumerate(spec0)
+        ],
+        "grid": None
+        if grid is None
+        else {"input": 1, "values": [float(v) for v in grid], "default": int(grid_default)},
+        "period": period,
+        "rated": rpm is not None,
+        "points": points,
+        "ground_points": [p for p in points if p in ground_pts],
+        "joints": joints,
+        "links": [{"name": k, "points": list(m.links[k].points), "angle0": m.links[k].angle0} for k in m.moving],
+        "sliders": sliders,
+        "gears": gears,
+        "closed": "".join("1" if c else "0" for c in closed),
+        "S": series,
+        "vscale": 0.5 * L / vmax if vmax > 0 else 0.0,
+        "ascale": 0.5 * L / amax if amax > 0 else 0.0,
+        "ic": None,
+    }
+    if W == 1:
+        ic = instant_centres(results[0])
+        data["ic"] = {
+            "links": list(ic.links),
+            "pairs": list(ic.pairs),
+            "x": {k: _slices(ic.xy[:, p, 0], 1, L) for p, k in enumerate(ic.pairs)},
+            "y": {k: _slices(ic.xy[:, p, 1], 1, L) for p, k in enumerate(ic.pairs)},
+            "inf": {
+                k: [
+                    [int(i), round(float(ic.direction[i, p, 0]), 6), round(float(ic.direction[i, p, 1]), 6)]
+                    for i in np.flatnonzero(np.all(np.isfinite(ic.direction[:, p]), axis=1))
+                ]
+                for p, k in enumerate(ic.pairs)
+                if np.isfinite(ic.direction[:, p]).any()
+            },
+        }
+    return data
+
+
+def _template(name: str) -> str:
+    return resources.files("gearlever.plotting").joinpath("viewer_page", name).read_text(encoding="utf-8")
+
+
+def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
+    """One self-contained HTML page (inline SVG, JavaScript and JSON) that animates ``mech``.
+
+    Parameters
+    ----------
+    mech : gearlever.mechanism.Mechanism
+    frames : int
+        Frames over one turn of the first input (2 to :data:`MAX_VIEW_FRAMES`).
+        Frame ``k`` is at input angle ``start + 2 pi k / frames`` (the end
+        excluded), ``start`` the sketch angle unless ``inputs`` gives it.
+    rpm : float or dict, optional
+        Speed of the inputs (rev/min; length/min for a slider), one value for
+        a one-input model or ``{input: rpm}``; the first input must move.
+        With it the page shows time, velocities in length/s and
+        accelerations in length/s^2 at constant speed; without it the
+        velocity and acceleration analogues per radian of the first input
+        (the others held).
+    inputs : dict, optional
+        ``{input: value}`` (rad, or length for a slider): the start of the
+        first input and the held value of the others (default: the sketch).
+
+    Returns
+    -------
+    str
+        The page.  For two or more inputs, the page sweeps the first and
+        offers :data:`GRID_STEPS` values of the second (a full turn, or
+        +-L/2 for a slider, ``L`` the model's length scale); further inputs
+        stay at their held values.
+
+    Notes
+    -----
+    What a test can read in the page: every model point is an SVG circle
+    ``data-point="NAME"`` whose ``cx``, ``cy`` are the model coordinates at
+    the frame shown (:data:`SIGNIFICANT_DIGITS` digits; the y flip is a
+    transform of a parent group), hidden where the model does not assemble;
+    every moving link is an element ``data-link="NAME"``; velocity arrows
+    ``data-vel``, acceleration arrows ``data-acc``, point paths ``data-path``;
+    instant centres (one-input models) circles ``data-ic="A/B"`` (ground
+    first, then links in model order) hidden (``display: none``) where the
+    two angular velocities are equal (centre at infinity).  ``id="readout"``
+    holds ``θ = ...°``; controls ``play``, ``frame``, ``speed``,
+    ``show-velocity``, ``show-paths``; ``?frame=k`` (and ``&play=1``) in
+    the URL.  The instant centres are
+    :func:`gearlever.mechanism.centres.instant_centres`.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> page = viewer_html(m, frames=8)
+    >>> page.startswith("<!DOCTYPE html>"), 'data-point' in page
+    (True, True)
+    """
+    data = viewer_data(mech, frames, rpm, inputs)
+    fill = {
+        "__DATA__": to_json(data, indent=None).replace("</", "<\\/"),
+        "__TITLE__": _escape(mech.model.name),
+        "/*__CSS__*/": _template("viewer.css"),
+        "/*__JS__*/": _template("viewer.js"),
+    }
+    # one pass: a model name holding a marker is not expanded
+    return re.sub("|".join(re.escape(k) for k in fill), lambda mt: fill[mt.group(0)], _template("viewer.html"))
+
+
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")

@@ -1,0 +1,715 @@
+(function () {
+  "use strict";
+  const D = JSON.parse(document.getElementById("gl-data").textContent);
+  const N = D.N, M = D.M, L = D.L;
+  const view = document.getElementById("view");
+  const NS = view.namespaceURI;
+  const world = document.getElementById("world");
+  const labelsG = document.getElementById("labels");
+  const $ = (id) => document.getElementById(id);
+  const COLORS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
+  const DEG = 180 / Math.PI;
+
+  // ------------------------------------------------------------------ state
+  const st = {
+    frame: 0, grid: D.grid ? D.grid.default : 0, playing: false, speed: 1, acc: 0, last: null,
+    s: 1, tx: 0, ty: 0, drag: null, pathsOn: {}, urlTimer: null,
+  };
+
+  // ------------------------------------------------------------------ data access
+  function at(series, k) {
+    if (series === undefined || series === null) return null;
+    const sl = series[st.grid];
+    if (sl === null || typeof sl === "number") return sl;
+    return sl[k];
+  }
+  const S = D.S;
+  const closedAt = (k) => D.closed.charAt(st.grid * N + k) === "1";
+  const P = (name, k) => [at(S.x[name], k), at(S.y[name], k)];
+  const inputAngle = (k) => D.inputs[0].start + 2 * Math.PI * k / N;
+  function rotOf(link, k) { return link === "ground" ? 0 : at(S.phi[link], k); }
+  function fmt(v, d) { return v === null || v === undefined ? "–" : Number(v).toPrecision(d || 6).replace(/\.?0+(e|$)/, "$1"); }
+
+  // units
+  const U = D.units;
+  const rated = D.rated;
+  const velUnit = rated ? U + "/s" : U + "/rad";
+  const accUnit = rated ? U + "/s²" : U + "/rad²";
+  const wUnit = rated ? "rad/s" : "rad/rad";
+  const alUnit = rated ? "rad/s²" : "rad/rad²";
+
+  // ------------------------------------------------------------------ svg helpers
+  function el(tag, attrs, parent) {
+    const e = document.createElementNS(NS, tag);
+    for (const k in attrs) e.setAttribute(k, attrs[k]);
+    if (parent) parent.appendChild(e);
+    return e;
+  }
+  function show(e, on) { e.style.display = on ? "" : "none"; }
+
+  const linkColor = {};
+  D.links.forEach((lk, i) => { linkColor[lk.name] = COLORS[i % COLORS.length]; });
+  const inputLink = D.inputs[0].link;
+  const pivotName = (() => {
+    const lk = D.links.find((l) => l.name === inputLink);
+    return lk ? lk.points[0] : null;
+  })();
+
+  // ------------------------------------------------------------------ build the drawing
+  const gPaths = $("paths"), gGround = $("ground"), gLinks = $("links"), gArrows = $("arrows");
+  const gPoints = $("points"), gCentres = $("centres"), gKennedy = $("kennedy");
+  gArrows.setAttribute("data-vscale", D.vscale);
+  gArrows.setAttribute("data-ascale", D.ascale);
+  const h = 0.06 * L;  // ground symbol size (model units)
+
+  // ground: a triangle and hatching under each ground pivot, hatching along ground guides
+  const groundJoints = D.ground_points.filter((p) => D.joints.indexOf(p) >= 0);
+  groundJoints.forEach((p) => {
+    const [x, y] = P(p, 0);
+    if (x === null) return;
+    el("polygon", { class: "ground-shape", points: `${x},${y} ${x - h * 0.7},${y - h} ${x + h * 0.7},${y - h}` }, gGround);
+    el("line", { class: "hatch", x1: x - h, y1: y - h, x2: x + h, y2: y - h }, gGround);
+    for (let i = 0; i < 5; i++) {
+      const x0 = x - h + i * h * 0.5;
+      el("line", { class: "hatch", x1: x0, y1: y - h, x2: x0 - h * 0.35, y2: y - h * 1.4 }, gGround);
+    }
+  });
+  D.sliders.filter((s) => s.on === "ground").forEach((s) => {
+    // the guide is fixed: through the sketch position of the slider point
+    const k0 = firstClosed();
+    if (k0 < 0) return;
+    const [px, py] = P(s.point, k0);
+    const s0 = at(S.s[s.name], k0);
+    const ox = px - s0 * s.dir[0], oy = py - s0 * s.dir[1];
+    const nx = -s.dir[1], ny = s.dir[0];
+    const off = 0.045 * L;
+    const a = [ox + s.smin * s.dir[0] - off * nx, oy + s.smin * s.dir[1] - off * ny];
+    const b = [ox + s.smax * s.dir[0] - off * nx, oy + s.smax * s.dir[1] - off * ny];
+    el("line", { class: "hatch", x1: a[0], y1: a[1], x2: b[0], y2: b[1] }, gGround);
+    const len = s.smax - s.smin, n = Math.max(2, Math.round(len / (0.04 * L)));
+    for (let i = 0; i <= n; i++) {
+      const t = s.smin + len * i / n;
+      const cx = ox + t * s.dir[0] - off * nx, cy = oy + t * s.dir[1] - off * ny;
+      el("line", { class: "hatch", x1: cx, y1: cy, x2: cx - 0.03 * L * (nx + s.dir[0]), y2: cy - 0.03 * L * (ny + s.dir[1]) }, gGround);
+    }
+    el("line", { class: "guide", x1: ox + s.smin * s.dir[0], y1: oy + s.smin * s.dir[1], x2: ox + s.smax * s.dir[0], y2: oy + s.smax * s.dir[1] }, gGround);
+  });
+  function firstClosed() { for (let k = 0; k < N; k++) if (closedAt(k)) return k; return -1; }
+
+  // moving links: one group each, holding its body, slider blocks, moving guides and gears
+  const linkEls = {};
+  D.links.forEach((lk) => {
+    const g = el("g", { class: "link" + (lk.name === inputLink ? " input grab" : ""), "data-link": lk.name }, gLinks);
+    const color = linkColor[lk.name];
+    const parts = { g: g, body: null, blocks: [], guides: [], gears: [], hub: null };
+    D.sliders.filter((s) => s.on === lk.name).forEach((s) => {
+      parts.guides.push({ s: s, e: el("line", { class: "guide" }, g) });
+    });
+    if (lk.points.length >= 3) parts.body = el("polygon", { class: "link-body", stroke: color, fill: color }, g);
+    else if (lk.points.length === 2) parts.body = el("line", { class: "link-body", stroke: color }, g);
+    D.gears.filter((gr) => gr.link === lk.name && gr.r !== null).forEach((gr) => {
+      parts.gears.push({
+        gr: gr,
+        c: el("circle", { class: "gear" + (gr.internal ? " internal" : ""), stroke: color, r: gr.r }, g),
+        m: el("line", { class: "gear-mark", stroke: color }, g),
+      });
+    });
+    D.sliders.filter((s) => s.link === lk.name).forEach((s) => {
+      parts.blocks.push({ s: s, e: el("polygon", { class: "block", fill: color }, g) });
+    });
+    if (lk.points.length === 1 && !parts.blocks.length && !parts.gears.length) {
+      parts.hub = el("circle", { class: "hub", fill: color, r: 0.04 * L }, g);
+    }
+    linkEls[lk.name] = parts;
+  });
+  // the input: a dashed ring about its pivot
+  let inputMark = null;
+  if (pivotName) inputMark = el("circle", { class: "input-mark", r: 0.16 * L }, gLinks);
+
+  // paths of the moving points
+  const movingPoints = D.points.filter((p) => D.ground_points.indexOf(p) < 0);
+  const pathEls = {};
+  movingPoints.forEach((p) => {
+    pathEls[p] = el("path", { class: "path", "data-path": p }, gPaths);
+    st.pathsOn[p] = true;
+    const lab = document.createElement("label");
+    lab.style.display = "block";
+    const cb = document.createElement("input");
+    cb.type = "checkbox"; cb.checked = true; cb.dataset.pathChoice = p;
+    cb.addEventListener("change", () => { st.pathsOn[p] = cb.checked; applyToggles(); });
+    lab.appendChild(cb); lab.appendChild(document.createTextNode(" " + p));
+    $("path-points").appendChild(lab);
+  });
+  function buildPaths() {
+    movingPoints.forEach((p) => {
+      let d = "", pen = false;
+      for (let k = 0; k < N; k++) {
+        const [x, y] = P(p, k);
+        if (x === null || y === null || !closedAt(k)) { pen = false; continue; }
+        d += (pen ? "L" : "M") + x + "," + y;
+        pen = true;
+      }
+      if (d && closedAt(0) && closedAt(N - 1)) { const [x, y] = P(p, 0); d += "L" + x + "," + y; }
+      pathEls[p].setAttribute("d", d);
+    });
+  }
+
+  // arrows
+  const velEls = {}, accEls = {};
+  movingPoints.forEach((p) => {
+    velEls[p] = el("line", { class: "vel", "data-vel": p, "marker-end": "url(#head-vel)" }, gArrows);
+    accEls[p] = el("line", { class: "acc", "data-acc": p, "marker-end": "url(#head-acc)" }, gArrows);
+  });
+
+  // points (every model point) and their labels
+  const pointEls = {}, pointLabels = {};
+  D.points.forEach((p) => {
+    const isGround = D.ground_points.indexOf(p) >= 0;
+    const c = el("circle", { class: "pt" + (isGround ? " ground-pt" : ""), "data-point": p, r: 1 }, gPoints);
+    if (p === pivotName || (linkOf(p) === inputLink && !isGround)) c.classList.add("grab");
+    pointEls[p] = c;
+    pointLabels[p] = el("text", { class: "pt-label" }, labelsG);
+    pointLabels[p].textContent = p;
+  });
+  function linkOf(p) { const lk = D.links.find((l) => l.points.indexOf(p) >= 0); return lk ? lk.name : null; }
+  const linkLabels = {};
+  D.links.forEach((lk) => {
+    linkLabels[lk.name] = el("text", { class: "link-label", fill: linkColor[lk.name] }, labelsG);
+    linkLabels[lk.name].textContent = lk.name;
+    linkLabels[lk.name].style.fill = linkColor[lk.name];
+  });
+  const gearLabels = D.gears.filter((g) => g.r !== null).map((g) => {
+    const t = el("text", { class: "gear-label" }, labelsG);
+    t.textContent = `${g.name}: z = ${g.teeth}${g.internal ? " (internal)" : ""}`;
+    return { g: g, t: t };
+  });
+
+  // instant centres (one-input models)
+  const icEls = {}, icLabels = {};
+  const IC = D.ic;
+  const linkNo = {};
+  if (IC) {
+    IC.links.forEach((n, i) => { linkNo[n] = i + 1; });
+    IC.pairs.forEach((pair) => {
+      icEls[pair] = el("circle", { class: "ic", "data-ic": pair, r: 1 }, gCentres);
+      const [a, b] = pair.split("/");
+      const t = el("text", { class: "ic-label" }, labelsG);
+      t.textContent = `${linkNo[a]}${linkNo[b]}`;
+      icLabels[pair] = t;
+    });
+    const sel = $("kennedy-triple");
+    const n = IC.links.length;
+    for (let i = 0; i < n; i++) for (let j = i + 1; j < n; j++) for (let k = j + 1; k < n; k++) {
+      const o = document.createElement("option");
+      o.value = [i, j, k].join(",");
+      o.textContent = `${i + 1}${j + 1}-${i + 1}${k + 1}-${j + 1}${k + 1} (${IC.links[i]}, ${IC.links[j]}, ${IC.links[k]})`;
+      sel.appendChild(o);
+    }
+    const all = document.createElement("option");
+    all.value = "all"; all.textContent = "all triples";
+    sel.appendChild(all);
+  } else {
+    $("centres-label").hidden = true;
+    $("kennedy-label").hidden = true;
+  }
+  const kennedyEls = [];
+
+  // ------------------------------------------------------------------ view transform
+  function applyView() {
+    world.setAttribute("transform", `matrix(${st.s},0,0,${-st.s},${st.tx},${st.ty})`);
+    const r = 4.5 / st.s;
+    D.points.forEach((p) => pointEls[p].setAttribute("r", r));
+    for (const pair in icEls) icEls[pair].setAttribute("r", 3.5 / st.s);
+    render();
+  }
+  function fit() {
+    const w = view.clientWidth || 800, hgt = view.clientHeight || 500;
+    const [x0, y0, x1, y1] = D.bbox;
+    const s = 0.94 * Math.min(w / (x1 - x0), hgt / (y1 - y0));
+    st.s = s;
+    st.tx = w / 2 - s * (x0 + x1) / 2;
+    st.ty = hgt / 2 + s * (y0 + y1) / 2;
+    applyView();
+  }
+  const toScreen = (x, y) => [st.tx + st.s * x, st.ty - st.s * y];
+  function toWorld(evt) {
+    const r = view.getBoundingClientRect();
+    const sx = evt.clientX - r.left, sy = evt.clientY - r.top;
+    return [(sx - st.tx) / st.s, (st.ty - sy) / st.s];
+  }
+  function placeText(t, x, y, dx, dy) {
+    if (x === null || y === null || !isFinite(x) || !isFinite(y)) { show(t, false); return; }
+    const [X, Y] = toScreen(x, y);
+    t.setAttribute("x", (X + dx).toFixed(1));
+    t.setAttribute("y", (Y + dy).toFixed(1));
+    show(t, true);
+  }
+
+  // ------------------------------------------------------------------ render one frame
+  function setLine(e, x1, y1, x2, y2) {
+    e.setAttribute("x1", x1); e.setAttribute("y1", y1); e.setAttribute("x2", x2); e.setAttribute("y2", y2);
+  }
+  function render() {
+    const k = st.frame;
+    const ok = closedAt(k);
+    const names = $("show-labels").checked;
+    // points
+    D.points.forEach((p) => {
+      const [x, y] = P(p, k);
+      const c = pointEls[p];
+      if (ok && x !== null && y !== null) {
+        c.setAttribute("cx", x); c.setAttribute("cy", y); show(c, true);
+        if (names) placeText(pointLabels[p], x, y, 6, -6); else show(pointLabels[p], false);
+      } else { show(c, false); show(pointLabels[p], false); }
+    });
+    // links
+    D.links.forEach((lk) => {
+      const parts = linkEls[lk.name];
+      show(parts.g, ok);
+      if (!ok) { show(linkLabels[lk.name], false); return; }
+      const xy = lk.points.map((p) => P(p, k));
+      if (parts.body) {
+        if (xy.length === 2) setLine(parts.body, xy[0][0], xy[0][1], xy[1][0], xy[1][1]);
+        else parts.body.setAttribute("points", xy.map((q) => q[0] + "," + q[1]).join(" "));
+      }
+      if (parts.hub) { parts.hub.setAttribute("cx", xy[0][0]); parts.hub.setAttribute("cy", xy[0][1]); }
+      parts.gears.forEach((G) => {
+        const [cx, cy] = P(G.gr.centre, k);
+        const th = rotOf(lk.name, k);
+        G.c.setAttribute("cx", cx); G.c.setAttribute("cy", cy);
+        setLine(G.m, cx, cy, cx + G.gr.r * Math.cos(th), cy + G.gr.r * Math.sin(th));
+      });
+      parts.blocks.forEach((B) => {
+        const s = B.s, th = rotOf(s.on, k);
+        const ux = Math.cos(th) * s.dir[0] - Math.sin(th) * s.dir[1], uy = Math.sin(th) * s.dir[0] + Math.cos(th) * s.dir[1];
+        const [px, py] = P(s.point, k);
+        const a = 0.07 * L, b = 0.04 * L;
+        const c = [[a, b], [-a, b], [-a, -b], [a, -b]].map(([u, v]) => (px + u * ux - v * uy) + "," + (py + u * uy + v * ux));
+        B.e.setAttribute("points", c.join(" "));
+      });
+      parts.guides.forEach((Gd) => {
+        const s = Gd.s, th = rotOf(s.on, k);
+        const ux = Math.cos(th) * s.dir[0] - Math.sin(th) * s.dir[1], uy = Math.sin(th) * s.dir[0] + Math.cos(th) * s.dir[1];
+        const [px, py] = P(s.point, k);
+        const sv = at(S.s[s.name], k);
+        const ox = px - sv * ux, oy = py - sv * uy;
+        setLine(Gd.e, ox + s.smin * ux, oy + s.smin * uy, ox + s.smax * ux, oy + s.smax * uy);
+      });
+      if (names) {
+        const [cx, cy, anchor] = labelAnchor(lk, parts, xy, k);
+        linkLabels[lk.name].setAttribute("text-anchor", anchor || "start");
+        placeText(linkLabels[lk.name], cx, cy, anchor ? -4 : 8, anchor ? -4 : 16);
+      } else show(linkLabels[lk.name], false);
+    });
+    if (inputMark) {
+      const [x, y] = P(pivotName, k);
+      if (ok && x !== null) { inputMark.setAttribute("cx", x); inputMark.setAttribute("cy", y); show(inputMark, true); } else show(inputMark, false);
+    }
+    gearLabels.forEach(({ g, t }) => {
+      const [x, y] = P(g.centre, k);
+      if (ok && names) placeText(t, x + g.r * 0.5, y - g.r * 0.866, 4, 14); else show(t, false);
+    });
+    // arrows: one scale for every point and frame
+    const vOn = $("show-velocity").checked, aOn = $("show-acceleration").checked;
+    movingPoints.forEach((p) => {
+      const [x, y] = P(p, k);
+      const vx = at(S.vx[p], k), vy = at(S.vy[p], k), ax = at(S.ax[p], k), ay = at(S.ay[p], k);
+      const good = ok && x !== null;
+      const tiny = 1e-4 * L;  // an arrow shorter than this is only its head: hide it
+      if (vOn && good && vx !== null && D.vscale * Math.hypot(vx, vy) > tiny) { setLine(velEls[p], x, y, x + D.vscale * vx, y + D.vscale * vy); show(velEls[p], true); } else show(velEls[p], false);
+      if (aOn && good && ax !== null && D.ascale * Math.hypot(ax, ay) > tiny) { setLine(accEls[p], x, y, x + D.ascale * ax, y + D.ascale * ay); show(accEls[p], true); } else show(accEls[p], false);
+    });
+    // instant centres
+    const icOn = IC && $("show-centres").checked;
+    if (IC) {
+      IC.pairs.forEach((pair) => {
+        const x = IC.x[pair][0], y = IC.y[pair][0];
+        const cx = x === null || typeof x === "number" ? x : x[k], cy = y === null || typeof y === "number" ? y : y[k];
+        const e = icEls[pair];
+        if (ok && cx !== null && cy !== null) { e.setAttribute("cx", cx); e.setAttribute("cy", cy); show(e, true); }
+        else show(e, false);
+        if (icOn && ok && cx !== null && cy !== null) placeText(icLabels[pair], cx, cy, 5, 14); else show(icLabels[pair], false);
+      });
+      gCentres.style.display = icOn ? "" : "none";
+      drawKennedy();
+    }
+    readout();
+    plotCursor();
+    scheduleUrl();
+  }
+
+  // where a link's name goes: the centroid of a real polygon, else the middle of its first bar,
+  // else (one point) beside its gear rim or its block
+  function labelAnchor(lk, parts, xy, k) {
+    if (xy.length >= 3) {
+      let area = 0, per = 0;
+      for (let i = 0; i < xy.length; i++) {
+        const a = xy[i], b = xy[(i + 1) % xy.length];
+        area += a[0] * b[1] - b[0] * a[1];
+        per += Math.hypot(b[0] - a[0], b[1] - a[1]);
+      }
+      if (Math.abs(area) / 2 > 0.02 * per * per / 9) {
+        let cx = 0, cy = 0;
+        xy.forEach((q) => { cx += q[0]; cy += q[1]; });
+        return [cx / xy.length, cy / xy.length];
+      }
+    }
+    if (xy.length >= 2) return [(xy[0][0] + xy[1][0]) / 2, (xy[0][1] + xy[1][1]) / 2];
+    if (parts.gears.length) {
+      const r = parts.gears[0].gr.r;
+      return [xy[0][0] - 0.75 * r, xy[0][1] + 0.75 * r, "end"];
+    }
+    return [xy[0][0] + 0.05 * L, xy[0][1] - 0.05 * L];
+  }
+
+  function icAt(pair, k) {
+    const x = IC.x[pair][0], y = IC.y[pair][0];
+    const cx = x === null || typeof x === "number" ? x : x[k], cy = y === null || typeof y === "number" ? y : y[k];
+    if (cx !== null && cy !== null) return { p: [cx, cy] };
+    const inf = (IC.inf[pair] || []).find((r) => r[0] === k);
+    return inf ? { d: [inf[1], inf[2]] } : null;
+  }
+  function drawKennedy() {
+    kennedyEls.forEach((e) => e.remove());
+    kennedyEls.length = 0;
+    if (!$("show-kennedy").checked || !closedAt(st.frame)) return;
+    const v = $("kennedy-triple").value;
+    const n = IC.links.length;
+    const triples = [];
+    if (v === "all") { for (let i = 0; i < n; i++) for (let j = i + 1; j < n; j++) for (let k = j + 1; k < n; k++) triples.push([i, j, k]); }
+    else if (v) triples.push(v.split(",").map(Number));
+    const big = 50 * L;
+    triples.forEach(([i, j, k]) => {
+      const nm = (a, b) => IC.links[a] + "/" + IC.links[b];
+      const cs = [icAt(nm(i, j), st.frame), icAt(nm(i, k), st.frame), icAt(nm(j, k), st.frame)].filter((c) => c);
+      const fin = cs.filter((c) => c.p), dirs = cs.filter((c) => c.d);
+      let a = null, d = null;
+      if (fin.length >= 2) {
+        // the line through the two farthest apart finite centres
+        let best = -1;
+        for (let u = 0; u < fin.length; u++) for (let w = u + 1; w < fin.length; w++) {
+          const dd = Math.hypot(fin[w].p[0] - fin[u].p[0], fin[w].p[1] - fin[u].p[1]);
+          if (dd > best) { best = dd; a = fin[u].p; d = [(fin[w].p[0] - a[0]) / dd, (fin[w].p[1] - a[1]) / dd]; }
+        }
+        if (!(best > 0)) return;
+      } else if (fin.length === 1 && dirs.length) { a = fin[0].p; d = dirs[0].d; }
+      else return;
+      const e = el("line", { class: "kennedy" }, gKennedy);
+      setLine(e, a[0] - big * d[0], a[1] - big * d[1], a[0] + big * d[0], a[1] + big * d[1]);
+      kennedyEls.push(e);
+    });
+  }
+
+  // ------------------------------------------------------------------ readout, legend
+  function readout() {
+    const k = st.frame;
+    const th = inputAngle(k) * DEG;
+    const inp = D.inputs[0];
+    let html = `${inp.label}: θ = ${th.toFixed(2)}°`;
+    if (D.period) html += ` · t = ${(D.period * k / N).toFixed(4)} s`;
+    html += ` · frame ${k}/${N}`;
+    D.inputs.slice(1).forEach((p, i) => {
+      let v = p.start;
+      if (D.grid && i === 0) v = D.grid.values[st.grid];
+      html += p.kind === "link" ? ` · ${p.label} = ${(v * DEG).toFixed(2)}°` : ` · ${p.label} = ${fmt(v)} ${U}`;
+    });
+    if (!closedAt(k)) html += ' · <span class="warn">not assembled</span>';
+    $("readout").innerHTML = html;
+    $("frame").value = k;
+  }
+  function legend() {
+    const parts = [];
+    if (pivotName) parts.push(`<span class="ring"></span>input: ${D.inputs[0].label} (thick, drag it)`);
+    if ($("show-velocity").checked && D.vscale > 0)
+      parts.push(`<span class="key" style="border-color:#0b6e4f"></span>velocity: 1 ${U} of arrow = ${fmt(1 / D.vscale, 4)} ${velUnit}`);
+    if ($("show-acceleration").checked && D.ascale > 0)
+      parts.push(`<span class="key" style="border-color:#a23b72"></span>acceleration: 1 ${U} of arrow = ${fmt(1 / D.ascale, 4)} ${accUnit}`);
+    if (IC && $("show-centres").checked)
+      parts.push("instant centres ij: " + IC.links.map((n, i) => `${i + 1} ${n}`).join(", "));
+    $("legend").innerHTML = parts.join("<br>");
+  }
+  function applyToggles() {
+    const pathsOn = $("show-paths").checked;
+    movingPoints.forEach((p) => show(pathEls[p], pathsOn && st.pathsOn[p]));
+    legend();
+    render();
+  }
+
+  // ------------------------------------------------------------------ plots
+  const quantities = [];
+  D.links.forEach((lk) => {
+    quantities.push({ id: "phi:" + lk.name, label: `angle of ${lk.name} (deg)`, get: (k) => { const v = at(S.phi[lk.name], k); return v === null ? null : (v + lk.angle0) * DEG; } });
+    quantities.push({ id: "w:" + lk.name, label: `ω of ${lk.name} (${wUnit})`, get: (k) => at(S.w[lk.name], k) });
+    quantities.push({ id: "al:" + lk.name, label: `α of ${lk.name} (${alUnit})`, get: (k) => at(S.al[lk.name], k) });
+  });
+  movingPoints.forEach((p) => {
+    const mag = (a, b) => (k) => { const x = at(a, k), y = at(b, k); return x === null || y === null ? null : Math.hypot(x, y); };
+    quantities.push({ id: "x:" + p, label: `x of ${p} (${U})`, get: (k) => at(S.x[p], k) });
+    quantities.push({ id: "y:" + p, label: `y of ${p} (${U})`, get: (k) => at(S.y[p], k) });
+    quantities.push({ id: "v:" + p, label: `|v| of ${p} (${velUnit})`, get: mag(S.vx[p], S.vy[p]) });
+    quantities.push({ id: "vx:" + p, label: `vx of ${p} (${velUnit})`, get: (k) => at(S.vx[p], k) });
+    quantities.push({ id: "vy:" + p, label: `vy of ${p} (${velUnit})`, get: (k) => at(S.vy[p], k) });
+    quantities.push({ id: "a:" + p, label: `|a| of ${p} (${accUnit})`, get: mag(S.ax[p], S.ay[p]) });
+    quantities.push({ id: "ax:" + p, label: `ax of ${p} (${accUnit})`, get: (k) => at(S.ax[p], k) });
+    quantities.push({ id: "ay:" + p, label: `ay of ${p} (${accUnit})`, get: (k) => at(S.ay[p], k) });
+  });
+  D.sliders.forEach((s) => {
+    quantities.push({ id: "s:" + s.name, label: `s of slider ${s.name} (${U})`, get: (k) => at(S.s[s.name], k) });
+    quantities.push({ id: "sv:" + s.name, label: `v of slider ${s.name} (${velUnit})`, get: (k) => at(S.sv[s.name], k) });
+    quantities.push({ id: "sa:" + s.name, label: `a of slider ${s.name} (${accUnit})`, get: (k) => at(S.sa[s.name], k) });
+  });
+  const qsel = $("quantity");
+  quantities.forEach((q) => { const o = document.createElement("option"); o.value = q.id; o.textContent = q.label; qsel.appendChild(o); });
+  // default: the angle of the last link (the output, usually)
+  if (D.sliders.length) qsel.value = "s:" + D.sliders[D.sliders.length - 1].name;
+  else if (D.links.length) qsel.value = "phi:" + D.links[D.links.length - 1].name;
+  const plot = $("plot");
+  const PM = { l: 62, r: 12, t: 10, b: 30 };
+  let plotState = null;
+  function niceTicks(lo, hi, n) {
+    if (!(hi > lo)) { hi = lo + 1; lo = lo - 1; }
+    const raw = (hi - lo) / n, mag = Math.pow(10, Math.floor(Math.log10(raw)));
+    const step = [1, 2, 2.5, 5, 10].map((m) => m * mag).find((s) => s >= raw) || raw;
+    const out = [];
+    for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) out.push(v);
+    return out;
+  }
+  function drawPlot() {
+    while (plot.firstChild) plot.removeChild(plot.firstChild);
+    const q = quantities.find((x) => x.id === qsel.value);
+    if (!q) return;
+    const W = plot.clientWidth || 800, H = plot.clientHeight || 180;
+    const xs = [], ys = [];
+    for (let k = 0; k < N; k++) { xs.push(inputAngle(k) * DEG); ys.push(closedAt(k) ? q.get(k) : null); }
+    const fin = ys.filter((v) => v !== null && isFinite(v));
+    let lo = fin.length ? Math.min(...fin) : 0, hi = fin.length ? Math.max(...fin) : 1;
+    if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
+    const pad = 0.05 * (hi - lo); lo -= pad; hi += pad;
+    const x0 = xs[0], x1 = xs[0] + 360;
+    const X = (v) => PM.l + (W - PM.l - PM.r) * (v - x0) / (x1 - x0);
+    const Y = (v) => PM.t + (H - PM.t - PM.b) * (hi - v) / (hi - lo);
+    niceTicks(lo, hi, 4).forEach((v) => {
+      el("line", { class: "grid", x1: PM.l, x2: W - PM.r, y1: Y(v), y2: Y(v) }, plot);
+      const t = el("text", { x: PM.l - 4, y: Y(v) + 4, "text-anchor": "end" }, plot); t.textContent = fmt(v, 4);
+    });
+    niceTicks(x0, x1, 8).forEach((v) => {
+      el("line", { class: "grid", y1: PM.t, y2: H - PM.b, x1: X(v), x2: X(v) }, plot);
+      const t = el("text", { x: X(v), y: H - PM.b + 14, "text-anchor": "middle" }, plot); t.textContent = fmt(v, 4);
+    });
+    el("line", { class: "axis", x1: PM.l, x2: W - PM.r, y1: H - PM.b, y2: H - PM.b }, plot);
+    el("line", { class: "axis", x1: PM.l, x2: PM.l, y1: PM.t, y2: H - PM.b }, plot);
+    const xl = el("text", { x: W - PM.r, y: H - 3, "text-anchor": "end" }, plot); xl.textContent = `input ${D.inputs[0].label} θ (deg)`;
+    let d = "", pen = false;
+    for (let k = 0; k < N; k++) {
+      if (ys[k] === null || !isFinite(ys[k])) { pen = false; continue; }
+      d += (pen ? "L" : "M") + X(xs[k]).toFixed(1) + "," + Y(ys[k]).toFixed(1); pen = true;
+    }
+    el("path", { class: "curve", d: d }, plot);
+    const cursor = el("line", { class: "cursor", y1: PM.t, y2: H - PM.b }, plot);
+    const hover = el("line", { class: "hover", y1: PM.t, y2: H - PM.b }, plot);
+    const htext = el("text", { y: PM.t + 12 }, plot);
+    show(hover, false); show(htext, false);
+    plotState = { q, xs, ys, X, Y, W, cursor, hover, htext };
+    plotCursor();
+  }
+  function plotCursor() {
+    if (!plotState) return;
+    const x = plotState.X(plotState.xs[st.frame]);
+    setLine(plotState.cursor, x, PM.t, x, (plot.clientHeight || 180) - PM.b);
+  }
+  function plotFrameAt(evt) {
+    const r = plot.getBoundingClientRect();
+    const f = (evt.clientX - r.left - PM.l) / (r.width - PM.l - PM.r);
+    return Math.min(N - 1, Math.max(0, Math.round(f * N)));
+  }
+  plot.addEventListener("mousemove", (evt) => {
+    if (!plotState) return;
+    const k = plotFrameAt(evt), ps = plotState;
+    const x = ps.X(ps.xs[k]);
+    setLine(ps.hover, x, PM.t, x, (plot.clientHeight || 180) - PM.b); show(ps.hover, true);
+    ps.htext.textContent = `θ = ${ps.xs[k].toFixed(2)}°: ${fmt(ps.ys[k])}`;
+    const right = x > ps.W * 0.6;
+    ps.htext.setAttribute("x", right ? x - 6 : x + 6);
+    ps.htext.setAttribute("text-anchor", right ? "end" : "start");
+    show(ps.htext, true);
+  });
+  plot.addEventListener("mouseleave", () => { if (plotState) { show(plotState.hover, false); show(plotState.htext, false); } });
+  plot.addEventListener("click", (evt) => setFrame(plotFrameAt(evt)));
+  qsel.addEventListener("change", drawPlot);
+
+  // ------------------------------------------------------------------ frame control, animation, URL
+  function setFrame(k) {
+    st.frame = ((Math.round(k) % N) + N) % N;
+    render();
+  }
+  function scheduleUrl() {
+    if (st.urlTimer) return;
+    st.urlTimer = setTimeout(() => {
+      st.urlTimer = null;
+      try {
+        const u = new URL(window.location.href);
+        u.searchParams.set("frame", st.frame);
+        if (st.playing) u.searchParams.set("play", "1"); else u.searchParams.delete("play");
+        if (D.grid) u.searchParams.set("grid", st.grid); else u.searchParams.delete("grid");
+        history.replaceState(null, "", u.toString());
+      } catch (e) { /* a page opened where the URL cannot change */ }
+    }, 250);
+  }
+  function setPlaying(on) {
+    st.playing = on;
+    st.last = null;
+    st.acc = 0;
+    $("play").textContent = on ? "❚❚ pause" : "▶ play";
+    $("play").setAttribute("aria-pressed", on ? "true" : "false");
+    scheduleUrl();
+    if (on) requestAnimationFrame(tick);
+  }
+  function tick(t) {
+    if (!st.playing) return;
+    if (st.last !== null) {
+      const fps = D.period ? N / D.period : N / 6;  // 1x: real time at the given speed, else a turn in 6 s
+      st.acc += Math.min(0.25, (t - st.last) / 1000) * fps * st.speed;
+      const n = Math.floor(st.acc);
+      if (n > 0) { st.acc -= n; setFrame(st.frame + n * Math.sign(D.inputs[0].rate || 1)); }
+    }
+    st.last = t;
+    requestAnimationFrame(tick);
+  }
+  $("play").addEventListener("click", () => setPlaying(!st.playing));
+  $("step").addEventListener("click", () => { setPlaying(false); setFrame(st.frame + 1); });
+  $("step-back").addEventListener("click", () => { setPlaying(false); setFrame(st.frame - 1); });
+  $("speed").addEventListener("change", () => { st.speed = Number($("speed").value); });
+  $("fit").addEventListener("click", fit);
+  const frameInput = $("frame");
+  frameInput.max = N - 1;
+  frameInput.addEventListener("input", () => setFrame(Number(frameInput.value)));
+  if (D.grid) {
+    $("grid-group").hidden = false;
+    const g = $("grid");
+    g.max = D.grid.values.length - 1;
+    g.value = st.grid;
+    $("grid-label").textContent = D.inputs[1].label;
+    g.addEventListener("input", () => { st.grid = Number(g.value); buildPaths(); drawPlot(); render(); });
+  }
+  ["show-velocity", "show-acceleration", "show-paths", "show-centres", "show-labels", "show-kennedy"].forEach((id) => $(id).addEventListener("change", applyToggles));
+  $("kennedy-triple").addEventListener("change", () => { if (!$("show-kennedy").checked) $("show-kennedy").checked = true; applyToggles(); });
+  document.addEventListener("keydown", (evt) => {
+    const tag = evt.target && evt.target.tagName;
+    if (tag === "SELECT" || (tag === "INPUT" && evt.target.type === "text")) return;
+    if (evt.key === " " || evt.code === "Space") { evt.preventDefault(); setPlaying(!st.playing); }
+    else if (evt.key === "ArrowRight" || evt.key === "ArrowUp") { evt.preventDefault(); setPlaying(false); setFrame(st.frame + 1); }
+    else if (evt.key === "ArrowLeft" || evt.key === "ArrowDown") { evt.preventDefault(); setPlaying(false); setFrame(st.frame - 1); }
+  });
+
+  // ------------------------------------------------------------------ zoom, pan, drag the input
+  view.addEventListener("wheel", (evt) => {
+    evt.preventDefault();
+    const r = view.getBoundingClientRect();
+    const sx = evt.clientX - r.left, sy = evt.clientY - r.top;
+    const wx = (sx - st.tx) / st.s, wy = (st.ty - sy) / st.s;
+    const f = Math.exp(-evt.deltaY * 0.0015);
+    st.s *= f; st.tx = sx - st.s * wx; st.ty = sy + st.s * wy;
+    applyView();
+  }, { passive: false });
+  function inputAbsAngle(k) {
+    const lk = D.links.find((l) => l.name === inputLink);
+    const v = at(S.phi[inputLink], k);
+    return v === null ? null : v + lk.angle0;
+  }
+  view.addEventListener("pointerdown", (evt) => {
+    const grab = evt.target.closest && evt.target.closest(".grab");
+    view.setPointerCapture(evt.pointerId);
+    if (grab && inputLink && closedAt(st.frame)) {
+      const [wx, wy] = toWorld(evt);
+      const [px, py] = P(pivotName, st.frame);
+      st.drag = { mode: "input", off: Math.atan2(wy - py, wx - px) - inputAbsAngle(st.frame) };
+      setPlaying(false);
+    } else {
+      st.drag = { mode: "pan", x: evt.clientX, y: evt.clientY };
+      view.style.cursor = "grabbing";
+    }
+  });
+  view.addEventListener("pointermove", (evt) => {
+    const d = st.drag;
+    if (!d) return;
+    if (d.mode === "pan") {
+      st.tx += evt.clientX - d.x; st.ty += evt.clientY - d.y;
+      d.x = evt.clientX; d.y = evt.clientY;
+      applyView();
+      return;
+    }
+    const [wx, wy] = toWorld(evt);
+    const [px, py] = P(pivotName, st.frame);
+    const target = Math.atan2(wy - py, wx - px) - d.off;
+    let best = st.frame, bestd = Infinity;
+    for (let k = 0; k < N; k++) {
+      const a = inputAbsAngle(k);
+      if (a === null || !closedAt(k)) continue;
+      const dd = Math.abs(Math.atan2(Math.sin(a - target), Math.cos(a - target)));
+      if (dd < bestd) { bestd = dd; best = k; }
+    }
+    if (best !== st.frame) setFrame(best);
+  });
+  function endDrag(evt) {
+    if (st.drag) { st.drag = null; view.style.cursor = ""; try { view.releasePointerCapture(evt.pointerId); } catch (e) { /* released */ } }
+  }
+  view.addEventListener("pointerup", endDrag);
+  view.addEventListener("pointercancel", endDrag);
+  window.addEventListener("resize", () => { fit(); drawPlot(); });
+
+  // ------------------------------------------------------------------ export
+  function download(name, text, type) {
+    const blob = new Blob([text], { type: type });
+    const a = document.createElement("a");
+    a.href = URL.createObjectURL(blob);
+    a.download = name;
+    document.body.appendChild(a);
+    a.click();
+    setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+  }
+  const base = D.name.replace(/[^A-Za-z0-9_-]+/g, "_");
+  $("export-svg").addEventListener("click", () => {
+    const clone = view.cloneNode(true);
+    clone.setAttribute("width", view.clientWidth);
+    clone.setAttribute("height", view.clientHeight);
+    const style = document.createElementNS(NS, "style");
+    style.textContent = Array.from(document.styleSheets).map((s) => Array.from(s.cssRules).map((r) => r.cssText).join("\n")).join("\n");
+    clone.insertBefore(style, clone.firstChild);
+    download(`${base}_frame${st.frame}.svg`, new XMLSerializer().serializeToString(clone), "image/svg+xml");
+  });
+  function frameRows() {
+    const k = st.frame, rows = [["quantity", "value", "unit"]];
+    rows.push(["frame", k, ""]);
+    rows.push([`input ${D.inputs[0].label}`, inputAngle(k) * DEG, "deg"]);
+    if (D.period) rows.push(["time", D.period * k / N, "s"]);
+    if (D.grid) rows.push([`input ${D.inputs[1].label}`, D.inputs[1].kind === "link" ? D.grid.values[st.grid] * DEG : D.grid.values[st.grid], D.inputs[1].kind === "link" ? "deg" : U]);
+    rows.push(["assembled", closedAt(k) ? 1 : 0, ""]);
+    D.points.forEach((p) => { rows.push([`${p} x`, at(S.x[p], k), U]); rows.push([`${p} y`, at(S.y[p], k), U]); });
+    quantities.filter((q) => !/^(x|y):/.test(q.id)).forEach((q) => {
+      const m = q.label.match(/^(.*) \((.*)\)$/);
+      rows.push([m ? m[1] : q.label, q.get(k), m ? m[2] : ""]);
+    });
+    if (IC) IC.pairs.forEach((pair) => { const c = icAt(pair, k); rows.push([`centre ${pair} x`, c && c.p ? c.p[0] : null, U]); rows.push([`centre ${pair} y`, c && c.p ? c.p[1] : null, U]); });
+    const cell = (v) => { if (v === null || v === undefined || (typeof v === "number" && !isFinite(v))) return "nan"; const s = String(v); return /[",\n]/.test(s) ? '"' + s.replace(/"/g, '""') + '"' : s; };
+    return rows.map((r) => r.map(cell).join(",")).join("\n") + "\n";
+  }
+  $("export-csv").addEventListener("click", () => download(`${base}_frame${st.frame}.csv`, frameRows(), "text/csv"));
+
+  // ------------------------------------------------------------------ start
+  const note = [];
+  if (D.grid) note.push(`Two or more inputs: the first (${D.inputs[0].label}) turns over the frames; the slider "${D.inputs[1].label}" chooses one of ${D.grid.values.length} precomputed values of the second` + (D.inputs.length > 2 ? "; further inputs stay at their start values." : "."));
+  note.push(rated ? `Velocities and accelerations at ${D.inputs.map((p) => p.label + " " + fmt(p.rate * (p.kind === "link" ? 30 / Math.PI : 60), 6) + (p.kind === "link" ? " rpm" : " " + U + "/min")).join(", ")}, constant speed.` : `Velocities and accelerations are analogues per radian of ${D.inputs[0].label} (no --rpm given).`);
+  note.push("Drag the input link to move it; drag the background to pan, wheel to zoom; space plays, arrows step.");
+  $("note").textContent = note.join(" ");
+  buildPaths();
+  const params = new URLSearchParams(window.location.search);
+  if (D.grid && params.has("grid")) { const g = Number(params.get("grid")); if (g >= 0 && g < M) { st.grid = Math.floor(g); $("grid").value = st.grid; buildPaths(); } }
+  const f0 = Number(params.get("frame"));
+  st.frame = Number.isFinite(f0) ? ((Math.floor(f0) % N) + N) % N : 0;
+  legend();
+  fit();
+  applyToggles();
+  drawPlot();
+  if (params.get("play") === "1") setPlaying(true);
+  document.body.setAttribute("data-ready", "1");
+})();
