@@ -20,9 +20,9 @@ MAX_SIZE_IN = 40.0
 #: Smallest figure width or height (inches): room for the axes and the legend.
 MIN_SIZE_IN = 1.0
 #: Most pixels of one image or frame (an RGBA buffer of 100 MB while drawing).
-MAX_PIXELS = 25_000_000
+MAX_PIXELS = 25e6
 #: Most pixels of all the frames of an animation (kept as one byte a pixel until written: 200 MB).
-MAX_ANIMATION_PIXELS = 200_000_000
+MAX_ANIMATION_PIXELS = 2e8
 #: Default still drawing of a mechanism (inches).
 DRAWING_SIZE = (8.0, 5.6)
 #: Default animation: 8 x 6 in at 100 dpi, 800 x 600 pixels.
