@@ -199,3 +199,17 @@ def test_all_the_frames_together_are_capped(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--frames 360 of --size 20 15 with --dpi 100" in err and "2e+08" in err
     assert not list(tmp_path.iterdir())
+
+
+def test_a_row_that_cannot_close_shows_the_frame_and_says_so():
+    from gearlever.plotting.animation import fourbar_mechanism
+
+    mech = fourbar_mechanism(9, 7, 3, 4)  # triple rocker: the crank cannot turn fully
+    r = _sweep(mech, 24)
+    row = int(np.flatnonzero(~r.closed)[0])
+    ax = draw_mechanism(mech, r, row=row)
+    texts, title = _texts(ax), ax.get_title()
+    plt.close(ax.figure)
+    assert title.endswith("(does not close)")
+    assert {"O2", "O4", "ground", "input: crank"} <= set(texts)
+    assert not {"A", "B", "crank", "coupler", "rocker"} & set(texts)

@@ -101,8 +101,8 @@ def _configuration(mech, result, row):
     if result is None or row is None:
         return dict(m.points), {k: 0.0 for k in m.links}
     pts = {p: tuple(result.point[p][row]) for p in result.point}
-    for p, xy in m.points.items():  # points on ground only
-        pts.setdefault(p, xy)
+    for p in m.links["ground"].points:  # the frame does not move (also where the rest cannot close)
+        pts[p] = m.points[p]
     rot = {k: (float(result.angle[k][row]) - m.links[k].angle0) if k in result.angle else 0.0 for k in m.links}
     return pts, rot
 
@@ -394,7 +394,7 @@ def _draw_frame(ax, scene: _Scene, pts, rot, row=None):
     # other one-point links (no gear, no slider): the name by the point
     for name in m.moving:
         p = m.links[name].points[0]
-        if name in named or p not in finite:
+        if name in named or len(m.links[name].points) > 1 or p not in finite or not np.isfinite(rot[name]):
             continue
         xy = finite[p]
         label(
@@ -461,10 +461,11 @@ def _draw_gears(ax, scene, finite, rot, named, label):
         x, y = finite[g.centre]
         color = scene.colors.get(g.link, GROUND_COLOR)
         art += ax.plot(x + r * np.cos(circle), y + r * np.sin(circle), "-." if g.internal else "-", color=color, lw=1.3)
-        th = rot[g.link] if np.isfinite(rot[g.link]) else 0.0
-        tip = (x + r * math.cos(th), y + r * math.sin(th))
-        art += ax.plot([x, tip[0]], [y, tip[1]], "-", color=color, lw=1.0, zorder=2)
-        art += ax.plot([tip[0]], [tip[1]], "o", color=color, ms=3.5, zorder=5)
+        th = rot[g.link]
+        if np.isfinite(th):  # the rotation mark, where the gear's angle is known
+            tip = (x + r * math.cos(th), y + r * math.sin(th))
+            art += ax.plot([x, tip[0]], [y, tip[1]], "-", color=color, lw=1.0, zorder=2)
+            art += ax.plot([tip[0]], [tip[1]], "o", color=color, ms=3.5, zorder=5)
         if len(m.links[g.link].points) == 1 and g.link != "ground" and g.link not in named:
             name = _label(g.link) if g.name == g.link else f"{_label(g.link)} ({_label(g.name)})"
             named.add(g.link)
@@ -513,6 +514,8 @@ def _draw_inputs(ax, scene, finite, rot, placer, label):
             t, n = _guide_axes(s, rot)
             c = finite[s.point] + 2.6 * u * n
             art.append(_arrow(ax, c - 1.8 * u * t, c + 1.8 * u * t, INPUT_COLOR, style="<|-|>"))
+            ends = np.array([c + 1.8 * u * t + 0.5 * u * n, c - 1.8 * u * t - 0.5 * u * n])
+            placer.boxes.append((*ends.min(axis=0), *ends.max(axis=0)))
             cands = [c + 1.4 * u * n, c - 5.2 * u * n, c + 4.5 * u * t, c - 4.5 * u * t]
             label(cands, f"input: {_label(spec.name)}", INPUT_COLOR)
             continue
@@ -649,7 +652,7 @@ def _inputs_text(scene, row) -> str:
             parts.append(f"{_label(spec.name)} = {v:.4g}" + (f" {_label(m.units)}" if m.units else ""))
         else:
             parts.append(f"{_label(spec.label)} = {math.degrees(v) % 360.0:.0f}°")
-    return ", ".join(parts)
+    return ", ".join(parts) + ("" if res.closed[row] else " (does not close)")
 
 
 def _check_figsize(figsize):
