@@ -52,3 +52,12 @@ def test_help_says_it_is_the_shortcut_of_mechanism_animate():
     sub = next(a for a in build_parser()._actions if a.dest == "command")
     text = sub.choices["animate"].format_help()
     assert "mechanism animate" in text and "--size" in text and "--dpi" in text
+
+
+def test_the_figure_options_do_not_import_matplotlib_when_the_parser_is_built():
+    import subprocess
+    import sys
+
+    code = "import sys, gearlever.cli as c; c.build_parser(); print('matplotlib' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"

@@ -57,7 +57,7 @@ def register(sub) -> None:
     a.set_defaults(func=_analyze)
 
     from gearlever.cli.animate import add_animation_args, add_figure_args
-    from gearlever.plotting._common import DRAWING_SIZE
+    from gearlever.plotting._limits import DRAWING_SIZE
 
     d = ms.add_parser(
         "draw",
