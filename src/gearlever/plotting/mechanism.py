@@ -412,22 +412,23 @@ def _draw_sliders(ax, scene, finite, rot, row, placer, named, label):
     m, u = scene.model, scene.u
     art = []
     for s in m.sliders:
+        t, n = _guide_axes(s, rot)
+        dmin, dmax = scene.disp[s.name]
+        margin = 2.5 * u if dmax > dmin else 0.25 * m.length_scale
+        block_h = 0.8 * u
+        if s.on == "ground":  # a fixed guide through the sketch position, drawn in every frame
+            xy0 = np.asarray(m.points[s.point], dtype=float)
+            a, b = xy0 + t * (dmin - margin), xy0 + t * (dmax + margin)
+            art += _hatched_line(ax, a - n * block_h, b - n * block_h, -n, u, GROUND_COLOR)
         if s.point not in finite:
             continue
         xy = finite[s.point]
-        t, n = _guide_axes(s, rot)
-        d_now = 0.0
-        if row is not None and scene.result is not None:
-            d_now = float(scene.result.displacement[s.name][row])
-            d_now = d_now if np.isfinite(d_now) else 0.0
-        dmin, dmax = scene.disp[s.name]
-        margin = 2.5 * u if dmax > dmin else 0.25 * m.length_scale
-        a = xy + t * (dmin - d_now - margin)
-        b = xy + t * (dmax - d_now + margin)
-        block_h = 0.8 * u
-        if s.on == "ground":
-            art += _hatched_line(ax, a - n * block_h, b - n * block_h, -n, u, GROUND_COLOR)
-        else:
+        if s.on != "ground":
+            d_now = 0.0
+            if row is not None and scene.result is not None:
+                d_now = float(scene.result.displacement[s.name][row])
+                d_now = d_now if np.isfinite(d_now) else 0.0
+            a, b = xy + t * (dmin - d_now - margin), xy + t * (dmax - d_now + margin)
             art += ax.plot(*zip(a, b), "--", color=scene.colors[s.on], lw=1.2, zorder=1)
         corners = [xy + sx * 1.4 * u * t + sy * block_h * n for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
         color = scene.colors.get(s.link, "0.8")
@@ -600,7 +601,9 @@ def _legend(ax, scene, paths: bool, loc="upper left", anchor=(1.02, 1.0)):
     if scene.gravity is not None:
         gx, gy = (v + 0.0 for v in scene.gravity)
         unit = f" {_label(m.units)}/s²" if m.units else ""
-        h.append(Line2D([], [], ls="none", marker=r"$\downarrow$", color="k", label=f"gravity ({gx:g}, {gy:g}){unit}"))
+        turn = math.degrees(math.atan2(gy, gx)) - 90.0  # a triangle marker turned to point along g
+        marker = (3, 0, turn)
+        h.append(Line2D([], [], ls="none", marker=marker, color="k", ms=6, label=f"gravity ({gx:g}, {gy:g}){unit}"))
     return ax.legend(
         handles=h,
         loc=loc,
