@@ -30,7 +30,7 @@ MAX_FRAMES = 360
 MAX_FPS = 100
 
 
-def add_figure_args(p, size, dpi: int) -> None:
+def add_figure_args(p, size, dpi: int, animation: bool = False) -> None:
     """``--size W H`` (inches) and ``--dpi`` of a drawing or animation, with their caps."""
     p.add_argument(
         "--size",
@@ -45,8 +45,8 @@ def add_figure_args(p, size, dpi: int) -> None:
         "--dpi",
         type=capped_int(MAX_DPI),
         default=dpi,
-        help=f"pixels per inch (default {dpi}, at most {MAX_DPI}; "
-        f"at most {MAX_PIXELS:.3g} pixels an image, {MAX_ANIMATION_PIXELS:.3g} over all the frames of a GIF)",
+        help=f"pixels per inch (default {dpi}, at most {MAX_DPI}; at most {MAX_PIXELS:.3g} pixels an image"
+        + (f", {MAX_ANIMATION_PIXELS:.3g} over all the frames)" if animation else ")"),
     )
     p.set_defaults(default_size=tuple(size))
 
@@ -76,7 +76,7 @@ def add_animation_args(p) -> None:
     p.add_argument(
         "--fps", type=capped_int(MAX_FPS), default=12, help=f"frames per second (default 12, at most {MAX_FPS})"
     )
-    add_figure_args(p, ANIMATION_SIZE, ANIMATION_DPI)
+    add_figure_args(p, ANIMATION_SIZE, ANIMATION_DPI, animation=True)
 
 
 def check_gif(out) -> None:
