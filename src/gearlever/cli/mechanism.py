@@ -4,9 +4,10 @@ Sub-commands::
 
     gearlever mechanism structure MODEL [--format table|json]
     gearlever mechanism analyze MODEL [--points N] [--input START STOP ...] [--rpm NAME=VALUE ...]
-                                      [--format csv|json] [--out FILE]
-    gearlever mechanism draw MODEL --out FILE.png [--points N] [--input START STOP ...]
-    gearlever mechanism animate MODEL --out FILE.gif [--frames N] [--input START STOP ...]
+                                      [--format csv|json] [--out FILE] [--centres]
+    gearlever mechanism draw MODEL --out FILE.png [--points N] [--input START STOP ...] [--size W H] [--dpi N]
+    gearlever mechanism animate MODEL --out FILE.gif [--frames N] [--fps N] [--input START STOP ...]
+                                [--size W H] [--dpi N]
     gearlever mechanism assemble MODEL [--out EXACT.toml] [--free-inputs]
 
 The sweep rule (:func:`sweep`; every command that sweeps uses it, and so
@@ -33,7 +34,8 @@ for a model with one input) they are velocities and accelerations in time
 at those constant input speeds, at every swept position
 (``omega_coupler_rad_s``, ``v_P_x_mm_s``; an input not given turns at 0).
 Angles are in degrees (``_deg``), angular rates in rad.
-Caps: ``--points`` at most :data:`MAX_POINTS`, ``--frames`` at most :data:`MAX_FRAMES`.
+Caps: ``--points`` at most :data:`MAX_POINTS`, ``--frames`` at most
+:data:`gearlever.cli.animate.MAX_FRAMES`.
 """
 
 from __future__ import annotations
@@ -48,12 +50,8 @@ from gearlever.errors import GearleverError
 
 #: Largest ``--points`` accepted (rows of a sweep).
 MAX_POINTS = 100_000
-#: Largest ``--frames`` accepted (GIF frames).
-MAX_FRAMES = 360
 #: Rows of a sweep when ``--points`` is not given (analyze, draw, the viewer).
 DEFAULT_POINTS = 360
-#: GIF frames when ``--frames`` is not given.
-DEFAULT_FRAMES = 36
 
 
 def register(sub) -> None:
@@ -85,21 +83,32 @@ def register(sub) -> None:
     a.add_argument("--centres", action="store_true", help="add the instant centres of every pair of links")
     a.set_defaults(func=_analyze)
 
-    d = ms.add_parser("draw", help="PNG: the sketch, joints, gears as pitch circles and the point paths")
+    from gearlever.cli.animate import add_animation_args, add_figure_args
+    from gearlever.plotting._limits import DRAWING_SIZE
+
+    d = ms.add_parser(
+        "draw",
+        help="PNG: names, joints, ground, sliders, gears, inputs, loads, point paths and a legend",
+        description="Draw the model at its sketch over the paths of its points: link and point names, "
+        "pin joints, hatched ground pivots and guides, sliders, gears as pitch circles with their tooth counts, "
+        "each input as an arrow, the [[loads]] with their values, gravity, a legend.",
+    )
     d.add_argument("model", help="model file (TOML)")
     d.add_argument("--out", required=True, help="output image (.png, .svg or .pdf)")
     _sweep_args(d, points=True)
+    add_figure_args(d, DRAWING_SIZE, 120)
     d.set_defaults(func=_draw)
 
-    g = ms.add_parser("animate", help="GIF of the mechanism over the sweep")
+    g = ms.add_parser(
+        "animate",
+        help="GIF of the mechanism over the sweep (the one animation of every model)",
+        description="A GIF of the model over the sweep, one frame per input row, each frame drawn as "
+        "`mechanism draw` draws (names, inputs, loads, legend), 800 x 600 pixels by default "
+        "(--size 8 6 at --dpi 100). `gearlever animate --fourbar ...` is the four-bar shortcut.",
+    )
     g.add_argument("model", help="model file (TOML)")
     g.add_argument("--out", required=True, help="output GIF")
-    g.add_argument(
-        "--frames",
-        type=positive_int,
-        default=DEFAULT_FRAMES,
-        help=f"frames: the rows of the sweep (default {DEFAULT_FRAMES}, at most {MAX_FRAMES})",
-    )
+    add_animation_args(g)
     _sweep_args(g, points=False)
     g.set_defaults(func=_animate)
 
@@ -315,25 +324,32 @@ def _check_suffix(out, allowed):
 
 def _draw(args) -> int:
     _check_suffix(args.out, ("png", "svg", "pdf"))
+    from gearlever.cli.animate import figure_args
+
+    size, dpi = figure_args(args)
     mech = _load(args.model)
     q, qdot = sweep(mech, args.points, args.input)
     r = mech.solve(q, qdot)
     from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import draw_mechanism
 
-    ax = draw_mechanism(mech, r)
-    save(ax.figure, args.out)
+    ax = draw_mechanism(mech, r, figsize=size)
+    save(ax.figure, args.out, dpi=dpi)
     return 0
 
 
 def _animate(args) -> int:
     _check_suffix(args.out, ("gif",))
-    if args.frames > MAX_FRAMES:
-        raise GearleverError(f"--frames must be at most {MAX_FRAMES}, got {args.frames}")
+    from gearlever.cli.animate import figure_args
+
+    size, dpi = figure_args(args, args.frames)
     mech = _load(args.model)
     q, qdot = sweep(mech, args.frames, args.input)
     r = mech.solve(q, qdot)
+    paths = mech.solve(*sweep(mech, DEFAULT_POINTS, args.input))
+    from gearlever.cli._common import progress
     from gearlever.plotting.mechanism import animate_mechanism
 
-    animate_mechanism(mech, r, args.out)
+    with progress("drawing the frames"):
+        animate_mechanism(mech, r, args.out, fps=args.fps, dpi=dpi, figsize=size, paths=paths)
     return 0

@@ -1,4 +1,12 @@
-"""Animated GIF of a four-bar over a crank turn (matplotlib's Pillow writer)."""
+"""The four-bar of ``gearlever animate --fourbar``, animated by the one mechanism animation.
+
+:func:`fourbar_mechanism` builds the four-bar from its link lengths as a
+mechanism model (the names of :func:`gearlever.synthesis._model.fourbar_model`:
+``O2``, ``A``, ``B``, ``O4``; links ``crank``, ``coupler``, ``rocker``) in the
+first crank position where it closes on the branch asked for;
+:func:`animate_fourbar` sweeps the crank over one turn from there and writes
+the GIF with :func:`gearlever.plotting.mechanism.animate_mechanism`.
+"""
 
 from __future__ import annotations
 
@@ -6,72 +14,103 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever._io import atomic_path
 from gearlever._validate import positive_int
-from gearlever.loops import fourbar, grashof
-from gearlever.plotting._common import plt
+from gearlever.errors import GearleverError
+from gearlever.plotting._common import ANIMATION_DPI, ANIMATION_SIZE
 
-__all__ = ["fourbar_frames", "animate_fourbar"]
+__all__ = ["fourbar_mechanism", "animate_fourbar"]
+
+#: Crank angles of the dotted point paths (one a degree).
+_PATH_POINTS = 360
+#: Crank angles tried for the starting pose (one a degree).
+_START_ANGLES = 360
 
 
-def fourbar_frames(ground, crank, coupler, rocker, frames=36, branch="open"):
-    """Joint positions O2, A, B, O4 per frame: complex array (frames, 4) (NaN where open)."""
-    frames = positive_int("frames", frames)
-    th = np.linspace(0.0, 2 * np.pi, frames, endpoint=False)
+def fourbar_mechanism(ground, crank, coupler, rocker, branch="open", units: str = "length units"):
+    """The four-bar as a :class:`~gearlever.mechanism.Mechanism`, ground along x, crank as input.
+
+    The sketch is the first crank angle (0, 1, 2, ... degrees) where the
+    linkage closes on ``branch``.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : float
+        Link lengths.
+    branch : {"open", "crossed"}
+        Assembly branch of the sketch (the sweep follows it).
+    units : str
+        Length unit label of the model.
+
+    Returns
+    -------
+    gearlever.mechanism.Mechanism
+
+    Notes
+    -----
+    The rocker pin is ``B = A + coupler e^{i theta3}`` with the coupler angle
+    of the triangle A-B-O4 on the diagonal O4 - A (R. L. Norton, *Design of
+    Machinery*, McGraw-Hill, sec. 4.5, the position analysis of the four-bar),
+    computed by :func:`gearlever.loops.fourbar`.
+
+    Examples
+    --------
+    >>> m = fourbar_mechanism(9, 5, 8, 8)
+    >>> m.model.moving, m.model.points["O4"]
+    (('crank', 'coupler', 'rocker'), (9.0, 0.0))
+    """
+    from gearlever.loops import fourbar, grashof
+    from gearlever.mechanism import Mechanism
+    from gearlever.synthesis._model import fourbar_model
+
+    kind = grashof(ground, crank, coupler, rocker).kind
+    th = np.linspace(0.0, 2 * np.pi, _START_ANGLES, endpoint=False)
     r = fourbar(ground, crank, coupler, rocker, th, branch=branch)
-    a = crank * np.exp(1j * th)
-    b = a + coupler * np.exp(1j * r.theta3)
-    return th, np.stack([np.zeros_like(a), a, b, np.full_like(a, ground)], axis=-1)
+    ok = np.flatnonzero(r.valid)
+    if ok.size == 0:
+        raise GearleverError(
+            f"the four-bar {ground:g}/{crank:g}/{coupler:g}/{rocker:g} does not close at any crank angle"
+        )
+    i = int(ok[0])
+    a = crank * np.exp(1j * th[i])
+    b = a + coupler * np.exp(1j * r.theta3[i])
+    name = f"four-bar {ground:g}/{crank:g}/{coupler:g}/{rocker:g} ({kind}, {branch})"
+    d = fourbar_model((0.0, 0.0), (ground, 0.0), (a.real, a.imag), (b.real, b.imag), name=name, units=units)
+    return Mechanism.from_dict(d)
 
 
-def animate_fourbar(ground, crank, coupler, rocker, path, frames=36, branch="open", fps=12, dpi=60):
+def animate_fourbar(
+    ground,
+    crank,
+    coupler,
+    rocker,
+    path,
+    frames=36,
+    branch="open",
+    fps=12,
+    dpi=ANIMATION_DPI,
+    figsize=ANIMATION_SIZE,
+) -> Path:
     """Write a GIF of the four-bar over one crank turn to ``path`` (atomically); return the path.
 
-    Frames where the linkage cannot close show the ground only.
+    The four-bar of :func:`fourbar_mechanism`, swept over ``frames`` crank
+    angles of one turn, drawn by
+    :func:`~gearlever.plotting.mechanism.animate_mechanism` (the one animation
+    of every mechanism model).  Frames where the linkage cannot close show the
+    ground only.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = animate_fourbar(9, 5, 8, 8, Path(d) / "fb.gif", frames=2, figsize=(4, 3), dpi=40)
+    ...     p.name
+    'fb.gif'
     """
-    from matplotlib.animation import PillowWriter
+    from gearlever.plotting.mechanism import animate_mechanism
 
-    th, P = fourbar_frames(ground, crank, coupler, rocker, frames, branch)
-    kind = grashof(ground, crank, coupler, rocker).kind
-    # fixed axes position (no layout engine): each frame is drawn exactly once
-    fig = plt.figure(figsize=(4.0, 3.4))
-    ax = fig.add_axes((0.16, 0.14, 0.8, 0.74))
-    finite = P[np.isfinite(P)]
-    xs, ys = finite.real, finite.imag
-    pad = 0.1 * max(ground, crank, coupler, rocker)
-    ax.set_xlim(xs.min() - pad, xs.max() + pad)
-    ax.set_ylim(ys.min() - pad, ys.max() + pad)
-    ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel("x (length units)")
-    ax.set_ylabel("y (length units)")
-    ax.plot([0, ground], [0, 0], "k--", lw=1, label="ground")
-    (crank_line,) = ax.plot([], [], "-o", color="tab:blue", lw=2, ms=4, label="crank")
-    (coupler_line,) = ax.plot([], [], "-o", color="tab:orange", lw=2, ms=4, label="coupler")
-    (rocker_line,) = ax.plot([], [], "-o", color="tab:green", lw=2, ms=4, label="rocker")
-    (path_line,) = ax.plot(P[:, 2].real, P[:, 2].imag, ":", color="0.5", lw=1, label="path of B")
-    ax.legend(loc="upper left", fontsize=7)
-    title = ax.set_title("")
-
-    def draw(i):
-        o2, a, b, o4 = P[i]
-        if np.isfinite(b):
-            crank_line.set_data([o2.real, a.real], [o2.imag, a.imag])
-            coupler_line.set_data([a.real, b.real], [a.imag, b.imag])
-            rocker_line.set_data([o4.real, b.real], [o4.imag, b.imag])
-        else:
-            for ln in (crank_line, coupler_line, rocker_line):
-                ln.set_data([], [])
-        title.set_text(f"{kind}, {branch}: θ2 = {np.degrees(th[i]):.0f}°")
-        return crank_line, coupler_line, rocker_line, title
-
-    path = Path(path)
-    writer = PillowWriter(fps=fps)
-    try:
-        with atomic_path(path, suffix=".tmp.gif") as tmp:
-            with writer.saving(fig, tmp, dpi):
-                for i in range(len(th)):
-                    draw(i)
-                    writer.grab_frame()
-    finally:
-        plt.close(fig)
-    return path
+    frames = positive_int("frames", frames)
+    mech = fourbar_mechanism(ground, crank, coupler, rocker, branch)
+    q0 = mech.sketch_inputs[0]
+    result = mech.solve(q0 + np.linspace(0.0, 2 * np.pi, frames, endpoint=False)[:, None])
+    paths = mech.solve(q0 + np.linspace(0.0, 2 * np.pi, _PATH_POINTS, endpoint=False)[:, None])
+    return animate_mechanism(mech, result, path, fps=fps, dpi=dpi, figsize=figsize, paths=paths)

@@ -29,7 +29,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     )
     save(fourbar_plans(*FOURBAR, FOURBAR_THETA2_DEG), figures_dir / "loops_fourbar_plans.png")
     save(fourbar_curves(*FOURBAR), figures_dir / "loops_fourbar_curves.png")
-    animate_fourbar(*FOURBAR, figures_dir / "loops_fourbar.gif", frames=18, dpi=50)
+    animate_fourbar(*FOURBAR, figures_dir / "loops_fourbar.gif", frames=18)
     import numpy as np
 
     r = fourbar(*FOURBAR, np.linspace(0, 2 * np.pi, 3600, endpoint=False))
