@@ -1,6 +1,6 @@
 """Structural analysis of a mechanism model: counts, mobility and redundant constraints from the Jacobian's rank.
 
-The mobility formula ``W = 3n - 2 P5 - P4 + q`` (:func:`gearlever.mechanism.structure.mobility`)
+The mobility formula ``W = 3n - 2 P5 - P4 + q`` (:func:`gearlever.mechanism.mobility.mobility`)
 needs the number ``q`` of redundant constraints; here ``q`` is found, not
 supplied: it is the number of constraint rows that the others already imply,
 read from the rank of the absolute-coordinate constraint Jacobian at the sketch.
