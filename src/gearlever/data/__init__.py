@@ -4,7 +4,11 @@ Files are read on demand with :mod:`importlib.resources`, never at import time.
 Every data file is a CSV whose leading ``#`` lines name its source; the one
 reader :func:`read_records` skips them and returns the rows as dicts.
 
-Imports only the standard library.
+The example models (``examples/*.toml`` mechanisms, ``examples/*.csv`` gear
+networks) ship here too: :func:`list_examples` names them and
+:func:`example_path` finds one, from a source checkout or an installed wheel.
+
+Imports only the standard library and :mod:`gearlever.errors`.
 """
 
 from __future__ import annotations
@@ -13,7 +17,9 @@ import csv
 import io
 from importlib import resources
 
-__all__ = ["read_records", "read_text"]
+from gearlever.data._examples import example_path, list_examples
+
+__all__ = ["read_records", "read_text", "list_examples", "example_path"]
 
 
 def read_text(name: str) -> str:
