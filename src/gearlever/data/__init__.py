@@ -23,7 +23,13 @@ __all__ = ["read_records", "read_text", "list_examples", "example_path"]
 
 
 def read_text(name: str) -> str:
-    """Return the text of the data file ``name`` shipped in this package."""
+    """Return the text of the data file ``name`` shipped in this package.
+
+    Examples
+    --------
+    >>> read_text("zrdpm_mobility.csv").startswith("#")
+    True
+    """
     return resources.files(__name__).joinpath(name).read_text(encoding="utf-8")
 
 

@@ -50,6 +50,16 @@ class MechanismStructure(Result):
         which constraints are redundant.
     inputs : int
         Number of ``[[inputs]]`` in the model (should equal ``dof``).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...                          "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...                          "inputs": [{"link": "crank"}]})
+    >>> s = m.structure()
+    >>> (s.n, s.P5, s.P4, s.W_formula, s.dof, s.redundant)
+    (1, 1, 0, 1, 1, 0)
     """
 
     n: int

@@ -53,6 +53,8 @@ def x_sign(contour) -> float:
     Alimukhamedov et al. (2020), Tables I and II: Table I equals Table II with the x axis reversed
     (``a_B = -a_D``, ``a_A = a_E``), the two contours being mirror images.
 
+    Examples
+    --------
     >>> x_sign(1), x_sign(2)
     (-1.0, 1.0)
     """
