@@ -8,6 +8,9 @@
   its output (``...`` on a line of its own skips any number of output lines).
 * ``.. code-block:: pycon``: doctests (``>>>``), output compared.
 * ``.. code-block:: python``: executed.
+* ``.. code-block:: toml``: parsed (TOML syntax); the examples of the model
+  file's tables are fragments, so only their syntax and keys are checked
+  (a fragment's tables and keys must be ones the model loader knows).
 
 The Python blocks of one page run in order in one namespace, like a session.
 """
@@ -19,6 +22,7 @@ import pathlib
 import re
 import shlex
 import shutil
+import tomllib
 
 import pytest
 
@@ -28,7 +32,7 @@ from gearlever.data import example_path, list_examples
 GUIDE = pathlib.Path(__file__).resolve().parents[1] / "docs" / "guide"
 PAGES = sorted(GUIDE.glob("*.rst"))
 BLOCK = re.compile(
-    r"^\.\. code-block:: (console|pycon|python)[ \t]*\n"  # the directive
+    r"^\.\. code-block:: (console|pycon|python|toml)[ \t]*\n"  # the directive
     r"((?:[ \t]+:[^\n]*\n)*)\n"  # its options
     r"((?:(?:[ \t]+[^\n]*)?\n)+)",  # the indented body (blank lines inside)
     re.M,
@@ -82,7 +86,7 @@ def workdir(tmp_path, monkeypatch):
 
 def test_the_guide_has_pages_and_examples_of_each_kind():
     kinds = {kind for page in PAGES for kind, _, _ in _blocks(page)}
-    assert len(PAGES) >= 10 and kinds == {"console", "pycon", "python"}
+    assert len(PAGES) >= 10 and kinds == {"console", "pycon", "python", "toml"}
     assert len(COMMANDS) >= 20
 
 
@@ -108,7 +112,37 @@ def test_guide_commands_run_as_printed(commands, workdir, capsys):
             assert _matches(expected, out.splitlines()), f"{command} printed:\n{out}"
 
 
-PYTHON_PAGES = [p for p in PAGES if any(k != "console" for k, _, _ in _blocks(p))]
+PYTHON_PAGES = [p for p in PAGES if any(k in ("pycon", "python") for k, _, _ in _blocks(p))]
+TOML_BLOCKS = [
+    pytest.param(body, id=f"{page.stem}:{line}")
+    for page in PAGES
+    for kind, body, line in _blocks(page)
+    if kind == "toml"
+]
+
+
+@pytest.mark.parametrize("body", TOML_BLOCKS)
+def test_guide_toml_fragments_parse_and_use_known_tables_and_keys(body):
+    from gearlever.mechanism import model as schema
+
+    data = tomllib.loads(body)
+    known = {
+        "mechanism": set(schema._MECH_KEYS + schema._KEPT_MECH_KEYS),
+        "sliders": {"name", "link", "on", "point", "direction"},
+        "meshes": {"gears", "carrier"},
+        "inputs": {"link", "relative_to", "slider"},
+        "loads": {"link", "point", "force", "torque"},
+    }
+    entries = {"gears": {"link", "centre", "teeth", "internal"}, "masses": {"mass", "centre", "inertia"}}
+    for table, value in data.items():
+        assert table in schema._TOP + schema._KEPT_TABLES, table
+        rows = value if isinstance(value, list) else [value]
+        for row in rows:
+            if table in known:
+                assert set(row) <= known[table], (table, set(row) - known[table])
+            elif table in entries:
+                for name, entry in row.items():
+                    assert set(entry) <= entries[table], (table, name, set(entry) - entries[table])
 
 
 @pytest.mark.parametrize("page", PYTHON_PAGES, ids=lambda p: p.stem)
