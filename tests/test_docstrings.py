@@ -23,12 +23,7 @@ import pytest
 import gearlever
 
 #: Public names (module of definition + qualified name) still without an Examples section.
-WITHOUT_EXAMPLE = {
-    "gearlever.dynamics.published.TextbookCheck",
-    "gearlever.loops.plan.PlanTerm",
-    "gearlever.zrdpm.parameters.ContourKinematics",
-    "gearlever.zrdpm.published.SelfConsistentFit",
-}
+WITHOUT_EXAMPLE: set[str] = set()
 
 EXAMPLES = re.compile(r"^Examples\n-{8,}\n(?:.*\n)*?\s*>>> ", re.M)
 

@@ -371,6 +371,12 @@ class SelfConsistentFit(Result):
     residual_x, residual_y : ndarray
     rms, max_abs : float
         cm.
+
+    Examples
+    --------
+    >>> fit = fit_self_consistent(published_table("I"))
+    >>> round(fit.params.l, 2), round(fit.max_abs, 2)      # cannot match the tables (see the Notes)
+    (4.6, 22.16)
     """
 
     params: ZrdpmContour
