@@ -31,6 +31,7 @@ for name, (mech, r) in results.items():
     point = list(mech.model.points)[-1]
     ax.plot(np.linspace(0, 360, 361), r.point[point][:, 0], label=f"{name}: x of {point}")
 ax.set_xlabel("crank turned from the sketch (deg)")
-ax.set_ylabel("x")
+ax.set_ylabel("x (mm)")
 ax.legend()
 ax.grid(True, alpha=0.3)
+fig.tight_layout()
