@@ -35,7 +35,7 @@ from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate  # no
 from gearlever.gears.networks import Network  # noqa: E402
 from gearlever.loops import LoopSystem, Vector, fourbar, grashof  # noqa: E402
 from gearlever.mechanism.core import Mechanism  # noqa: E402
-from gearlever.mechanism.structure import mobility, redundant_constraints  # noqa: E402
+from gearlever.mechanism.mobility import mobility, redundant_constraints  # noqa: E402
 from gearlever.trains import design_train, search_best, train_ratio  # noqa: E402
 from gearlever.trains.hooke import HookeJoint  # noqa: E402
 from gearlever.zrdpm import (  # noqa: E402

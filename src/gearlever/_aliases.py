@@ -19,7 +19,8 @@ ALIASES = {
     "gearlever.car": "gearlever.gears.car",
     "gearlever.differential": "gearlever.gears.willis",
     "gearlever.hooke": "gearlever.trains.hooke",
-    "gearlever.structure": "gearlever.mechanism.structure",
+    "gearlever.structure": "gearlever.mechanism.mobility",
+    "gearlever.mechanism.structure": "gearlever.mechanism.mobility",
     "gearlever.vector_loop": "gearlever.loops.vector_loop",
 }
 

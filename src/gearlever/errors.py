@@ -25,12 +25,43 @@ class GearleverError(ValueError):
 
     The message names the parameter and what it must be, e.g.
     ``"teeth must be a positive integer, got -3"``.
+
+    Examples
+    --------
+    >>> import gearlever
+    >>> try:
+    ...     gearlever.mobility(-1, 0, 0)
+    ... except gearlever.GearleverError as exc:
+    ...     print(exc)
+    n must be a non-negative integer, got -1
+    >>> issubclass(gearlever.GearleverError, ValueError)
+    True
     """
 
 
 class ClosureError(GearleverError):
-    """A vector loop or mechanism cannot be closed at the requested input."""
+    """A vector loop or mechanism cannot be closed at the requested input.
+
+    Examples
+    --------
+    A four-bar (ground 9, crank 5, coupler 3, rocker 3) that assembles at a
+    crank angle of 0 but not at 3 rad, solved strictly:
+
+    >>> import gearlever
+    >>> try:
+    ...     gearlever.fourbar(9, 5, 3, 3, [0.0, 3.0], strict=True)
+    ... except gearlever.ClosureError as exc:
+    ...     print(type(exc).__name__, isinstance(exc, gearlever.GearleverError))
+    ClosureError True
+    """
 
 
 class GearleverWarning(UserWarning):
-    """Input accepted but probably not meant, e.g. angles that look like degrees where radians are expected."""
+    """Input accepted but probably not meant, e.g. angles that look like degrees where radians are expected.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> issubclass(GearleverWarning, UserWarning)
+    True
+    """

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import gearlever
-from gearlever.mechanism.structure import published_mobility_cases
+from gearlever.mechanism.mobility import published_mobility_cases
 
 from ._models import all_examples, example
 

@@ -22,10 +22,10 @@ def register(sub) -> None:
 
 
 def _run(args) -> int:
-    from gearlever.mechanism import structure
+    from gearlever.mechanism.mobility import mobility, redundant_constraints
 
     if args.q is not None:
-        emit(f"W = {structure.mobility(args.n, args.p5, args.p4, args.q)}")
+        emit(f"W = {mobility(args.n, args.p5, args.p4, args.q)}")
     else:
-        emit(f"q = {structure.redundant_constraints(args.n, args.p5, args.p4, args.w)}")
+        emit(f"q = {redundant_constraints(args.n, args.p5, args.p4, args.w)}")
     return 0

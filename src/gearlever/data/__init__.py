@@ -4,7 +4,11 @@ Files are read on demand with :mod:`importlib.resources`, never at import time.
 Every data file is a CSV whose leading ``#`` lines name its source; the one
 reader :func:`read_records` skips them and returns the rows as dicts.
 
-Imports only the standard library.
+The example models (``examples/*.toml`` mechanisms, ``examples/*.csv`` gear
+networks) ship here too: :func:`list_examples` names them and
+:func:`example_path` finds one, from a source checkout or an installed wheel.
+
+Imports only the standard library and :mod:`gearlever.errors`.
 """
 
 from __future__ import annotations
@@ -13,11 +17,19 @@ import csv
 import io
 from importlib import resources
 
-__all__ = ["read_records", "read_text"]
+from gearlever.data._examples import example_path, list_examples
+
+__all__ = ["read_records", "read_text", "list_examples", "example_path"]
 
 
 def read_text(name: str) -> str:
-    """Return the text of the data file ``name`` shipped in this package."""
+    """Return the text of the data file ``name`` shipped in this package.
+
+    Examples
+    --------
+    >>> read_text("zrdpm_mobility.csv").startswith("#")
+    True
+    """
     return resources.files(__name__).joinpath(name).read_text(encoding="utf-8")
 
 

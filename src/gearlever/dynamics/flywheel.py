@@ -59,6 +59,14 @@ class Flywheel(Result):
     load_shift : constant added to the given load so that its mean equals the driving one (0 when they agree).
     angular_acceleration : (N,) ``(torque - load) / inertia`` (rad/s^2), the flywheel's acceleration at the
         samples (property; None without an inertia).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> theta = np.linspace(0.0, 2 * np.pi, 3601)
+    >>> fw = flywheel(theta, 100 + 30 * np.sin(2 * theta), 300, fluctuation=0.02)
+    >>> round(fw.energy_fluctuation, 3)          # 2 A / k = 2 * 30 / 2
+    30.0
     """
 
     theta: np.ndarray

@@ -67,6 +67,12 @@ class TextbookCheck(Result):
     example, quantity, unit, basis : (R,) str arrays: example number, quantity, its unit, why the tolerance.
     page : (R,) page of the example in the book.
     published, computed, tolerance : (R,) values in ``unit``; ``tolerance`` bounds ``|computed - published|``.
+
+    Examples
+    --------
+    >>> c = textbook_checks()
+    >>> len(c.example), str(c.quantity[0]), float(c.published[0]), float(c.computed[0])
+    (22, 'holding_torque', 400.0, 400.0)
     """
 
     example: np.ndarray

@@ -51,6 +51,8 @@ RIGHT_WHEEL, LEFT_WHEEL, POINTER = "1", "12", "7"
 class NuttallTeeth:
     """Tooth numbers of a Nuttall chariot (all positive integers).
 
+    Examples
+    --------
     >>> NuttallTeeth.uniform(30).n7
     30
     """
@@ -235,7 +237,7 @@ MAX_WAYPOINTS = 10**6
 def random_path(
     turns: float, seed: int = 0, steps_per_turn: int = 1000, track: float = 1.0
 ) -> tuple[np.ndarray, np.ndarray]:
-    """A random drive whose chassis turns ``turns`` full turns in all (sum of |heading changes|).
+    """A random drive whose chassis turns ``turns`` full turns in all (sum of ``|heading changes|``).
 
     Returns the per-step signed distances travelled by the left and right
     contact points, ``(ds_left, ds_right)``, ``round(turns*steps_per_turn)`` steps
@@ -391,7 +393,7 @@ class ChariotRun:
 
     @property
     def turns(self) -> float:
-        """Total turning of the chassis, sum of |heading changes| / 2 pi."""
+        """Total turning of the chassis, sum of ``|heading changes|`` / 2 pi."""
         return float(np.abs(self.ds_right - self.ds_left).sum() / self.track / (2 * np.pi))
 
     def mid_distance(self) -> np.ndarray:

@@ -55,6 +55,15 @@ class TabularMethod(Result):
     ``x`` and ``y`` are exact linear functions of the inputs (one factor per
     input): ``x = rot_turned - rot_carrier``, ``y = rot_carrier``; every row's
     total is ``y + x * relative``.
+
+    Examples
+    --------
+    >>> from gearlever.data import example_path
+    >>> from gearlever.gears.networks import parse_network
+    >>> net = parse_network(example_path("ferguson_paradox.csv").read_text())
+    >>> t = tabular_method(net, "arm", ["arm"])
+    >>> t.carrier, len(t.rows)
+    ('arm', 6)
     """
 
     carrier: str

@@ -203,6 +203,12 @@ class PlanetarySet(Result):
     """One tooth set of a search: teeth, exact ratio, its error and the conditions it meets (as text).
 
     ``planet`` is set for a simple set, ``planet1`` and ``planet2`` for a compound one.
+
+    Examples
+    --------
+    >>> s = design_planetary("9/2", planets=3, limit=1).solutions[0]
+    >>> s.ratio, s.error, s.conditions[0]
+    (Fraction(9, 2), Fraction(0, 1), 'coaxial: 12 + 2*15 = 42')
     """
 
     sun: int
@@ -241,6 +247,12 @@ class PlanetaryDesign(Result):
     solutions : the first ``limit`` of those, by ring size, then sun, then planet(s).
     ratio_range : least and greatest ratio over the feasible sets.
     note : why the target cannot be approached, or None.
+
+    Examples
+    --------
+    >>> d = design_planetary("9/2", planets=3, limit=1)
+    >>> d.count, d.solutions[0].sun, d.solutions[0].planet, d.solutions[0].ring
+    (8, 12, 15, 42)
     """
 
     kind: str

@@ -449,7 +449,7 @@ def torque_report(
     speeds: Mapping[str, object] | None = None,
     efficiency=1,
 ) -> dict:
-    """The JSON-ready dict of ``gearlever network ... --torque ... --loads ...`` (floats, None for indeterminate).
+    """The JSON-ready dict of ``gearlever network --torque --loads`` (floats, None for indeterminate).
 
     Keys: ``torques`` (member: torque from outside), ``frame_reactions``
     (constraint label: torque of the frame), ``power`` (member: power fed in

@@ -34,7 +34,14 @@ __all__ = ["Input", "Unknown", "Vector", "LoopSystem", "LoopSolution", "INPUT"]
 
 @dataclass(frozen=True)
 class Input:
-    """The input coordinate as a vector's length or angle: ``k * phi + offset``."""
+    """The input coordinate as a vector's length or angle: ``k * phi + offset``.
+
+    Examples
+    --------
+    >>> from gearlever.loops import Input
+    >>> Input(1, 0.5)          # angle = 1 * phi + 0.5
+    Input(k=1, offset=0.5)
+    """
 
     k: float = 1.0
     offset: float = 0.0
@@ -50,6 +57,12 @@ class Unknown:
 
     A ``scale`` other than 1 lets a loop carry a linear transmission constraint
     (a rack, a gear ratio, a lever arm), e.g. ``(rA + rB) * theta1``.
+
+    Examples
+    --------
+    >>> from gearlever.loops import Unknown
+    >>> Unknown("theta3", offset=0.0, scale=1.0).name
+    'theta3'
     """
 
     name: str
@@ -92,6 +105,12 @@ class Vector:
         coordinate; any other string or :class:`Unknown` is an unknown.
     sign : {+1, -1}
         Direction in which the vector is taken in the loop sum.
+
+    Examples
+    --------
+    >>> from gearlever.loops import INPUT, Vector
+    >>> Vector("crank", 5.0, INPUT).length
+    5.0
     """
 
     name: str

@@ -94,6 +94,12 @@ class FourBarResult(Result):
         closed form's branch sign is kept, so past such a point the same
         ``branch`` names a different assembly (the parallelogram 4/2/4/2
         becomes the antiparallelogram); see :func:`change_points`.
+
+    Examples
+    --------
+    >>> r = fourbar(9, 5, 8, 8, [0.0, 1.0])
+    >>> r.theta4.shape, bool(r.valid.all())
+    ((2,), True)
     """
 
     phi: np.ndarray
@@ -246,6 +252,11 @@ class GrashofClass:
         Shortest plus longest, and the sum of the other two.
     crank_rotates : bool
         Whether the input link can make full turns.
+
+    Examples
+    --------
+    >>> grashof(9, 5, 8, 8).kind
+    'crank-rocker'
     """
 
     condition: str
@@ -308,6 +319,12 @@ class LimitPositions(Result):
     theta2_at_rocker_extremes, theta4_extremes : ndarray
         Crank angles where the crank and coupler are collinear (the rocker
         stops, dtheta4/dphi = 0) and the rocker angles there.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(np.degrees(limit_positions(9, 5, 8, 8).theta4_extremes), 2)
+    array([ 80.41, 160.81])
     """
 
     input_limits: np.ndarray

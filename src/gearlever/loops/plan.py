@@ -40,6 +40,14 @@ class PlanTerm:
         The arrow, ``x + i y`` (velocity or acceleration units).
     side : int
         +1 or -1: the side of the loop equation (the vector's sign).
+
+    Examples
+    --------
+    >>> from gearlever.loops.fourbar import fourbar_system
+    >>> s = fourbar_system(9, 5, 8, 8)
+    >>> term = velocity_plan(s, s.solve([1.0], {"theta3": 0.4, "theta4": 1.6}))[0]
+    >>> term.kind, term.side, type(term.value).__name__
+    ('r', 1, 'complex')
     """
 
     vector: str

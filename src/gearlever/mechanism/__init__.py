@@ -1,6 +1,6 @@
 """Planar mechanisms: structure (mobility with redundant constraints) and models as data.
 
-- :mod:`~gearlever.mechanism.structure`: the mobility formula
+- :mod:`~gearlever.mechanism.mobility`: the mobility formula
   W = 3n - 2 P5 - P4 + q and its inverse for redundant constraints.
 - :mod:`~gearlever.mechanism.model`: model files (TOML) of links, pins,
   sliders, gears and meshes, validated into a :class:`MechanismModel`.
@@ -19,10 +19,10 @@ Numeric core: may import numpy, :mod:`gearlever.loops`, :mod:`gearlever.gears`,
 
 from gearlever.mechanism.assemble import assemble
 from gearlever.mechanism.core import Mechanism
+from gearlever.mechanism.mobility import mobility, redundant_constraints
 from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict
 from gearlever.mechanism.solve import MechanismResult
 from gearlever.mechanism.structural import MechanismStructure
-from gearlever.mechanism.structure import mobility, redundant_constraints
 
 __all__ = [
     "assemble",

@@ -181,6 +181,14 @@ class MechanismModel:
         Raw values of the tables and keys this loader keeps but does not
         read: ``masses``, ``loads`` (top level), ``gravity``,
         ``pressure_angle`` (of ``[mechanism]``); only those present.
+
+    Examples
+    --------
+    >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...                      "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...                      "inputs": [{"link": "crank"}]})
+    >>> m.moving, [i.label for i in m.inputs]
+    (('crank',), ['crank'])
     """
 
     name: str

@@ -954,6 +954,19 @@ class MechanismResult(Result):
     arrays :attr:`pose`, :attr:`pose_velocity`, :attr:`pose_acceleration`
     (``(N, n, 3)``: ``x, y, theta`` of each moving link's frame, the columns
     of :func:`~gearlever.mechanism.constraints.constraint_jacobian`).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [2, 0]},
+    ...                          "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...                          "inputs": [{"link": "crank"}]})
+    >>> r = m.solve(np.array([0.0, np.pi / 2]))
+    >>> np.round(r.point["A"], 12) + 0.0
+    array([[2., 0.],
+           [0., 2.]])
+    >>> np.round(r.velocity["A"][1], 12) + 0.0  # analogue: d(A)/d(theta) at 90 degrees
+    array([-2.,  0.])
     """
 
     q: np.ndarray

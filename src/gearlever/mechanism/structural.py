@@ -1,6 +1,6 @@
 """Structural analysis of a mechanism model: counts, mobility and redundant constraints from the Jacobian's rank.
 
-The mobility formula ``W = 3n - 2 P5 - P4 + q`` (:func:`gearlever.mechanism.structure.mobility`)
+The mobility formula ``W = 3n - 2 P5 - P4 + q`` (:func:`gearlever.mechanism.mobility.mobility`)
 needs the number ``q`` of redundant constraints; here ``q`` is found, not
 supplied: it is the number of constraint rows that the others already imply,
 read from the rank of the absolute-coordinate constraint Jacobian at the sketch.
@@ -50,6 +50,16 @@ class MechanismStructure(Result):
         which constraints are redundant.
     inputs : int
         Number of ``[[inputs]]`` in the model (should equal ``dof``).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...                          "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...                          "inputs": [{"link": "crank"}]})
+    >>> s = m.structure()
+    >>> (s.n, s.P5, s.P4, s.W_formula, s.dof, s.redundant)
+    (1, 1, 0, 1, 1, 0)
     """
 
     n: int

@@ -16,16 +16,13 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
 
     import numpy as np
 
+    from gearlever.data import example_path
     from gearlever.dynamics.flywheel import flywheel
     from gearlever.mechanism import Mechanism
     from gearlever.plotting._common import save
     from gearlever.plotting.dynamics import forces_figure, turning_moment_figure
-    from gearlever.reproduce.mechanism import examples_dir
 
-    path = examples_dir() / "engine.toml"
-    if not path.is_file():
-        return ["dynamics: examples/engine.toml not found (installed package): skipped"]
-    mech = Mechanism.load(path)
+    mech = Mechanism.load(example_path("engine.toml"))
     w = RPM * math.pi / 30.0
     q = mech.sketch_inputs[0] + np.linspace(0.0, 2 * np.pi, POINTS, endpoint=False)
     d = mech.inverse_dynamics(q, np.full_like(q, w), np.zeros_like(q))

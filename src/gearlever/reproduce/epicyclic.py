@@ -1,12 +1,11 @@
-"""Reproduce the epicyclic examples: tables/epicyclic_<name>.csv from the network files in examples/."""
+"""Reproduce the epicyclic examples: tables/epicyclic_<name>.csv from the shipped network files (package data)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from gearlever.errors import GearleverError
-
-#: Example network files (in the repository's examples/ folder) with their inputs, carrier and turned member.
+#: Example network files (shipped examples, :func:`gearlever.data.example_path`) with their inputs, carrier
+#: and turned member.
 EXAMPLES = {
     "ferguson_paradox": {"inputs": ["arm"], "carrier": "arm", "turned": None},
     "simple_planetary": {"inputs": ["sun"], "carrier": "carrier", "turned": None},
@@ -16,22 +15,15 @@ EXAMPLES = {
 }
 
 
-def examples_dir() -> Path:
-    """The repository's examples/ folder (next to src/)."""
-    path = Path(__file__).resolve().parents[3] / "examples"
-    if not path.is_dir():
-        raise GearleverError(f"examples folder not found at {path} (run from a source checkout)")
-    return path
-
-
 def run(tables_dir: Path, figures_dir: Path) -> list[str]:
+    from gearlever.data import example_path
     from gearlever.gears.networks import parse_network
     from gearlever.tables._common import write_csv
     from gearlever.tables.epicyclic import epicyclic_table
 
     lines = []
     for name, spec in EXAMPLES.items():
-        net = parse_network((examples_dir() / f"{name}.csv").read_text(encoding="utf-8"))
+        net = parse_network(example_path(f"{name}.csv").read_text(encoding="utf-8"))
         df = epicyclic_table(net, spec["inputs"], spec["carrier"], spec["turned"])
         write_csv(df, Path(tables_dir) / f"epicyclic_{name}.csv")
         first = spec["inputs"][0]

@@ -1,4 +1,4 @@
-"""Figures of the shipped mechanism models: sketch, joints, gears and point paths of each."""
+"""Figures of the shipped mechanism models (package data): sketch, joints, gears and point paths of each."""
 
 from __future__ import annotations
 
@@ -12,21 +12,15 @@ SWEEPS_DEG = {
 POINTS = 181
 
 
-def examples_dir() -> Path:
-    return Path(__file__).resolve().parents[3] / "examples"
-
-
 def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     from gearlever.cli.mechanism import sweep
+    from gearlever.data import example_path, list_examples
     from gearlever.mechanism import Mechanism
     from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import draw_mechanism
 
-    folder = examples_dir()
-    if not folder.is_dir():
-        return ["mechanism: examples/ folder not found (installed package): skipped"]
     out = []
-    for path in sorted(folder.glob("*.toml")):
+    for path in [example_path(n) for n in list_examples() if n.endswith(".toml")]:
         mech = Mechanism.load(path)
         q, qdot = sweep(mech, POINTS, SWEEPS_DEG.get(path.stem))
         r = mech.solve(q, qdot)

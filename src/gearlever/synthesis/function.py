@@ -95,6 +95,12 @@ class FunctionTargets(Result):
     output : ndarray
         Wanted outputs there (radians for a four-bar, length for a slider).
     x_range, input_range, output_range : tuple of float
+
+    Examples
+    --------
+    >>> t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
+    >>> np.round(t.x, 3).tolist()
+    [1.067, 1.5, 1.933]
     """
 
     expression: str
@@ -219,6 +225,13 @@ class FunctionSynthesis(Result):
         Largest link length (or offset), for relative tolerances.
     evaluations : int
         Input rows solved by the mechanism engine.
+
+    Examples
+    --------
+    >>> t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
+    >>> r = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    >>> r.kind, r.exact, r.grashof
+    ('fourbar', True, 'triple-rocker')
     """
 
     kind: str

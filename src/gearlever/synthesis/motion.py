@@ -90,6 +90,12 @@ class Dyad(Result):
         Centre point ``G`` and circle point ``M_1``.
     beta : ndarray
         Rotation of the link G-M from the first pose to each pose, radians.
+
+    Examples
+    --------
+    >>> d = moving_pivot([(0, 0), (1, 0.5), (2, 0.5)], np.radians([0, 20, 45]), (0.0, -2.0))
+    >>> [round(v, 4) for v in d.ground_pivot], [round(v, 4) for v in d.moving_pivot]
+    ([0.0, -2.0], [-0.906, 0.147])
     """
 
     ground_pivot: tuple
@@ -218,6 +224,12 @@ class BurmesterCurves(Result):
         where the branch is not real.
     circle : ndarray
         ``(N, 2, 2)``: the matching circle points (moving pivots at pose 1).
+
+    Examples
+    --------
+    >>> c = burmester_curves([(0, 0), (1, 0.5), (2, 0.4), (2.8, -0.2)], np.radians([0, 15, 35, 60]), samples=8)
+    >>> c.beta2.shape, c.center.shape == c.circle.shape
+    ((8,), True)
     """
 
     beta2: np.ndarray
@@ -430,6 +442,12 @@ class MotionSolution(Result):
         Over the crank motion through the poses, radians.
     defect : str
         Empty, or the branch, order or circuit defect found.
+
+    Examples
+    --------
+    >>> m = synthesize_motion([(0, 0), (1, 0.5), (2, 0.5)], np.radians([0, 20, 45]), fixed_pivots=[(0, -2), (2.5, -2)])
+    >>> bool(m.best.residual < 1e-9), m.best.grashof
+    (True, 'double-rocker')
     """
 
     crank: Dyad
@@ -473,6 +491,12 @@ class MotionSynthesis(Result):
         Best first.
     evaluations : int
         Input rows solved by the mechanism engine.
+
+    Examples
+    --------
+    >>> m = synthesize_motion([(0, 0), (1, 0.5), (2, 0.5)], np.radians([0, 20, 45]), fixed_pivots=[(0, -2), (2.5, -2)])
+    >>> m.method, len(m.solutions)
+    ('fixed pivots', 1)
     """
 
     points: np.ndarray

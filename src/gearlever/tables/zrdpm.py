@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from gearlever.mechanism import structure
+from gearlever.mechanism.mobility import mobility, published_mobility_cases, redundant_constraints
 from gearlever.zrdpm import model as zrdpm
 
 #: Decimals written, each at the precision its data supports, so that the CSVs
@@ -129,7 +129,7 @@ def mobility_frame() -> pd.DataFrame:
 
     Notes
     -----
-    Paper eq. 1 (:func:`gearlever.mechanism.structure.mobility`) on the cases of the data
+    Paper eq. 1 (:func:`gearlever.mechanism.mobility.mobility`) on the cases of the data
     file ``zrdpm_mobility.csv``.
 
     Examples
@@ -138,9 +138,9 @@ def mobility_frame() -> pd.DataFrame:
     [1, 2, 2]
     """
     rows = []
-    for case in structure.published_mobility_cases():
-        w = structure.mobility(case["n"], case["p5"], case["p4"], case["q"])
-        q = structure.redundant_constraints(case["n"], case["p5"], case["p4"], case["w"])
+    for case in published_mobility_cases():
+        w = mobility(case["n"], case["p5"], case["p4"], case["q"])
+        q = redundant_constraints(case["n"], case["p5"], case["p4"], case["w"])
         rows.append(
             dict(
                 case=case["case"],

@@ -266,7 +266,7 @@ def neighbours(ratio, count: int = 64, max_term: int | None = None) -> list[Appr
     -----
     These are the semiconvergents of the numbers just beside x, whose
     expansions continue [a0; ..., a_n, M, ...] or [a0; ..., a_n - 1, 1, M, ...]
-    with M large; |x - neighbour| = 1 / (q_n (q_(n-1) + j q_n)) on the first
+    with M large; ``|x - neighbour|`` = 1 / (q_n (q_(n-1) + j q_n)) on the first
     side.  They serve when x itself, or every approximant before it, holds a
     prime too large for a wheel: e.g. a whole-number ratio N, whose only
     convergent is N itself, gets (jN + 1)/j and (jN - 1)/j.

@@ -1,7 +1,7 @@
 """Tooth numbers for a wanted ratio by the rules of the classic text on trains of wheelwork.
 
 :func:`design_train` follows the text (page marked (41)): the number of pairs
-between |log B - log C| / log 6 and |log B - log C| / log 3; B and C resolved
+between ``|log B - log C| / log 6`` and ``|log B - log C| / log 3``; B and C resolved
 into that many factors, or multiples of them, between the least tooth number
 t and 6t (:func:`exact_trains`, :func:`factorizations`); when B or C holds a
 prime too large for a wheel, a neighbouring fraction from the continued
@@ -368,6 +368,12 @@ class DesignResult(Result):
     tried : tuple of (Approximant, pairs, factors) triples
         Continued-fraction approximants tested, most accurate first, up to
         the one used (empty when exact).
+
+    Examples
+    --------
+    >>> d = design_train("1/6.931", min_teeth=12, max_teeth=60)
+    >>> d.approximation, d.designs[0].drivers, d.designs[0].followers
+    (Fraction(304, 2107), (16, 19), (43, 49))
     """
 
     target: Fraction
@@ -435,7 +441,7 @@ def design_train(
     -----
     The classic text on trains of wheelwork, page marked (41).  With B/C in lowest terms: try to resolve B
     and C into K factors (or multiples) within [t, T] for K between
-    |log B - log C|/log 6 and |log B - log C|/log 3 (:func:`exact_trains`);
+    ``|log B - log C|/log 6`` and ``|log B - log C|/log 3`` (:func:`exact_trains`);
     if no K gives an exact train, take the convergents and semiconvergents
     of B/C (:func:`approximants`), and the fractions just beside B/C that
     continue its expansion (:func:`neighbours`), small enough to be built;

@@ -381,6 +381,13 @@ class HookeTurn(Result):
         omega_out / omega_in.
     acceleration_ratio : ndarray
         d2psi/dphi2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> turn = HookeJoint.from_degrees(30).turn(np.radians([0.0, 90.0]))
+    >>> np.round(turn.velocity_ratio, 6)
+    array([1.154701, 0.866025])
     """
 
     phi: np.ndarray

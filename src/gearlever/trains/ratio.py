@@ -40,11 +40,17 @@ class TrainRatio:
     internal_meshes : tuple of int
         Mesh numbers (from 1) that are internal.
     magnitude : Fraction
-        |omega_last / omega_first| = prod(drivers) / prod(followers), exact.
+        ``|omega_last / omega_first|`` = prod(drivers) / prod(followers), exact.
     sense : int
         +1 if the last axis turns the same way as the first, -1 if reversed.
     external_meshes : int
         Number of external meshes, idlers' meshes included.
+
+    Examples
+    --------
+    >>> t = train_ratio([20, 30], [60, 45])
+    >>> t.magnitude, t.sense
+    (Fraction(2, 9), 1)
     """
 
     drivers: tuple[int, ...]

@@ -128,9 +128,9 @@ class PairCountBounds:
     Attributes
     ----------
     lower, upper : float
-        |log B - log C| / log 6 and |log B - log C| / log 3.
+        ``|log B - log C| / log 6`` and ``|log B - log C| / log 3``.
     young : float
-        |log B - log C| / log 3.59 (Young's least-teeth number of pairs).
+        ``|log B - log C| / log 3.59`` (Young's least-teeth number of pairs).
     candidates : tuple of int
         The whole numbers of pairs to try, smallest first: those within
         [lower, upper]; when no whole number lies there, the next one above
@@ -158,7 +158,7 @@ def pair_count_bounds(ratio) -> PairCountBounds:
     -----
     The classic text on trains of wheelwork, page marked (41): for B/C > 6
     the number of elementary combinations (pairs) is taken between
-    |log B - log C| / log 6 and |log B - log C| / log 3, each pair giving a
+    ``|log B - log C| / log 6`` and ``|log B - log C| / log 3``, each pair giving a
     ratio of 3 to 6; Young's rule for the least total number of teeth is
     3.59 per pair.
 

@@ -1,7 +1,7 @@
 """Exhaustive best search for the tooth numbers of a train, with exact counts.
 
 :func:`search_best` finds, for K pairs with teeth in [t_min, t_max], the
-least error |prod(drivers) / prod(followers) - r| over every train, proves it
+least error ``|prod(drivers) / prod(followers) - r|`` over every train, proves it
 (every distinct product of K teeth is examined, against the only followers'
 products that can be best for it), counts every optimal tooth set exactly
 without listing them (:func:`factorization_counts`: ordered tuples by
@@ -339,8 +339,8 @@ class SearchResult(Result):
     pairs, min_teeth, max_teeth : int
     metric : {"absolute", "relative"}
     best_error : Fraction
-        Least error, exact (absolute |ratio - target| or relative
-        |ratio - target| / target).
+        Least error, exact (absolute ``|ratio - target|`` or relative
+        ``|ratio - target| / target``).
     best_ratios : tuple of Fraction
         The optimal ratio(s) in lowest terms (two only if they lie at equal
         distance on both sides of the target).
@@ -364,6 +364,12 @@ class SearchResult(Result):
         Optimal (driver product, follower product) pairs.
     limit : int
         Most solutions listed.
+
+    Examples
+    --------
+    >>> best = search_best("1000/6931", pairs=2, min_teeth=12, max_teeth=60)
+    >>> best.count, best.solutions[0].drivers, best.solutions[0].followers
+    (1, (16, 19), (43, 49))
     """
 
     target: Fraction
@@ -489,7 +495,7 @@ def search_best(
     min_teeth, max_teeth : int
         Tooth range, the same for every wheel (at most 10,000).
     metric : {"absolute", "relative"}
-        |R - r| or |R - r| / r.  (Since r is fixed both have the same optima;
+        ``|R - r|`` or ``|R - r| / r``.  (Since r is fixed both have the same optima;
         only the reported error differs.)
     max_space : int
         Refuse (before any work) when the number of tooth multisets per side
@@ -510,10 +516,10 @@ def search_best(
     -----
     Exhaustive over distinct products, so the optimum is proven.  Let S be
     the sorted distinct products of K teeth (repeated outer products with
-    de-duplication).  For a driver product P the error |P/Q - r| falls as Q
+    de-duplication).  For a driver product P the error ``|P/Q - r|`` falls as Q
     rises to P/r and then grows, so the best follower product for P is one
     of the two neighbours of P/r in S, found by bisection; four neighbours
-    are checked, against rounding ( ``n_candidates`` = 4 |S| pairs).  The
+    are checked, against rounding ( ``n_candidates = 4 |S|`` pairs).  The
     pairs within a few ulps of the least float error are reduced to lowest
     terms p/q and compared in exact rational arithmetic.  Every optimal pair
     of products is then (p m, q m) for a whole m, found by one pass over S.

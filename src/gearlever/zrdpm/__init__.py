@@ -8,7 +8,7 @@ the identification of the constants they were computed with, the recovery of
 analogues from point accelerations).  Radians throughout the API.
 
 Numeric core: may import numpy, scipy, :mod:`gearlever.gears.willis`,
-:mod:`gearlever.loops`, :mod:`gearlever.mechanism.structure`,
+:mod:`gearlever.loops`, :mod:`gearlever.mechanism.mobility`,
 :mod:`gearlever.data`, :mod:`gearlever.errors`; never pandas or matplotlib.
 """
 

@@ -148,6 +148,8 @@ def contour1(params: ZrdpmContour | None, phi) -> dict:
     ``params`` None means the default ``ZrdpmContour(contour=1)``.  Returns a
     dict with ``u_1, u_8, e_1, e_8, a_B, a_A``, arrays shaped like ``phi``.
 
+    Examples
+    --------
     >>> sorted(contour1(None, [0.0]))
     ['a_A', 'a_B', 'e_1', 'e_8', 'u_1', 'u_8']
     """
@@ -160,6 +162,8 @@ def contour2(params: ZrdpmContour | None, phi) -> dict:
     ``params`` None means the default ``ZrdpmContour(contour=2)``.  Returns a
     dict with ``u_2, u_7, e_2, e_7, a_D, a_E``, arrays shaped like ``phi``.
 
+    Examples
+    --------
     >>> sorted(contour2(None, [0.0]))
     ['a_D', 'a_E', 'e_2', 'e_7', 'u_2', 'u_7']
     """

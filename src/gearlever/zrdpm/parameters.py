@@ -53,6 +53,8 @@ def x_sign(contour) -> float:
     Alimukhamedov et al. (2020), Tables I and II: Table I equals Table II with the x axis reversed
     (``a_B = -a_D``, ``a_A = a_E``), the two contours being mirror images.
 
+    Examples
+    --------
     >>> x_sign(1), x_sign(2)
     (-1.0, 1.0)
     """
@@ -245,6 +247,13 @@ class ContourKinematics(NamedTuple):
     ``u_carrier, u_gear, e_carrier, e_gear`` are ``u_1, u_8, e_1, e_8``
     (contour 1) or ``u_2, u_7, e_2, e_7`` (contour 2); ``a_x, a_y`` are
     ``a_B, a_A`` or ``a_D, a_E`` (cm, over the leading link's ``omega**2``).
+
+    Examples
+    --------
+    >>> from gearlever.zrdpm import ZrdpmContour, analogues
+    >>> k = analogues(ZrdpmContour(), [0.0])
+    >>> float(k.u_carrier[0]), float(k.e_gear[0]), round(float(k.a_x[0]), 12)
+    (1.0, 1.5, -10.0)
     """
 
     u_carrier: np.ndarray

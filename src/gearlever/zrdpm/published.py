@@ -186,6 +186,12 @@ class PublishedTable(Result):
         Cells exactly as printed (OCR, decimal commas).
     corrected_x, corrected_y : ndarray of bool
         True where the reading corrects the print.
+
+    Examples
+    --------
+    >>> t = published_table("I")
+    >>> t.contour, len(t.phi_deg)
+    (1, 12)
     """
 
     table: str
@@ -275,6 +281,12 @@ class TablesFit(Result):
         Over all values of the table, cm.
     success : bool
         True when the design matrix has full rank (both constants identified).
+
+    Examples
+    --------
+    >>> fit = identify_tables_constants(published_table("II"))
+    >>> round(fit.constants.l_u2, 3), round(fit.max_abs, 4)
+    (21.001, 0.0025)
     """
 
     constants: TablesConstants
@@ -359,6 +371,12 @@ class SelfConsistentFit(Result):
     residual_x, residual_y : ndarray
     rms, max_abs : float
         cm.
+
+    Examples
+    --------
+    >>> fit = fit_self_consistent(published_table("I"))
+    >>> round(fit.params.l, 2), round(fit.max_abs, 2)      # cannot match the tables (see the Notes)
+    (4.6, 22.16)
     """
 
     params: ZrdpmContour
