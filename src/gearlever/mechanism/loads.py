@@ -5,6 +5,8 @@ Model file tables (kept raw by the model loader in ``MechanismModel.extra``)::
     [mechanism]
     gravity = [0.0, -9.81]          # optional, acceleration of gravity (length/s^2 of the model)
     pressure_angle = 20.0           # optional, degrees, of every gear pair (default 20)
+    mesh_efficiency = 0.98          # optional, tooth efficiency of every gear pair (default 1);
+                                    # a pair's own [[meshes]] efficiency = ... takes precedence
     [masses]
     crank = { mass = 0.5, centre = "O2", inertia = 0.001 }   # centre: a point of the link, or [x, y] in the sketch
     [[loads]]
@@ -21,6 +23,7 @@ an array ``(N, 2)`` and ``torque`` an array ``(N,)`` over the input rows.
 Units are the user's, consistent: with lengths in m, masses in kg, inertias
 in kg m^2, forces come out in N and torques in N m (a model drawn in mm needs
 its gravity and inertias in mm: 9810 mm/s^2, kg mm^2, forces in kg mm/s^2 = mN).
+:func:`force_units` names them from ``[mechanism] units``.
 
 Imports numpy and the model only.
 """
@@ -36,7 +39,16 @@ import numpy as np
 from gearlever.errors import GearleverError
 from gearlever.mechanism.model import GROUND, MechanismModel
 
-__all__ = ["MassSpec", "LoadSpec", "parse_masses", "parse_loads", "gravity_of", "pressure_angle_of"]
+__all__ = [
+    "MassSpec",
+    "LoadSpec",
+    "parse_masses",
+    "parse_loads",
+    "gravity_of",
+    "pressure_angle_of",
+    "mesh_efficiency_of",
+    "force_units",
+]
 
 #: Default pressure angle of the gear pairs (rad): 20 degrees.
 DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
@@ -199,3 +211,67 @@ def pressure_angle_of(model: MechanismModel, pressure_angle=None) -> float:
     if not 0.0 <= a < math.radians(60.0):
         raise GearleverError(f"{where} must be in [0, 60) degrees, got {math.degrees(a):g} deg")
     return a
+
+
+def mesh_efficiency_of(model: MechanismModel, efficiency=None) -> dict:
+    """Tooth efficiency of every mesh, ``{mesh name: eta}``, each in (0, 1].
+
+    ``efficiency``: a number for every mesh, or ``{mesh name: number}`` (the
+    others keep the model's value); default the model's: a mesh's own
+    ``efficiency`` in ``[[meshes]]``, else ``[mechanism] mesh_efficiency``, else 1.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> m = model_from_dict({"mechanism": {"mesh_efficiency": 0.97},
+    ...     "points": {"O": [0, 0], "C": [3, 0]}, "links": {"ground": ["O", "C"], "a": ["O"], "b": ["C"]},
+    ...     "gears": {"ga": {"link": "a", "centre": "O", "teeth": 20}, "gb": {"link": "b", "centre": "C", "teeth": 40}},
+    ...     "meshes": [{"gears": ["ga", "gb"]}], "inputs": [{"link": "a"}]})
+    >>> mesh_efficiency_of(m), mesh_efficiency_of(m, {"ga-gb": 0.9})
+    ({'ga-gb': 0.97}, {'ga-gb': 0.9})
+    """
+
+    def check(where, v):
+        x = _num(where, v)
+        if not 0.0 < x <= 1.0:
+            raise GearleverError(f"{where} must be in (0, 1], got {v!r}")
+        return x
+
+    default = 1.0
+    if "mesh_efficiency" in model.extra:
+        default = check("mechanism.mesh_efficiency", model.extra["mesh_efficiency"])
+    out = {}
+    for mesh in model.meshes:
+        eff = getattr(mesh, "efficiency", None)
+        out[mesh.name] = default if eff is None else float(eff)
+    if efficiency is None:
+        return out
+    if isinstance(efficiency, dict):
+        for k, v in efficiency.items():
+            if k not in out:
+                raise GearleverError(f"efficiency: unknown mesh {k!r} (meshes: {', '.join(out) or 'none'})")
+            out[k] = check(f"efficiency[{k!r}]", v)
+        return out
+    x = check("efficiency", efficiency)
+    return dict.fromkeys(out, x)
+
+
+#: Named force units of a length unit with masses in kg and times in s (force = kg length / s^2).
+_FORCE_OF_LENGTH = {"m": "N", "mm": "mN", "cm": "cN", "km": "kN"}
+
+
+def force_units(model: MechanismModel) -> tuple:
+    """Names of the force and torque units, ``(force, torque)``, from ``[mechanism] units`` (masses in kg).
+
+    Forces are ``kg * length / s^2`` in the model's length unit: ``m`` gives
+    ``("N", "N_m")``, ``mm`` gives ``("mN", "mN_mm")``; another unit ``u``
+    gives ``("kg_u_s2", "kg_u_s2_u")``, no unit ``("kg_L_s2", "kg_L_s2_L")``.
+
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> force_units(model_from_dict({"mechanism": {"units": "mm"}, "points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]}))
+    ('mN', 'mN_mm')
+    """
+    u = "".join(c if c.isalnum() else "_" for c in (model.units or "").strip()) or "L"
+    f = _FORCE_OF_LENGTH.get(u, f"kg_{u}_s2")
+    return f, f"{f}_{u}"
