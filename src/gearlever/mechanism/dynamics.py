@@ -887,7 +887,8 @@ def simulate(
         Tolerances of :func:`scipy.integrate.solve_ivp` (method DOP853).
     grid : int
         One rotary input that turns fully: points per turn of the periodic
-        tables of ``J`` and of the loads' generalized force.
+        tables of ``J`` and of the loads' generalized force (over as many
+        turns as they take to repeat, at most 12).
     max_evals : int
         Several inputs (or one that does not repeat after a turn): cap on the
         evaluations of the equations of motion; a longer run is refused.
@@ -918,11 +919,14 @@ def simulate(
     mass matrix of the kinetic energy ``T = q'^T M q' / 2`` and ``b`` the
     convective terms minus the loads' generalized forces, from the kinematic
     solver's analytic velocities and accelerations; ``q'' = M^-1 (tau - b)``.
+    Where ``M``, ``b`` repeat after a whole number of turns of a rotary input
+    (checked numerically, at most 12 turns) they are evaluated within half a
+    period of the start, which keeps each kinematic solve short.
 
-    One rotary input that turns fully and repeats after a turn: the
+    One rotary input that turns fully and repeats after ``k`` turns: the
     "equation of motion of a machine" of the reduced-inertia method,
     ``J(q) q'' + J'(q)/2 q'^2 = Q`` with ``J`` and the loads' generalized
-    force tabulated over one turn and interpolated by periodic cubic
+    force tabulated over ``k`` turns and interpolated by periodic cubic
     splines (``J'`` their derivative), integrated in the variables ``q`` and
     ``u = sqrt(J) q'``: ``q' = u / sqrt(J)``, ``u' = Q / sqrt(J)``, which
     keeps ``J q'^2 / 2 = u^2 / 2`` constant to rounding when ``Q = 0``.
@@ -957,10 +961,48 @@ def simulate(
     g = gravity_of(m, gravity)
     tau = _torque_function(torque, m)
     if W == 1 and m.inputs[0].kind == "link":
-        out = _simulate_periodic(mech, tt, float(q0a[0]), float(qd0a[0]), tau, ms, lds, g, masses, rtol, atol, grid)
-        if out is not None:
-            return out
+        period = _periods(mech, q0a, ms, lds, g)[0]
+        if np.isfinite(period):
+            turns = round(period / (2 * np.pi))
+            out = _simulate_periodic(mech, tt, float(q0a[0]), float(qd0a[0]), tau, ms, lds, g, rtol, atol, grid, turns)
+            if out is not None:
+                return out
     return _simulate_general(mech, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, max_evals)
+
+
+#: Largest number of turns of a rotary input tried as the period of the equations of motion.
+MAX_PERIOD_TURNS = 12
+
+
+def _periods(mech, q0, ms, lds, g):
+    """Period (rad) of the equations of motion in each rotary input, ``inf`` if none up to MAX_PERIOD_TURNS turns.
+
+    ``M``, ``b`` and the loads' power depend on the inputs through the link
+    poses; a gear pair of ratio ``z_a / z_b`` repeats them after a whole
+    number of turns only (three for 20:30).  Checked at three sample states.
+    """
+    m = mech.model
+    W = len(m.inputs)
+    rng = np.random.default_rng(0)
+    qs = q0[None, :] + rng.uniform(-1.0, 1.0, (3, W))
+    qds = rng.uniform(0.5, 1.5, (3, W))
+    ref = _terms(mech, qs, qds, ms, lds, g)
+    out = np.full(W, np.inf)
+    for i, spec in enumerate(m.inputs):
+        if spec.kind != "link":
+            continue
+        for k in range(1, MAX_PERIOD_TURNS + 1):
+            shift = np.zeros(W)
+            shift[i] = 2 * np.pi * k
+            got = _terms(mech, qs + shift, qds, ms, lds, g)
+            if not (ref[3].all() and got[3].all()):
+                break
+            if all(
+                np.allclose(a, b, rtol=0, atol=1e-10 * max(np.abs(a).max(), 1e-300)) for a, b in zip(ref[:3], got[:3])
+            ):
+                out[i] = 2 * np.pi * k
+                break
+    return out
 
 
 def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals):
@@ -969,9 +1011,14 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals)
     m = mech.model
     W = len(m.inputs)
     count = [0]
+    period = _periods(mech, q0, ms, lds, g)
+    fin = np.isfinite(period)
+    per = np.where(fin, period, 1.0)
 
     def accel(time, q, qd):
-        M, b, PL, closed = _terms(mech, q[None, :], qd[None, :], ms, lds, g)
+        # the terms repeat with the period: evaluate within half a period of the start (short continuation)
+        qe = np.where(fin, q0 + np.mod(q - q0 + per / 2, per) - per / 2, q)
+        M, b, PL, closed = _terms(mech, qe[None, :], qd[None, :], ms, lds, g)
         if not closed[0]:
             raise GearleverError(
                 f"simulate: at t = {time:.6g} s the mechanism does not close at q = {np.round(q, 9).tolist()} "
@@ -1022,17 +1069,18 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals)
     )
 
 
-def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, masses, rtol, atol, grid):
-    """One rotary input that turns fully with ``J`` repeating after a turn (spline tables); None otherwise."""
+def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, rtol, atol, grid, turns=1):
+    """One rotary input that turns fully, ``J`` repeating after ``turns`` turns (spline tables); None otherwise."""
     from scipy.integrate import solve_ivp
     from scipy.interpolate import CubicSpline
 
     m = mech.model
-    qg = q0 + np.linspace(0.0, 2 * np.pi, grid + 1)
+    qg = q0 + np.linspace(0.0, 2 * np.pi * turns, grid * turns + 1)
     r = mech.solve(qg, np.ones_like(qg), np.zeros_like(qg))
     if not r.closed.all():
         return None
-    J = reduced_inertia(mech, qg, masses if masses is not None else None)
+    J, _, _, _ = _terms(mech, qg[:, None], np.ones((len(qg), 1)), ms, [], np.zeros(2))
+    J = J[:, 0, 0]
     if not np.all(np.isfinite(J)) or np.any(J <= 0):
         raise GearleverError("simulate: the reduced inertia must be positive over the turn (give masses)")
     N1 = len(qg)
@@ -1045,7 +1093,7 @@ def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, masses, rtol, atol,
     Js = CubicSpline(qg, J, bc_type="periodic")
     dJs = Js.derivative()
     Qs = CubicSpline(qg, QL, bc_type="periodic")
-    period = 2 * np.pi
+    period = 2 * np.pi * turns
 
     def wrap(q):
         return q0 + np.mod(q - q0, period)
