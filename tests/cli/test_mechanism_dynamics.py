@@ -201,3 +201,60 @@ def test_two_input_bad_flags_exit_2_with_one_line_naming_the_flag(capsys, tmp_pa
     assert main(["mechanism"] + [a.replace("{m}", model) for a in args]) == 2
     err = capsys.readouterr().err
     assert needle in err and err.count("\n") == 1
+
+
+CRANK_AND_BLOCK = """
+[mechanism]
+name = "crank and slider block"
+units = "mm"
+gravity = [0.0, -9810.0]
+[points]
+O = [0.0, 0.0]
+A = [10.0, 0.0]
+S = [50.0, 0.0]
+C = [30.0, 30.0]
+[links]
+ground = ["O"]
+crank = ["O", "A"]
+block = ["S"]
+l1 = ["A", "C"]
+l2 = ["S", "C"]
+[[sliders]]
+link = "block"
+on = "ground"
+point = "S"
+direction = [1.0, 0.0]
+[[inputs]]
+link = "crank"
+[[inputs]]
+slider = "block"
+[masses]
+crank = { mass = 0.1, centre = "A", inertia = 1.0 }
+block = { mass = 0.5, centre = "S" }
+l1 = { mass = 0.2, centre = "C", inertia = 5.0 }
+l2 = { mass = 0.2, centre = "C", inertia = 5.0 }
+"""
+
+
+def test_forces_rotary_and_slider_inputs_name_torque_and_force_columns(capsys, tmp_path):
+    """A crank (--rpm) and a slider block (--speed, mm/s) as inputs: the crank torque in mN mm, the block's
+    driving force in mN; both equal b(q, q') of Lagrange's equations (virtual work) to 1e-9."""
+    from gearlever.mechanism.dynamics import dynamic_terms
+
+    f = tmp_path / "crank_block.toml"
+    f.write_text(CRANK_AND_BLOCK)
+    assert main(["mechanism", "forces", str(f), "--rpm", "crank=60", "--speed", "block=5", "--points", "8"]) == 0
+    head, rows = _csv(capsys.readouterr().out)
+    assert head[:7] == [
+        "t_s",
+        "crank_deg",
+        "crank_rad_s",
+        "block_mm",
+        "block_mm_s",
+        "crank_torque_mN_mm",
+        "block_force_mN",
+    ]
+    assert np.allclose(rows[:, 3], 5.0 * rows[:, 0])  # the block moves 5 mm/s over the crank's turn (1 s)
+    q = np.column_stack([np.radians(rows[:, 1]), rows[:, 3]])
+    _, b, _, ok = dynamic_terms(Mechanism.load(f), q, [2 * math.pi, 5.0])
+    assert ok.all() and np.allclose(rows[:, 5:7], b, rtol=0, atol=1e-9 * np.abs(b).max())

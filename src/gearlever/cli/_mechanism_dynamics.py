@@ -178,6 +178,11 @@ def _forces(args) -> int:
     analogue = w is None
     if analogue:
         w = np.ones(len(names))
+    if not any(rot for _, rot in names):
+        raise GearleverError(
+            f"{args.model}: forces needs a rotary input (the rows span one turn of it); this model's inputs are "
+            "slider inputs only (use Mechanism.inverse_dynamics)"
+        )
     turning = [i for i, (_, rot) in enumerate(names) if rot and w[i] != 0]
     if not turning:
         raise GearleverError("--rpm: no rotary input turns (give one a non-zero speed): the rows span one turn of it")

@@ -195,15 +195,20 @@ class InverseDynamics(Result):
 
     def _frame_columns(self) -> dict:
         cols = {}
-        for i in range(self.q.shape[1]):
-            cols[f"q_{i}"] = self.q[:, i]
-            cols[f"input_force_{i}"] = self.input_force[:, i]
+        spec = self.kinematics.system.model.inputs if self.kinematics is not None else ()
+        names = [s.label for s in spec] if len(spec) == self.q.shape[1] else [str(i) for i in range(self.q.shape[1])]
+        for i, name in enumerate(names):
+            cols[f"{name}_q"] = self.q[:, i]
+            cols[f"{name}_qdot"] = self.qdot[:, i]
+            cols[f"{name}_force"] = self.input_force[:, i]
         for k, v in self.reaction.items():
             cols[f"{k}_x"], cols[f"{k}_y"] = v[:, 0], v[:, 1]
         for k, v in self.slider_force.items():
             cols[f"{k}_normal"] = v
         for k, v in self.mesh_force.items():
             cols[f"{k}_tooth"] = v
+        for k, v in self.mesh_loss.items():
+            cols[f"{k}_loss"] = v
         return cols
 
 
@@ -964,12 +969,17 @@ def simulate(
         period = _periods(mech, q0a, ms, lds, g)[0]
         if np.isfinite(period):
             turns = round(period / (2 * np.pi))
-            out = _simulate_periodic(mech, tt, float(q0a[0]), float(qd0a[0]), tau, ms, lds, g, rtol, atol, grid, turns)
+            out = _simulate_periodic(
+                mech, tt, float(q0a[0]), float(qd0a[0]), tau, ms, lds, g, rtol, atol, grid, turns, max_evals
+            )
             if out is not None:
                 return out
     return _simulate_general(mech, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, max_evals)
 
 
+#: One input on spline tables: an evaluation costs about 1/50 of a kinematic solve, so it may take this many
+#: times ``max_evals`` evaluations (10^6 by default, about a minute at most).
+SPLINE_EVALS_FACTOR = 5
 #: Largest number of turns of a rotary input tried as the period of the equations of motion.
 MAX_PERIOD_TURNS = 12
 
@@ -1069,7 +1079,7 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals)
     )
 
 
-def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, rtol, atol, grid, turns=1):
+def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, rtol, atol, grid, turns=1, max_evals=MAX_EVALS):
     """One rotary input that turns fully, ``J`` repeating after ``turns`` turns (spline tables); None otherwise."""
     from scipy.integrate import solve_ivp
     from scipy.interpolate import CubicSpline
@@ -1101,7 +1111,15 @@ def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, rtol, atol, grid, t
     def torque1(time, q, qd):
         return float(tau(time, np.array([q]), np.array([qd]))[0])
 
+    count = [0]
+
     def rhs(time, state):
+        count[0] += 1
+        if count[0] > SPLINE_EVALS_FACTOR * max_evals:
+            raise GearleverError(
+                f"simulate: more than {SPLINE_EVALS_FACTOR} x max_evals = {SPLINE_EVALS_FACTOR * max_evals} "
+                "evaluations of the equation of motion; simulate a shorter time or loosen rtol"
+            )
         q, u = state[0], state[1]
         qq = wrap(q)
         sJ = np.sqrt(Js(qq))
