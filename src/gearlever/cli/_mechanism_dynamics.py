@@ -4,7 +4,7 @@ Sub-commands (added to ``gearlever mechanism`` by :func:`register_dynamics`)::
 
     gearlever mechanism forces MODEL [--rpm NAME=VALUE ...] [--speed NAME=VALUE ...] [--efficiency ETA]
                                      [--points K] [--format csv|json] [--out FILE]
-    gearlever mechanism simulate MODEL --rpm NAME=VALUE ... [--speed NAME=VALUE ...] --time T
+    gearlever mechanism simulate MODEL --rpm NAME=VALUE ... [--speed NAME=VALUE ...] --time T [--efficiency ETA]
                                      [--torque NAME=VALUE ...] [--points K] [--format csv|json] [--out FILE]
 
 Inputs are named as in the model's ``[[inputs]]`` (a link input by its link,
@@ -27,7 +27,9 @@ efficiency``); ``--efficiency`` overrides the meshes' efficiency.
 ``simulate``: starts at the sketch with the speeds of ``--rpm``/``--speed``
 (every input given) and integrates the equations of motion for ``--time``
 seconds under constant driving torques ``--torque NAME=VALUE`` (force for
-a slider input; inputs not named are free, torque 0).
+a slider input; inputs not named are free, torque 0), with the model's
+mesh efficiency or ``--efficiency``; ``work``, ``load_work`` and
+``mesh_loss_work`` (lossy meshes) balance the change of kinetic energy.
 
 Units: lengths in the model's ``[mechanism] units``, masses in kg, time
 in s, so forces are kg length/s^2: N with ``units = "m"``, mN with ``"mm"``
@@ -84,6 +86,7 @@ def register_dynamics(ms) -> None:
         metavar="NAME=VALUE",
         help="constant driving torque (force, slider input) of an input; inputs not named are free",
     )
+    s.add_argument("--efficiency", type=finite_float, default=None, help="tooth efficiency of every mesh, (0, 1]")
     s.add_argument("--points", type=positive_int, default=201, help="output rows (default 201)")
     s.add_argument("--format", choices=("csv", "json"), default="csv")
     s.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
@@ -168,6 +171,13 @@ def _check_points(points):
         raise GearleverError(f"--points must be at most {MAX_POINTS}, got {points}")
 
 
+def _efficiency(args):
+    eff = args.efficiency
+    if eff is not None and not 0.0 < eff <= 1.0:
+        raise GearleverError(f"--efficiency must be in (0, 1], got {eff:g}")
+    return eff
+
+
 def _forces(args) -> int:
     from gearlever.cli.mechanism import _load
 
@@ -189,9 +199,7 @@ def _forces(args) -> int:
     period = 2 * math.pi / abs(w[turning[0]])
     t = np.linspace(0.0, period, args.points, endpoint=False)
     q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
-    eff = args.efficiency
-    if eff is not None and not 0.0 < eff <= 1.0:
-        raise GearleverError(f"--efficiency must be in (0, 1], got {eff:g}")
+    eff = _efficiency(args)
     with progress("mechanism forces"):
         d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q), efficiency=eff)
     L, F, T, P, _ = _units(mech)
@@ -225,8 +233,9 @@ def _simulate(args) -> int:
     given = named_values(args.torque, "--torque", [n for n, _ in names])
     torque = {labels[[n for n, _ in names].index(k)]: v for k, v in given.items()}
     t = np.linspace(0.0, args.time, max(args.points, 2))
+    eff = _efficiency(args)
     with progress("mechanism simulate"):
-        s = mech.simulate(t, mech.sketch_inputs, w, torque=torque)
+        s = mech.simulate(t, mech.sketch_inputs, w, torque=torque, efficiency=eff)
     L, F, T, P, E = _units(mech)
     cols = {"t_s": s.t}
     for i, (name, rot) in enumerate(names):
@@ -243,6 +252,8 @@ def _simulate(args) -> int:
     cols[f"kinetic_energy_{E}"] = s.kinetic_energy
     cols[f"work_{E}"] = s.work
     cols[f"load_work_{E}"] = s.load_work
+    if np.any(s.loss_work != 0):
+        cols[f"mesh_loss_work_{E}"] = s.loss_work
     meta = {
         "mechanism": mech.model.name,
         "units": {"length": L, "mass": "kg", "time": "s", "force": F, "torque": T, "energy": E},

@@ -168,6 +168,8 @@ class InverseDynamics(Result):
     ground_moment : (N,) total moment of the frame on the mechanism about the world origin.
     mesh_loss : mesh -> (N,) power the mesh dissipates (>= 0; zero for efficiency 1):
         ``sum tau_i qdot_i + power of loads, weights and inertia forces = sum of mesh_loss``.
+    mesh_driven : mesh -> (N,) which gear the mesh drives relative to its carrier (1 the first, 2 the
+        second, 0 none or no loss); the losses are charged on that side.
     indeterminate : labels of the multipliers the equilibrium does not fix (redundant constraints).
     ok : (N,) rows where the mechanism is closed and the equilibrium system is consistent.
     pressure_angle : rad.
@@ -186,6 +188,7 @@ class InverseDynamics(Result):
     ground_force: np.ndarray
     ground_moment: np.ndarray
     mesh_loss: dict
+    mesh_driven: dict
     indeterminate: tuple
     ok: np.ndarray
     pressure_angle: float
@@ -297,6 +300,7 @@ def inverse_dynamics(
     gravity=None,
     pressure_angle=None,
     efficiency=None,
+    _driven=None,
 ) -> InverseDynamics:
     """Driver torques and joint, guide and tooth forces that produce the prescribed motion.
 
@@ -428,6 +432,23 @@ def inverse_dynamics(
     ok = r.closed & np.all(np.isfinite(r.xddot), axis=1) & consistent
     lossy = [j for j, lo in enumerate(loss) if lo[0] < 1.0]
     driven = np.zeros((N, len(m.meshes)), dtype=np.int8)  # 0 no loss, 1 gear a driven, 2 gear b driven
+    A0 = A
+
+    def with_losses(driven):
+        A = A0.copy()
+        for j in lossy:
+            A[:, base + j] += np.where(driven[:, j, None] == 1, loss[j][1], 0.0)
+            A[:, base + j] += np.where(driven[:, j, None] == 2, loss[j][2], 0.0)
+        y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3)
+        lost = ok & ~consistent
+        if lost.any():
+            i = int(np.argmax(lost))
+            raise GearleverError(
+                f"self-locking: at input row {i} (q = {np.round(r.q[i], 9).tolist()}) the lossy meshes admit "
+                "no equilibrium: the train cannot be driven this way"
+            )
+        return A, y, und
+
     if lossy:
         bad = [m.meshes[j].name for j in lossy if np.any(und[ok, base + j])]
         if bad:
@@ -435,7 +456,10 @@ def inverse_dynamics(
                 f"self-locking: cannot decide, mesh losses need determined tooth forces, and those of {bad} are "
                 "statically indeterminate (redundant pairs); give them efficiency = 1"
             )
-        A0 = A
+    if lossy and _driven is not None:  # directions given (forward dynamics): the map qddot -> forces is linear
+        driven = np.where(ok[:, None], np.broadcast_to(np.asarray(_driven, dtype=np.int8), driven.shape), 0)
+        A, y, und = with_losses(driven)
+    elif lossy:
         history = [driven.copy()]
         for _ in range(MAX_PASSES):
             new = np.zeros_like(driven)
@@ -457,18 +481,7 @@ def inverse_dynamics(
                 )
             history.append(new.copy())
             driven = new
-            A = A0.copy()
-            for j in lossy:
-                A[:, base + j] += np.where(driven[:, j, None] == 1, loss[j][1], 0.0)
-                A[:, base + j] += np.where(driven[:, j, None] == 2, loss[j][2], 0.0)
-            y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3)
-            lost = ok & ~consistent
-            if lost.any():
-                i = int(np.argmax(lost))
-                raise GearleverError(
-                    f"self-locking: at input row {i} (q = {np.round(r.q[i], 9).tolist()}) the lossy meshes admit "
-                    "no equilibrium: the train cannot be driven this way"
-                )
+            A, y, und = with_losses(driven)
         else:  # pragma: no cover - bounded by the finite number of direction sets
             raise GearleverError("self-locking: the power-flow directions through the meshes do not settle")
     mesh_loss = {}
@@ -556,6 +569,7 @@ def inverse_dynamics(
         ground_force=gf,
         ground_moment=gm,
         mesh_loss={k: np.where(ok, v, np.nan) for k, v in mesh_loss.items()},
+        mesh_driven={mesh.name: driven[:, j].copy() for j, mesh in enumerate(m.meshes)},
         indeterminate=indeterminate,
         ok=ok,
         pressure_angle=phi,
@@ -787,9 +801,10 @@ class Simulation(Result):
     kinetic_energy : (N,) ``qdot^T M(q) qdot / 2``.
     inertia : (N, W, W) mass matrix ``M(q)`` (for one input the reduced inertia ``J(q)``).
     work : (N,) work done by the drivers since ``t[0]``.
-    load_work : (N,) work done by the loads and weights since ``t[0]``;
-        ``kinetic_energy - kinetic_energy[0] = work + load_work`` (energy balance, no losses).
+    load_work : (N,) work done by the loads and weights since ``t[0]``.
     inputs : names of the inputs.
+    loss_work : (N,) energy the meshes dissipated since ``t[0]`` (zero for ideal meshes):
+        ``kinetic_energy - kinetic_energy[0] = work + load_work - loss_work`` (energy balance).
     """
 
     t: np.ndarray
@@ -802,6 +817,7 @@ class Simulation(Result):
     work: np.ndarray
     load_work: np.ndarray
     inputs: tuple
+    loss_work: np.ndarray
 
     def _frame_columns(self) -> dict:
         cols = {"t_s": self.t}
@@ -813,6 +829,7 @@ class Simulation(Result):
         cols["kinetic_energy"] = self.kinetic_energy
         cols["work"] = self.work
         cols["load_work"] = self.load_work
+        cols["loss_work"] = self.loss_work
         return cols
 
 
@@ -898,9 +915,11 @@ def simulate(
         Several inputs (or one that does not repeat after a turn): cap on the
         evaluations of the equations of motion; a longer run is refused.
     efficiency : float or dict, optional
-        Mesh efficiency; only 1 (ideal meshes) is simulated: losses make the
-        equations non-smooth (the direction of the power flow switches) and
-        are refused.
+        Mesh efficiency (default the model's).  With losses the driver forces
+        depend on the direction of the power flow through each mesh, found
+        at every evaluation by a fixed point (:func:`inverse_dynamics`); the
+        equations are then only piecewise smooth (slower integration where a
+        direction switches), and a train that locks is refused.
 
     Returns
     -------
@@ -936,8 +955,9 @@ def simulate(
     ``u = sqrt(J) q'``: ``q' = u / sqrt(J)``, ``u' = Q / sqrt(J)``, which
     keeps ``J q'^2 / 2 = u^2 / 2`` constant to rounding when ``Q = 0``.
 
-    The drivers' work ``int tau . q' dt`` and the loads' ``int P_L dt`` are
-    integrated with the motion, so ``T(t) - T(t0) = work + load_work`` can be checked.
+    The drivers' work ``int tau . q' dt``, the loads' ``int P_L dt`` and the
+    meshes' losses are integrated with the motion, so
+    ``T(t) - T(t0) = work + load_work - loss_work`` can be checked.
     """
     m = mech.model
     W = len(m.inputs)
@@ -954,18 +974,13 @@ def simulate(
         raise GearleverError(f"grid must be between 16 and 100000, got {grid}")
     max_evals = V.positive_int("max_evals", max_evals)
     effs = mesh_efficiency_of(m, efficiency)
-    lossy = [k for k, e in effs.items() if e < 1.0]
-    if lossy:
-        raise GearleverError(
-            f"efficiency: simulate models ideal meshes only; meshes {lossy} have efficiency < 1 "
-            "(pass efficiency=1 to simulate them without losses)"
-        )
+    lossy = any(e < 1.0 for e in effs.values())
     ms = parse_masses(m, masses)
     lds = parse_loads(m, loads, 1)
     _constant_only(lds)
     g = gravity_of(m, gravity)
     tau = _torque_function(torque, m)
-    if W == 1 and m.inputs[0].kind == "link":
+    if W == 1 and m.inputs[0].kind == "link" and not lossy:
         period = _periods(mech, q0a, ms, lds, g)[0]
         if np.isfinite(period):
             turns = round(period / (2 * np.pi))
@@ -974,7 +989,8 @@ def simulate(
             )
             if out is not None:
                 return out
-    return _simulate_general(mech, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, max_evals)
+    raw = dict(masses=masses, loads=loads, gravity=g, efficiency=effs) if lossy else None
+    return _simulate_general(mech, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, max_evals, raw)
 
 
 #: One input on spline tables: an evaluation costs about 1/50 of a kinematic solve, so it may take this many
@@ -1015,7 +1031,39 @@ def _periods(mech, q0, ms, lds, g):
     return out
 
 
-def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals):
+def _lossy_acceleration(mech, time, q, qd, tq, qdd, raw):
+    """``q''`` and the meshes' dissipated power with losses: fixed point on the power-flow directions.
+
+    For given directions the driver forces are linear in ``q''`` (the lossy
+    equilibrium rows do not depend on it): ``tau = A q'' + c`` from one
+    inverse-dynamics call of ``W + 1`` rows; solve, find the directions at the
+    new ``q''``, repeat until they agree.
+    """
+    W = q.size
+    for _ in range(MAX_PASSES):
+        d = inverse_dynamics(mech, q[None, :], qd[None, :], qdd[None, :], **raw)
+        drv = np.array([[v[0] for v in d.mesh_driven.values()]], dtype=np.int8)
+        rows_qdd = np.vstack([np.zeros(W), np.eye(W)])
+        dd = inverse_dynamics(
+            mech, np.repeat(q[None, :], W + 1, 0), np.repeat(qd[None, :], W + 1, 0), rows_qdd, **raw, _driven=drv
+        )
+        c = dd.input_force[0]
+        A = (dd.input_force[1:] - c).T
+        if not np.all(np.isfinite(A)) or not np.all(np.isfinite(c)):
+            raise GearleverError(
+                f"simulate: at t = {time:.6g} s the lossy equations have no solution (the train locks)"
+            )
+        new = np.linalg.solve(A, tq - c)
+        loss = np.array([v[0] + (v[1:] - v[0]) @ new for v in dd.mesh_loss.values()]).sum()
+        if np.allclose(new, qdd, rtol=1e-11, atol=1e-11 * (1.0 + np.abs(new).max())):
+            return new, float(loss)
+        qdd = new
+    raise GearleverError(  # pragma: no cover - the directions settle in a pass or two away from switching points
+        f"self-locking: at t = {time:.6g} s the power flow through the meshes does not settle (the train locks)"
+    )
+
+
+def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals, raw=None):
     from scipy.integrate import solve_ivp
 
     m = mech.model
@@ -1042,7 +1090,11 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals)
                 "(give masses or inertias to links that every input moves)"
             )
         tq = tau(time, q, qd)
-        return np.linalg.solve(Mq, tq - b[0]), tq, PL[0], Mq
+        qdd = np.linalg.solve(Mq, tq - b[0])
+        loss = 0.0
+        if raw is not None:
+            qdd, loss = _lossy_acceleration(mech, time, qe, qd, tq, qdd, raw)
+        return qdd, tq, PL[0], Mq, loss
 
     def rhs(time, y):
         count[0] += 1
@@ -1052,10 +1104,10 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals)
                 "simulate a shorter time or loosen rtol"
             )
         q, qd = y[:W], y[W : 2 * W]
-        qdd, tq, PL, _ = accel(time, q, qd)
-        return np.concatenate([qd, qdd, [tq @ qd, PL]])
+        qdd, tq, PL, _, loss = accel(time, q, qd)
+        return np.concatenate([qd, qdd, [tq @ qd, PL, loss]])
 
-    y0 = np.concatenate([q0, qd0, [0.0, 0.0]])
+    y0 = np.concatenate([q0, qd0, [0.0, 0.0, 0.0]])
     sol = solve_ivp(rhs, (tt[0], tt[-1]), y0, t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
     if not sol.success:  # pragma: no cover - DOP853 on a smooth ODE
         raise GearleverError(f"simulate: the integration failed: {sol.message}")
@@ -1063,7 +1115,7 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals)
     n = len(sol.t)
     qdd, tq, Ms = np.zeros((n, W)), np.zeros((n, W)), np.zeros((n, W, W))
     for k in range(n):
-        qdd[k], tq[k], _, Ms[k] = accel(sol.t[k], q[k], qd[k])
+        qdd[k], tq[k], _, Ms[k], _ = accel(sol.t[k], q[k], qd[k])
     ke = 0.5 * np.einsum("ni,nij,nj->n", qd, Ms, qd)
     return Simulation(
         t=sol.t,
@@ -1076,6 +1128,7 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals)
         work=sol.y[2 * W],
         load_work=sol.y[2 * W + 1],
         inputs=tuple(spec.label for spec in m.inputs),
+        loss_work=sol.y[2 * W + 2],
     )
 
 
@@ -1149,4 +1202,5 @@ def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, rtol, atol, grid, t
         work=sol.y[2],
         load_work=sol.y[3],
         inputs=(m.inputs[0].label,),
+        loss_work=np.zeros_like(sol.t),
     )
