@@ -62,7 +62,7 @@ def test_simulate_with_zero_torque_conserves_kinetic_plus_potential_energy(tmp_p
     [
         (["forces", ENGINE, "--rpm", "x"], "--rpm"),
         (["forces", ENGINE, "--rpm", "10", "--points", "0"], "--points"),
-        (["forces", ENGINE, "--rpm", "10", "--points", "10000000"], "--points must be at most"),
+        (["forces", ENGINE, "--rpm", "10", "--points", "10000000"], "--points: must be at most 10^5"),
         (["simulate", ENGINE, "--rpm", "3000", "--time", "1e6"], "--time"),
         (["simulate", ENGINE, "--rpm", "3000", "--time", "-1"], "--time"),
         (["forces", "missing.toml", "--rpm", "10"], "missing.toml"),

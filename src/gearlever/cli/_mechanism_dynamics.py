@@ -49,7 +49,7 @@ import math
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, named_values, positive_float, positive_int, progress, table_text
+from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress, table_text
 from gearlever.errors import GearleverError
 
 #: Largest number of input turns ``simulate`` integrates (``--time`` x fastest ``--rpm`` / 60); one input
@@ -60,6 +60,8 @@ _POWER = {"N_m": "W", "mN_mm": "uW"}
 
 
 def register_dynamics(ms) -> None:
+    from gearlever.cli.mechanism import MAX_POINTS
+
     f = ms.add_parser("forces", help="input torques and pin, guide and tooth forces at constant input speeds")
     f.add_argument("model", help="model file (TOML) with [masses], [[loads]], gravity")
     f.add_argument(
@@ -70,7 +72,12 @@ def register_dynamics(ms) -> None:
     )
     f.add_argument("--speed", action="append", metavar="NAME=VALUE", help="speed of a slider input (length/s)")
     f.add_argument("--efficiency", type=finite_float, default=None, help="tooth efficiency of every mesh, (0, 1]")
-    f.add_argument("--points", type=positive_int, default=360, help="rows over the turn (default 360)")
+    f.add_argument(
+        "--points",
+        type=capped_int(MAX_POINTS),
+        default=360,
+        help=f"rows over the turn (default 360, at most {MAX_POINTS})",
+    )
     f.add_argument("--format", choices=("csv", "json"), default="csv")
     f.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
     f.set_defaults(func=_forces)
@@ -87,7 +94,9 @@ def register_dynamics(ms) -> None:
         help="constant driving torque (force, slider input) of an input; inputs not named are free",
     )
     s.add_argument("--efficiency", type=finite_float, default=None, help="tooth efficiency of every mesh, (0, 1]")
-    s.add_argument("--points", type=positive_int, default=201, help="output rows (default 201)")
+    s.add_argument(
+        "--points", type=capped_int(MAX_POINTS), default=201, help=f"output rows (default 201, at most {MAX_POINTS})"
+    )
     s.add_argument("--format", choices=("csv", "json"), default="csv")
     s.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
     s.set_defaults(func=_simulate)
@@ -164,13 +173,6 @@ def _write(text, out):
         raise GearleverError(f"--out: cannot write the file: {exc.strerror or exc}") from None
 
 
-def _check_points(points):
-    from gearlever.cli.mechanism import MAX_POINTS
-
-    if points > MAX_POINTS:
-        raise GearleverError(f"--points must be at most {MAX_POINTS}, got {points}")
-
-
 def _efficiency(args):
     eff = args.efficiency
     if eff is not None and not 0.0 < eff <= 1.0:
@@ -181,7 +183,6 @@ def _efficiency(args):
 def _forces(args) -> int:
     from gearlever.cli.mechanism import _load
 
-    _check_points(args.points)
     mech = _load(args.model)
     names = _names(mech)
     w = _speeds(mech, args, required=False)
@@ -222,7 +223,6 @@ def _forces(args) -> int:
 def _simulate(args) -> int:
     from gearlever.cli.mechanism import _load
 
-    _check_points(args.points)
     mech = _load(args.model)
     names = _names(mech)
     w = _speeds(mech, args, required=True)
