@@ -1,17 +1,46 @@
-"""``gearlever mechanism forces|simulate``: input torque, pair forces and motion of a model file.
+"""``gearlever mechanism forces|simulate``: input torques, pair forces and motion of a model file.
 
 Sub-commands (added to ``gearlever mechanism`` by :func:`register_dynamics`)::
 
-    gearlever mechanism forces MODEL --rpm N [--points K] [--format csv|json] [--out FILE]
-    gearlever mechanism simulate MODEL --rpm N --time T [--torque X] [--points K] [--format csv|json] [--out FILE]
+    gearlever mechanism forces MODEL [--rpm NAME=VALUE ...] [--speed NAME=VALUE ...] [--efficiency ETA]
+                                     [--points K] [--format csv|json] [--out FILE]
+    gearlever mechanism simulate MODEL --rpm NAME=VALUE ... [--speed NAME=VALUE ...] --time T [--efficiency ETA]
+                                     [--torque NAME=VALUE ...] [--points K] [--format csv|json] [--out FILE]
 
-``forces``: the single rotary input turns once at constant speed from its
-sketch angle; masses, loads, gravity and pressure angle come from the model
-file (``[masses]``, ``[[loads]]``, ``[mechanism] gravity, pressure_angle``).
-``simulate``: starts at the sketch at ``--rpm`` and integrates the motion
-under the constant input torque ``--torque`` for ``--time`` seconds.
-Caps: ``--points`` at most :data:`gearlever.cli.mechanism.MAX_POINTS`,
-``--time`` times the speed at most :data:`MAX_TURNS` input turns.
+Inputs are named as in the model's ``[[inputs]]`` (a link input by its link,
+``link/relative_to`` for a relative one; a slider input by its slider):
+``--rpm NAME=VALUE`` once per rotary input (rev/min), ``--speed NAME=VALUE``
+once per slider input (model length unit per s).  With one input a bare
+``--rpm 100`` is that input's.
+
+``forces``: every input moves at its constant speed from its sketch
+position; the rows span one turn of the first rotary input that turns
+(end excluded, ``--points`` rows, default 360), every other input moving
+at its own speed over that time.  Without ``--rpm``/``--speed`` every
+input moves at 1 rad/s (slider inputs at 1 length unit/s): the torques are
+then those at unit input speeds (the speed columns say so: ``NAME_rad_s``
+is 1 on every row).  Masses, loads, gravity, pressure angle and mesh
+efficiency come from the model file (``[masses]``, ``[[loads]]``,
+``[mechanism] gravity, pressure_angle, mesh_efficiency``, ``[[meshes]]
+efficiency``); ``--efficiency`` overrides the meshes' efficiency.
+
+``simulate``: starts at the sketch with the speeds of ``--rpm``/``--speed``
+(every input given) and integrates the equations of motion for ``--time``
+seconds under constant driving torques ``--torque NAME=VALUE`` (force for
+a slider input; inputs not named are free, torque 0), with the model's
+mesh efficiency or ``--efficiency``; ``work``, ``load_work`` and
+``mesh_loss_work`` (lossy meshes) balance the change of kinetic energy.
+
+Units: lengths in the model's ``[mechanism] units``, masses in kg, time
+in s; forces are in N and torques in N per length unit for a known unit (N mm with ``"mm"``)
+(:func:`gearlever.mechanism.loads.force_units`).  Every column name ends
+with its unit (``gear9_torque_N_mm``, ``pin_A_x_N``, ``mesh_z9-z8_N``);
+JSON output repeats them under ``"units"``.
+
+Caps: ``--points`` at most :data:`gearlever.cli.mechanism.MAX_POINTS`;
+``simulate`` at most :data:`MAX_TURNS` turns of the fastest input at its
+starting speed, and at most :data:`gearlever.mechanism.dynamics.MAX_EVALS`
+evaluations of the equations of motion (several inputs).
 """
 
 from __future__ import annotations
@@ -20,62 +49,120 @@ import math
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, positive_float, positive_int, to_json
+from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress, table_text
 from gearlever.errors import GearleverError
 
-#: Largest number of input turns ``simulate`` integrates (``--time`` x ``--rpm`` / 60).
+#: Largest number of input turns ``simulate`` integrates (``--time`` x fastest ``--rpm`` / 60); one input
+#: that turns fully uses spline tables (about 0.1 ms a turn), several inputs stop at MAX_EVALS anyway.
 MAX_TURNS = 10_000
+
+_POWER = {"N_m": "W", "N_mm": "mW", "N_km": "kW"}
 
 
 def register_dynamics(ms) -> None:
-    f = ms.add_parser("forces", help="input torque and pin, guide and tooth forces over a turn at constant speed")
+    from gearlever.cli.mechanism import MAX_POINTS
+
+    f = ms.add_parser("forces", help="input torques and pin, guide and tooth forces at constant input speeds")
     f.add_argument("model", help="model file (TOML) with [masses], [[loads]], gravity")
-    f.add_argument("--rpm", type=finite_float, required=True, help="speed of the rotary input (rev/min)")
-    f.add_argument("--points", type=positive_int, default=360, help="input rows over the turn (default 360)")
+    f.add_argument(
+        "--rpm",
+        action="append",
+        metavar="NAME=VALUE",
+        help="speed of a rotary input (rev/min), once per input; default every input at 1 rad/s",
+    )
+    f.add_argument("--speed", action="append", metavar="NAME=VALUE", help="speed of a slider input (length/s)")
+    f.add_argument("--efficiency", type=finite_float, default=None, help="tooth efficiency of every mesh, (0, 1]")
+    f.add_argument(
+        "--points",
+        type=capped_int(MAX_POINTS),
+        default=360,
+        help=f"rows over the turn (default 360, at most {MAX_POINTS})",
+    )
     f.add_argument("--format", choices=("csv", "json"), default="csv")
     f.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
     f.set_defaults(func=_forces)
 
-    s = ms.add_parser("simulate", help="motion under a constant input torque (reduced-inertia equation)")
+    s = ms.add_parser("simulate", help="motion under constant input torques (equations of motion in the inputs)")
     s.add_argument("model", help="model file (TOML) with [masses]")
-    s.add_argument("--rpm", type=finite_float, required=True, help="initial speed of the input (rev/min)")
+    s.add_argument("--rpm", action="append", metavar="NAME=VALUE", help="initial speed of a rotary input (rev/min)")
+    s.add_argument("--speed", action="append", metavar="NAME=VALUE", help="initial speed of a slider input")
     s.add_argument("--time", type=positive_float, required=True, help="simulated time (s)")
-    s.add_argument("--torque", type=finite_float, default=0.0, help="constant input torque (default 0)")
-    s.add_argument("--points", type=positive_int, default=201, help="output rows (default 201)")
+    s.add_argument(
+        "--torque",
+        action="append",
+        metavar="NAME=VALUE",
+        help="constant driving torque (force, slider input) of an input; inputs not named are free",
+    )
+    s.add_argument("--efficiency", type=finite_float, default=None, help="tooth efficiency of every mesh, (0, 1]")
+    s.add_argument(
+        "--points", type=capped_int(MAX_POINTS), default=201, help=f"output rows (default 201, at most {MAX_POINTS})"
+    )
     s.add_argument("--format", choices=("csv", "json"), default="csv")
     s.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
     s.set_defaults(func=_simulate)
 
 
-def _one_rotary(mech):
-    m = mech.model
-    if len(m.inputs) != 1 or m.inputs[0].kind != "link":
-        raise GearleverError(f"--rpm needs a model with one rotary input; {m.name!r} has {len(m.inputs)} input(s)")
+def _names(mech):
+    """CLI names of the inputs (in order) and whether each is rotary."""
+    out = []
+    for spec in mech.model.inputs:
+        out.append((spec.label if spec.kind == "link" else spec.name, spec.kind == "link"))
+    return out
 
 
-def _fmt(v) -> str:
-    return "nan" if not math.isfinite(v) else f"{v + 0.0:.12g}"
+def _speeds(mech, args, required: bool):
+    """Input speeds (W,) in rad/s or length/s from --rpm and --speed; None when neither is given (and allowed)."""
+    names = _names(mech)
+    rot = [n for n, r in names if r]
+    lin = [n for n, r in names if not r]
+    if not args.rpm and not args.speed and not required:
+        return None
+    if args.rpm and not rot:
+        raise GearleverError(f"--rpm: model {mech.model.name!r} has no rotary input (slider inputs take --speed)")
+    if args.speed and not lin:
+        raise GearleverError(f"--speed: model {mech.model.name!r} has no slider input (rotary inputs take --rpm)")
+    rpm = named_values(args.rpm, "--rpm", rot, bare_ok=len(names) == 1)
+    spd = named_values(args.speed, "--speed", lin, bare_ok=len(names) == 1)
+    missing = [n for n in rot if n not in rpm]
+    if missing:
+        raise GearleverError(f"--rpm: give every rotary input, NAME=VALUE once each (missing: {', '.join(missing)})")
+    missing = [n for n in lin if n not in spd]
+    if missing:
+        raise GearleverError(f"--speed: give every slider input, NAME=VALUE once each (missing: {', '.join(missing)})")
+    return np.array([rpm[n] * math.pi / 30.0 if r else spd[n] for n, r in names])
 
 
-def _table(cols: dict, fmt: str, meta: dict) -> str:
-    names = list(cols)
-    arr = np.column_stack([np.asarray(cols[k], dtype=float) for k in names])
-    if fmt == "csv":
-        lines = [",".join(names)] + [",".join(_fmt(v) for v in row) for row in arr.tolist()]
-        return "\n".join(lines)
-    return to_json({**meta, "rows": [dict(zip(names, row)) for row in arr.tolist()]})
+def _units(mech):
+    from gearlever.mechanism.loads import force_units
+
+    F, T = force_units(mech.model)
+    L = T[len(F) + 1 :]
+    return L, F, T, _POWER.get(T, f"{T}_per_s"), {"N_m": "J", "N_mm": "mJ", "N_km": "kJ"}.get(T, T)
 
 
-def force_columns(d) -> dict:
-    """CLI columns of an :class:`~gearlever.mechanism.dynamics.InverseDynamics` (input angle in degrees)."""
-    cols = {"input_deg": np.degrees(d.q[:, 0]), "input_torque": d.input_force[:, 0]}
+def force_columns(d, mech, t) -> dict:
+    """CLI columns of an :class:`~gearlever.mechanism.dynamics.InverseDynamics` (angles in degrees, units named)."""
+    L, F, T, P, _ = _units(mech)
+    cols = {"t_s": t}
+    for i, (name, rot) in enumerate(_names(mech)):
+        if rot:
+            cols[f"{name}_deg"] = np.degrees(d.q[:, i])
+            cols[f"{name}_rad_s"] = d.qdot[:, i]
+        else:
+            cols[f"{name}_{L}"] = d.q[:, i]
+            cols[f"{name}_{L}_s"] = d.qdot[:, i]
+    for i, (name, rot) in enumerate(_names(mech)):
+        cols[f"{name}_torque_{T}" if rot else f"{name}_force_{F}"] = d.input_force[:, i]
     for k, v in d.reaction.items():
-        cols[f"pin_{k}_x"], cols[f"pin_{k}_y"] = v[:, 0], v[:, 1]
+        cols[f"pin_{k}_x_{F}"], cols[f"pin_{k}_y_{F}"] = v[:, 0], v[:, 1]
     for k, v in d.slider_force.items():
-        cols[f"guide_{k}_normal"] = v
+        cols[f"guide_{k}_normal_{F}"] = v
     for k, v in d.mesh_force.items():
-        cols[f"mesh_{k}"] = v
-    cols["ground_fx"], cols["ground_fy"] = d.ground_force[:, 0], d.ground_force[:, 1]
+        cols[f"mesh_{k}_{F}"] = v
+    for k, v in d.mesh_loss.items():
+        if np.any(v != 0):
+            cols[f"mesh_{k}_loss_{P}"] = v
+    cols[f"ground_fx_{F}"], cols[f"ground_fy_{F}"] = d.ground_force[:, 0], d.ground_force[:, 1]
     return cols
 
 
@@ -86,40 +173,91 @@ def _write(text, out):
         raise GearleverError(f"--out: cannot write the file: {exc.strerror or exc}") from None
 
 
-def _forces(args) -> int:
-    from gearlever.cli.mechanism import MAX_POINTS, _load
+def _efficiency(args):
+    eff = args.efficiency
+    if eff is not None and not 0.0 < eff <= 1.0:
+        raise GearleverError(f"--efficiency must be in (0, 1], got {eff:g}")
+    return eff
 
-    if args.points > MAX_POINTS:
-        raise GearleverError(f"--points must be at most {MAX_POINTS}, got {args.points}")
+
+def _forces(args) -> int:
+    from gearlever.cli.mechanism import _load
+
     mech = _load(args.model)
-    _one_rotary(mech)
-    w = args.rpm * math.pi / 30.0
-    q = mech.sketch_inputs[0] + np.linspace(0.0, 2 * np.pi, args.points, endpoint=False)
-    d = mech.inverse_dynamics(q, np.full_like(q, w), np.zeros_like(q))
-    meta = {"mechanism": mech.model.name, "rpm": args.rpm, "indeterminate": list(d.indeterminate)}
-    _write(_table(force_columns(d), args.format, meta), args.out)
+    names = _names(mech)
+    w = _speeds(mech, args, required=False)
+    analogue = w is None
+    if analogue:
+        w = np.ones(len(names))
+    if not any(rot for _, rot in names):
+        raise GearleverError(
+            f"{args.model}: forces needs a rotary input (the rows span one turn of it); this model's inputs are "
+            "slider inputs only (use Mechanism.inverse_dynamics)"
+        )
+    turning = [i for i, (_, rot) in enumerate(names) if rot and w[i] != 0]
+    if not turning:
+        raise GearleverError("--rpm: no rotary input turns (give one a non-zero speed): the rows span one turn of it")
+    period = 2 * math.pi / abs(w[turning[0]])
+    t = np.linspace(0.0, period, args.points, endpoint=False)
+    q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+    eff = _efficiency(args)
+    with progress("mechanism forces"):
+        d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q), efficiency=eff)
+    L, F, T, P, _ = _units(mech)
+    meta = {
+        "mechanism": mech.model.name,
+        "units": {"length": L, "mass": "kg", "time": "s", "force": F, "torque": T, "power": P},
+        "speeds": {n: float(w[i]) for i, (n, _) in enumerate(names)},
+        "speeds_note": (
+            "no --rpm/--speed given: every input at 1 rad/s (slider inputs 1 length unit/s)"
+            if analogue
+            else "rad/s (rotary), length unit/s (slider), from --rpm/--speed"
+        ),
+        "turn_of": names[turning[0]][0],
+        "indeterminate": list(d.indeterminate),
+    }
+    _write(table_text(force_columns(d, mech, t), args.format, meta), args.out)
     return 0
 
 
 def _simulate(args) -> int:
-    from gearlever.cli.mechanism import MAX_POINTS, _load
+    from gearlever.cli.mechanism import _load
 
-    if args.points > MAX_POINTS:
-        raise GearleverError(f"--points must be at most {MAX_POINTS}, got {args.points}")
-    turns = args.time * abs(args.rpm) / 60.0
-    if turns > MAX_TURNS:
-        raise GearleverError(f"--time: at --rpm {args.rpm:g} that is {turns:.6g} turns, at most {MAX_TURNS}")
     mech = _load(args.model)
-    _one_rotary(mech)
+    names = _names(mech)
+    w = _speeds(mech, args, required=True)
+    turns = args.time * float(np.max(np.abs([w[i] for i, (_, r) in enumerate(names) if r] or [0.0]))) / (2 * math.pi)
+    if turns > MAX_TURNS:
+        raise GearleverError(f"--time: at these --rpm that is {turns:.6g} turns, at most {MAX_TURNS}")
+    labels = [spec.label for spec in mech.model.inputs]
+    given = named_values(args.torque, "--torque", [n for n, _ in names])
+    torque = {labels[[n for n, _ in names].index(k)]: v for k, v in given.items()}
     t = np.linspace(0.0, args.time, max(args.points, 2))
-    s = mech.simulate(t, mech.sketch_inputs[0], args.rpm * math.pi / 30.0, torque=args.torque)
-    cols = {
-        "t": s.t,
-        "input_deg": np.degrees(s.q),
-        "rpm": s.qdot * 30.0 / math.pi,
-        "alpha": s.qddot,
-        "kinetic_energy": s.kinetic_energy,
+    eff = _efficiency(args)
+    with progress("mechanism simulate"):
+        s = mech.simulate(t, mech.sketch_inputs, w, torque=torque, efficiency=eff)
+    L, F, T, P, E = _units(mech)
+    cols = {"t_s": s.t}
+    for i, (name, rot) in enumerate(names):
+        if rot:
+            cols[f"{name}_deg"] = np.degrees(s.q[:, i])
+            cols[f"{name}_rpm"] = s.qdot[:, i] * 30.0 / math.pi
+            cols[f"{name}_rad_s2"] = s.qddot[:, i]
+            cols[f"{name}_torque_{T}"] = s.torque[:, i]
+        else:
+            cols[f"{name}_{L}"] = s.q[:, i]
+            cols[f"{name}_{L}_s"] = s.qdot[:, i]
+            cols[f"{name}_{L}_s2"] = s.qddot[:, i]
+            cols[f"{name}_force_{F}"] = s.torque[:, i]
+    cols[f"kinetic_energy_{E}"] = s.kinetic_energy
+    cols[f"work_{E}"] = s.work
+    cols[f"load_work_{E}"] = s.load_work
+    if np.any(s.loss_work != 0):
+        cols[f"mesh_loss_work_{E}"] = s.loss_work
+    meta = {
+        "mechanism": mech.model.name,
+        "units": {"length": L, "mass": "kg", "time": "s", "force": F, "torque": T, "energy": E},
+        "torque": {n: given.get(n, 0.0) for n, _ in names},
     }
-    meta = {"mechanism": mech.model.name, "torque": args.torque}
-    _write(_table(cols, args.format, meta), args.out)
+    _write(table_text(cols, args.format, meta), args.out)
     return 0

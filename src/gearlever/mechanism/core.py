@@ -105,8 +105,14 @@ class Mechanism:
 
         return reduced_inertia(self, q, masses=masses)
 
+    def dynamic_terms(self, q, qdot=None, **kw):
+        """Mass matrix and velocity terms, tau = M q'' + b (:func:`~gearlever.mechanism.dynamics.dynamic_terms`)."""
+        from gearlever.mechanism.dynamics import dynamic_terms
+
+        return dynamic_terms(self, q, qdot, **kw)
+
     def simulate(self, t, q0, qdot0, torque=0.0, **kw):
-        """Motion under a driving torque (:func:`~gearlever.mechanism.dynamics.simulate`)."""
+        """Motion under driving torques, one per input (:func:`~gearlever.mechanism.dynamics.simulate`)."""
         from gearlever.mechanism.dynamics import simulate
 
         return simulate(self, t, q0, qdot0, torque=torque, **kw)

@@ -28,7 +28,6 @@ virtual work.  Imports numpy (scipy lazily, in :func:`simulate`).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -36,11 +35,28 @@ import numpy as np
 from gearlever import _validate as V
 from gearlever._result import Result
 from gearlever.errors import GearleverError
+from gearlever.gears.torques import MAX_PASSES
 from gearlever.mechanism.constraints import constraint_jacobian, constraint_labels
-from gearlever.mechanism.loads import gravity_of, parse_loads, parse_masses, pressure_angle_of
+from gearlever.mechanism.loads import (
+    LoadSpec,
+    force_units,
+    gravity_of,
+    mesh_efficiency_of,
+    parse_loads,
+    parse_masses,
+    pressure_angle_of,
+)
 from gearlever.mechanism.model import GROUND
 
-__all__ = ["InverseDynamics", "Simulation", "inverse_dynamics", "reduced_inertia", "simulate"]
+__all__ = [
+    "InverseDynamics",
+    "Simulation",
+    "dynamic_terms",
+    "force_units",
+    "inverse_dynamics",
+    "reduced_inertia",
+    "simulate",
+]
 
 #: Relative singular-value threshold of the equilibrium system (rank decisions).
 RANK_RTOL = 1e-10
@@ -48,6 +64,9 @@ RANK_RTOL = 1e-10
 NULL_TOL = 1e-8
 #: Largest number of grid points of the reduced-inertia table used by :func:`simulate`.
 SIM_GRID = 1440
+#: Default cap on the right-hand-side evaluations of :func:`simulate` with several inputs (each one
+#: kinematic solve of ``W + 1`` rows, about 0.1-1 ms: the cap bounds a run to minutes, never a hang).
+MAX_EVALS = 200_000
 
 
 def _cross(r, f):
@@ -147,6 +166,10 @@ class InverseDynamics(Result):
     ground_force : (N, 2) total force of the frame on the mechanism (pins, guides, teeth, drivers); fixed
         by equilibrium even where its share among redundant pairs is not.
     ground_moment : (N,) total moment of the frame on the mechanism about the world origin.
+    mesh_loss : mesh -> (N,) power the mesh dissipates (>= 0; zero for efficiency 1):
+        ``sum tau_i qdot_i + power of loads, weights and inertia forces = sum of mesh_loss``.
+    mesh_driven : mesh -> (N,) which gear the mesh drives relative to its carrier (1 the first, 2 the
+        second, 0 none or no loss); the losses are charged on that side.
     indeterminate : labels of the multipliers the equilibrium does not fix (redundant constraints).
     ok : (N,) rows where the mechanism is closed and the equilibrium system is consistent.
     pressure_angle : rad.
@@ -164,6 +187,8 @@ class InverseDynamics(Result):
     mesh_tangential: dict
     ground_force: np.ndarray
     ground_moment: np.ndarray
+    mesh_loss: dict
+    mesh_driven: dict
     indeterminate: tuple
     ok: np.ndarray
     pressure_angle: float
@@ -173,15 +198,20 @@ class InverseDynamics(Result):
 
     def _frame_columns(self) -> dict:
         cols = {}
-        for i in range(self.q.shape[1]):
-            cols[f"q_{i}"] = self.q[:, i]
-            cols[f"input_force_{i}"] = self.input_force[:, i]
+        spec = self.kinematics.system.model.inputs if self.kinematics is not None else ()
+        names = [s.label for s in spec] if len(spec) == self.q.shape[1] else [str(i) for i in range(self.q.shape[1])]
+        for i, name in enumerate(names):
+            cols[f"{name}_q"] = self.q[:, i]
+            cols[f"{name}_qdot"] = self.qdot[:, i]
+            cols[f"{name}_force"] = self.input_force[:, i]
         for k, v in self.reaction.items():
             cols[f"{k}_x"], cols[f"{k}_y"] = v[:, 0], v[:, 1]
         for k, v in self.slider_force.items():
             cols[f"{k}_normal"] = v
         for k, v in self.mesh_force.items():
             cols[f"{k}_tooth"] = v
+        for k, v in self.mesh_loss.items():
+            cols[f"{k}_loss"] = v
         return cols
 
 
@@ -231,8 +261,46 @@ def _solve_equilibrium(A, Q, L, n3):
     return y, undetermined, consistent
 
 
+def _rows_of(mech, q, qdot, qddot):
+    """Input rows ``(N, W)`` and their rates broadcast to them (a scalar, ``(W,)``, ``(N,)`` or ``(N, W)``)."""
+    W = len(mech.model.inputs)
+    qa = np.asarray(q, dtype=float)
+    if qa.ndim == 0 or (qa.ndim == 1 and W == 1):
+        qa = qa.reshape(-1, 1)
+    elif qa.ndim == 1 and qa.shape[0] == W:
+        qa = qa[None, :]
+    if qa.ndim != 2 or qa.shape[1] != W:
+        raise GearleverError(f"q must have shape (N,) for one input or (N, {W}) for {W} inputs, got {np.shape(q)}")
+    N = qa.shape[0]
+
+    def rate(name, v, default):
+        if v is None:
+            return np.full((N, W), default)
+        a = np.asarray(v, dtype=float)
+        if a.ndim == 0:
+            return np.full((N, W), float(a))
+        if a.ndim == 1 and a.shape[0] == W and (W > 1 or N == 1):
+            return np.broadcast_to(a, (N, W)).copy()
+        if a.ndim == 1 and W == 1 and a.shape[0] == N:
+            return a[:, None].copy()
+        if a.shape == (N, W):
+            return a
+        raise GearleverError(f"{name} must be a number, ({W},), or ({N}, {W}) like q, got shape {a.shape}")
+
+    return qa, rate("qdot", qdot, 1.0), rate("qddot", qddot, 0.0)
+
+
 def inverse_dynamics(
-    mech, q, qdot=None, qddot=None, loads=None, masses=None, gravity=None, pressure_angle=None
+    mech,
+    q,
+    qdot=None,
+    qddot=None,
+    loads=None,
+    masses=None,
+    gravity=None,
+    pressure_angle=None,
+    efficiency=None,
+    _driven=None,
 ) -> InverseDynamics:
     """Driver torques and joint, guide and tooth forces that produce the prescribed motion.
 
@@ -240,7 +308,9 @@ def inverse_dynamics(
     ----------
     mech : Mechanism
     q, qdot, qddot : array_like
-        Input rows as for :meth:`Mechanism.solve` (``qdot`` default 1, ``qddot`` default 0).
+        Input rows as for :meth:`Mechanism.solve`, ``(N,)`` for one input or
+        ``(N, W)``; the rates may also be a number or one row ``(W,)`` for
+        every row (``qdot`` default 1, ``qddot`` default 0).
     loads : list of dict, optional
         External loads ``{"link", "point", "force"}`` or ``{"link", "torque"}``; ``force``
         ``(2,)`` or ``(N, 2)``, ``torque`` scalar or ``(N,)``.  Default the model's ``[[loads]]``.
@@ -250,10 +320,21 @@ def inverse_dynamics(
         Default the model's ``[mechanism] gravity`` (none if absent).
     pressure_angle : float, optional
         Rad; default the model's ``pressure_angle`` (deg) or 20 deg.
+    efficiency : float or dict, optional
+        Tooth efficiency of the meshes, one number or ``{mesh: number}``
+        (:func:`~gearlever.mechanism.loads.mesh_efficiency_of`); default the model's, else 1.
 
     Returns
     -------
     InverseDynamics
+
+    Raises
+    ------
+    GearleverError
+        ``"self-locking: ..."`` when, with mesh losses, no direction of the
+        power flow through the meshes is consistent at some row (the train
+        cannot be driven that way, e.g. a high-ratio train driven from its
+        output); also for losses on a mesh whose force is statically indeterminate.
 
     Examples
     --------
@@ -277,14 +358,27 @@ def inverse_dynamics(
     line of action ``F_n = F_t / cos(phi)``, radial part ``F_t tan(phi)``
     (J. E. Shigley and J. J. Uicker, *Theory of Machines and Mechanisms*,
     force analysis of spur gears).
+
+    Mesh losses as for gear trains (:func:`gearlever.gears.torques.network_torques`,
+    after E. Pennestri and F. Freudenstein, "The mechanical efficiency of
+    epicyclic gear trains", ASME J. Mech. Des. 115 (1993) 645-651): in the
+    frame of the mesh's carrier (the link that holds both gear centres) the
+    torque the teeth give the *driven* gear (the one the mesh passes power
+    to, relative to the carrier) is ``eta`` times the ideal one, the carrier
+    takes the difference, so every link stays in equilibrium and the mesh
+    dissipates ``(1 - eta)`` times the power it passes relative to its
+    carrier (:attr:`InverseDynamics.mesh_loss`).  The driven side depends on
+    the solution: it is found by fixed-point passes, as in the train code.
     """
-    r = mech.solve(q, qdot, qddot)
+    qa, qd_, qdd_ = _rows_of(mech, q, qdot, qddot)
+    r = mech.solve(qa, qd_, qdd_)
     m = mech.model
     N = r.q.shape[0]
     masses_ = parse_masses(m, masses)
     loads_ = parse_loads(m, loads, N)
     g = gravity_of(m, gravity)
     phi = pressure_angle_of(m, pressure_angle)
+    effs = mesh_efficiency_of(m, efficiency)
     asm = _Assembly(mech, r)
     n3 = asm.n3
 
@@ -303,6 +397,12 @@ def inverse_dynamics(
     for s in m.sliders:
         members += [{s.link, s.on}, {s.link, s.on}]
     geo = {}
+    loss = []  # per mesh: (eta, loss row if a driven, if b driven, power into a, into b per unit multiplier)
+    spin = np.nan_to_num(r.pose_velocity)[..., 2]
+
+    def omega(link):
+        return np.zeros(N) if link == GROUND else spin[:, asm.col[link] // 3]
+
     for mesh in m.meshes:
         A_, B_, P, t, ga, gb = _mesh_geometry(asm, mesh)
         G = np.zeros((N, n3))
@@ -312,19 +412,89 @@ def inverse_dynamics(
         labels.append(f"mesh {mesh.name}")
         members.append({ga.link, gb.link})
         geo[mesh.name] = (A_, B_, P, t, ga, gb)
+        eta = effs[mesh.name]
+        ma, mb = _cross(P - A_, t), _cross(P - B_, -t)  # moments of the unit tooth force about the centres
+        wc = omega(mesh.carrier)
+        La, Lb = np.zeros((N, n3)), np.zeros((N, n3))
+        asm.add_torque(La, ga.link, -(1.0 - eta) * ma)
+        asm.add_torque(La, mesh.carrier, (1.0 - eta) * ma)
+        asm.add_torque(Lb, gb.link, -(1.0 - eta) * mb)
+        asm.add_torque(Lb, mesh.carrier, (1.0 - eta) * mb)
+        loss.append((eta, La, Lb, ma * (omega(ga.link) - wc), mb * (omega(gb.link) - wc)))
     drv, drv_members = _inputs_rows(asm, r)
     rows += drv
     members += drv_members
     labels += [f"input {spec.label}" for spec in m.inputs]
     A = np.stack(rows, axis=1) if rows else np.zeros((N, 0, n3))
+    base = n_ps
 
     y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3)
     ok = r.closed & np.all(np.isfinite(r.xddot), axis=1) & consistent
+    lossy = [j for j, lo in enumerate(loss) if lo[0] < 1.0]
+    driven = np.zeros((N, len(m.meshes)), dtype=np.int8)  # 0 no loss, 1 gear a driven, 2 gear b driven
+    A0 = A
+
+    def with_losses(driven):
+        A = A0.copy()
+        for j in lossy:
+            A[:, base + j] += np.where(driven[:, j, None] == 1, loss[j][1], 0.0)
+            A[:, base + j] += np.where(driven[:, j, None] == 2, loss[j][2], 0.0)
+        y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3)
+        lost = ok & ~consistent
+        if lost.any():
+            i = int(np.argmax(lost))
+            raise GearleverError(
+                f"self-locking: at input row {i} (q = {np.round(r.q[i], 9).tolist()}) the lossy meshes admit "
+                "no equilibrium: the train cannot be driven this way"
+            )
+        return A, y, und
+
+    if lossy:
+        bad = [m.meshes[j].name for j in lossy if np.any(und[ok, base + j])]
+        if bad:
+            raise GearleverError(
+                f"self-locking: cannot decide, mesh losses need determined tooth forces, and those of {bad} are "
+                "statically indeterminate (redundant pairs); give them efficiency = 1"
+            )
+    if lossy and _driven is not None:  # directions given (forward dynamics): the map qddot -> forces is linear
+        driven = np.where(ok[:, None], np.broadcast_to(np.asarray(_driven, dtype=np.int8), driven.shape), 0)
+        A, y, und = with_losses(driven)
+    elif lossy:
+        history = [driven.copy()]
+        for _ in range(MAX_PASSES):
+            new = np.zeros_like(driven)
+            for j in lossy:
+                pa = y[:, base + j] * loss[j][3]  # power the mesh passes into gear a relative to the carrier
+                tol = 1e-9 * max(float(np.max(np.abs(pa[ok]), initial=0.0)), 1e-300)
+                new[:, j] = np.where(pa > tol, 1, np.where(pa < -tol, 2, 0))
+            new[~ok] = 0
+            if np.array_equal(new, driven):
+                break
+            changed = np.any(new != driven, axis=1)
+            seen = np.any([np.all(h == new, axis=1) for h in history], axis=0) & changed
+            if seen.any():
+                i = int(np.argmax(seen))
+                raise GearleverError(
+                    f"self-locking: at input row {i} (q = {np.round(r.q[i], 9).tolist()}) no direction of the power "
+                    f"flow through the meshes is consistent with efficiency {[effs[n] for n in effs]}: the train "
+                    "cannot be driven this way"
+                )
+            history.append(new.copy())
+            driven = new
+            A, y, und = with_losses(driven)
+        else:  # pragma: no cover - bounded by the finite number of direction sets
+            raise GearleverError("self-locking: the power-flow directions through the meshes do not settle")
+    mesh_loss = {}
+    for j, mesh in enumerate(m.meshes):
+        eta, _, _, pa, pb = loss[j]
+        yj = y[:, base + j]
+        mesh_loss[mesh.name] = np.where(
+            driven[:, j] == 1, (1.0 - eta) * yj * pa, np.where(driven[:, j] == 2, (1.0 - eta) * yj * pb, 0.0)
+        )
     # radial (workless) tooth forces: add them as known forces and re-solve the reactions
     Qg = np.zeros((N, n3))  # radial tooth forces of ground gears on moving gears
     if m.meshes:
         Qr = np.zeros((N, n3))
-        base = len(rows) - len(drv) - len(m.meshes)
         for j, mesh in enumerate(m.meshes):
             A_, B_, P, t, ga, gb = geo[mesh.name]
             Ft = np.abs(y[:, base + j])
@@ -398,6 +568,8 @@ def inverse_dynamics(
         mesh_tangential=mesh_tan,
         ground_force=gf,
         ground_moment=gm,
+        mesh_loss={k: np.where(ok, v, np.nan) for k, v in mesh_loss.items()},
+        mesh_driven={mesh.name: driven[:, j].copy() for j, mesh in enumerate(m.meshes)},
         indeterminate=indeterminate,
         ok=ok,
         pressure_angle=phi,
@@ -512,155 +684,523 @@ def _load_power(mech, r, masses, loads, g):
     return np.sum(Q * vel, axis=1)
 
 
+def _const_loads(lds, N):
+    """Constant loads (parsed with one row) broadcast to ``N`` rows."""
+    return [
+        LoadSpec(
+            ld.label,
+            ld.link,
+            ld.point,
+            None if ld.force is None else np.broadcast_to(ld.force[0], (N, 2)),
+            None if ld.torque is None else np.broadcast_to(ld.torque[0], (N,)),
+        )
+        for ld in lds
+    ]
+
+
+def _terms(mech, q, qd, ms, lds, g):
+    """``M (N, W, W)``, ``b (N, W)``, power of loads and weights ``(N,)``, closed ``(N,)`` (parsed inputs)."""
+    N, W = q.shape
+    eye = np.eye(W)
+    rows_q = np.concatenate([q] * (W + 1))
+    rows_qd = np.concatenate([qd] + [np.broadcast_to(eye[i], (N, W)) for i in range(W)])
+    r = mech.solve(rows_q, rows_qd, np.zeros_like(rows_q))
+    asm = _Assembly(mech, r)
+    NN = rows_q.shape[0]
+    big = _const_loads(lds, NN)
+    Q = _applied(asm, r, ms, big, g, inertia=True)[:N]
+    QL = _applied(asm, r, ms, big, g, inertia=False)[:N]
+    vel = np.nan_to_num(r.pose_velocity).reshape(NN, -1)
+    V = [vel[N * (i + 1) : N * (i + 2)] for i in range(W)]
+    b = np.stack([-np.sum(Q * V[i], axis=1) for i in range(W)], axis=1)
+    PL = np.sum(QL * vel[:N], axis=1)
+    M = np.zeros((N, W, W))
+    spin = np.nan_to_num(r.pose_velocity)[..., 2]
+    for spec in ms.values():
+        v = _point_velocity(asm, r, spec.link, spec.centre, 1)
+        om = spin[:, asm.col[spec.link] // 3]
+        vs = [v[N * (i + 1) : N * (i + 2)] for i in range(W)]
+        oms = [om[N * (i + 1) : N * (i + 2)] for i in range(W)]
+        for i in range(W):
+            for j in range(i, W):
+                add = spec.mass * np.sum(vs[i] * vs[j], axis=1) + spec.inertia * oms[i] * oms[j]
+                M[:, i, j] += add
+                if j != i:
+                    M[:, j, i] += add
+    closed = np.all(r.closed.reshape(W + 1, N), axis=0) & np.all(np.isfinite(r.xddot), axis=1).reshape(W + 1, N).all(0)
+    return M, b, PL, closed
+
+
+def dynamic_terms(mech, q, qdot=None, masses=None, loads=None, gravity=None):
+    """Mass matrix and velocity/load terms of the equations of motion in the inputs: ``tau = M(q) q'' + b(q, q')``.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    q, qdot : array_like
+        Input rows ``(N,)`` or ``(N, W)`` and their speeds (default 1).
+    masses, loads, gravity
+        As for :func:`inverse_dynamics`; loads constant (one value for every row).
+
+    Returns
+    -------
+    M : (N, W, W) mass matrix ``sum m V_G^T V_G + I_G w^T w`` (``V_G``, ``w``: velocity of the centre
+        of mass and angular velocity per unit speed of each input).
+    b : (N, W) driver forces needed at ``q'' = 0``: convective (centripetal, Coriolis) terms
+        minus the generalized forces of the loads and weights.
+    load_power : (N,) power of the loads and weights at ``qdot``.
+    closed : (N,) rows where the mechanism closes.
+
+    Examples
+    --------
+    A crank with a 3 kg mass at radius 2 and a 0.5 kg m^2 inertia: ``M = 3 * 4 + 0.5``, ``b = 0``:
+
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [2, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> M, b, P, ok = dynamic_terms(m, [0.3], 5.0, masses={"crank": {"mass": 3.0, "centre": "A", "inertia": 0.5}})
+    >>> M.tolist(), (np.round(b, 9) + 0.0).tolist()
+    ([[[12.5]]], [[0.0]])
+
+    Notes
+    -----
+    Lagrange's equations in the independent coordinates (the inputs),
+    obtained by projecting the d'Alembert forces of the links on the
+    velocities per unit input speed (Kane's method / virtual work,
+    T. R. Kane and D. A. Levinson, *Dynamics: Theory and Applications*,
+    McGraw-Hill, 1985, ch. 6; Nikravesh 1988, ch. 6): ``tau_i = -V_i^T Q``
+    with ``Q`` the loads, weights and inertia forces.  The accelerations are
+    linear in ``q''``: ``M`` comes from the partial velocities and ``b`` from
+    the kinematic solver's analytic accelerations at ``q'' = 0``, so
+    :func:`inverse_dynamics` (ideal meshes) gives ``M q'' + b``.
+    """
+    qa, qd, _ = _rows_of(mech, q, qdot, None)
+    m = mech.model
+    ms = parse_masses(m, masses)
+    lds = parse_loads(m, loads, 1)
+    _constant_only(lds)
+    return _terms(mech, qa, qd, ms, lds, gravity_of(m, gravity))
+
+
+def _constant_only(lds):
+    for ld in lds:
+        if (ld.force is not None and ld.force.shape[0] != 1) or (ld.torque is not None and ld.torque.shape[0] != 1):
+            raise GearleverError("loads: simulate takes constant loads only")
+
+
 @dataclass(frozen=True)
 class Simulation(Result):
-    """Motion of a one-input mechanism under a driving torque.
+    """Motion of a mechanism with ``W`` inputs under driving torques (or forces, slider inputs).
 
     Attributes
     ----------
     t : (N,) times (s).
-    q, qdot, qddot : (N,) input angle (rad), speed (rad/s), acceleration (rad/s^2).
-    kinetic_energy : (N,) ``J(q) qdot^2 / 2``.
-    inertia : (N,) reduced inertia ``J(q)``.
+    q, qdot, qddot : (N, W) inputs (rad, or length for slider inputs), speeds, accelerations,
+        columns in ``[[inputs]]`` order (named in :attr:`inputs`).
+    torque : (N, W) driving torque (force for a slider input) of each input.
+    kinetic_energy : (N,) ``qdot^T M(q) qdot / 2``.
+    inertia : (N, W, W) mass matrix ``M(q)`` (for one input the reduced inertia ``J(q)``).
+    work : (N,) work done by the drivers since ``t[0]``.
+    load_work : (N,) work done by the loads and weights since ``t[0]``.
+    inputs : names of the inputs.
+    loss_work : (N,) energy the meshes dissipated since ``t[0]`` (zero for ideal meshes):
+        ``kinetic_energy - kinetic_energy[0] = work + load_work - loss_work`` (energy balance).
     """
 
     t: np.ndarray
     q: np.ndarray
     qdot: np.ndarray
     qddot: np.ndarray
+    torque: np.ndarray
     kinetic_energy: np.ndarray
     inertia: np.ndarray
+    work: np.ndarray
+    load_work: np.ndarray
+    inputs: tuple
+    loss_work: np.ndarray
+
+    def _frame_columns(self) -> dict:
+        cols = {"t_s": self.t}
+        for i, name in enumerate(self.inputs):
+            cols[f"{name}_q"] = self.q[:, i]
+            cols[f"{name}_qdot"] = self.qdot[:, i]
+            cols[f"{name}_qddot"] = self.qddot[:, i]
+            cols[f"{name}_torque"] = self.torque[:, i]
+        cols["kinetic_energy"] = self.kinetic_energy
+        cols["work"] = self.work
+        cols["load_work"] = self.load_work
+        cols["loss_work"] = self.loss_work
+        return cols
+
+
+def _torque_function(torque, m):
+    """``f(t, q (W,), qdot (W,)) -> (W,)`` from a number, ``(W,)`` numbers, ``{input: number or callable}``
+    or a callable (for one input called with floats and returning a number)."""
+    labels = [spec.label for spec in m.inputs]
+    W = len(labels)
+    if callable(torque):
+        if W == 1:
+            return lambda t, q, qd: np.array([float(torque(t, q[0], qd[0]))])
+
+        def f(t, q, qd):
+            v = np.asarray(torque(t, q, qd), dtype=float)
+            if v.shape != (W,):
+                raise GearleverError(f"torque: the callable must return {W} numbers (one per input), got {v.shape}")
+            return v
+
+        return f
+    if isinstance(torque, dict):
+        parts = []
+        for k, v in torque.items():
+            if k not in labels:
+                raise GearleverError(f"torque: unknown input {k!r} (inputs: {', '.join(labels)})")
+            parts.append((labels.index(k), v if callable(v) else V.finite(f"torque[{k!r}]", v)))
+
+        def fd(t, q, qd):
+            out = np.zeros(W)
+            for i, v in parts:
+                out[i] = float(v(t, q, qd)) if callable(v) else v
+            return out
+
+        return fd
+    a = np.asarray(torque, dtype=float) if not isinstance(torque, str) else np.array(np.nan)
+    if a.ndim == 0 and (W == 1 or float(a) == 0.0):
+        a = np.full(W, float(a))
+    if a.shape != (W,) or not np.all(np.isfinite(a)):
+        raise GearleverError(
+            f"torque must be a finite number (one input), {W} numbers, {{input: number or f(t, q, qdot)}} "
+            f"or f(t, q, qdot), got {torque!r}"
+        )
+    return lambda t, q, qd: a
 
 
 def simulate(
     mech,
     t,
-    q0: float,
-    qdot0: float,
-    torque: float | Callable = 0.0,
+    q0,
+    qdot0,
+    torque=0.0,
     masses=None,
     loads=None,
     gravity=None,
     rtol: float = 1e-10,
     atol: float = 1e-12,
     grid: int = SIM_GRID,
+    max_evals: int = MAX_EVALS,
+    efficiency=None,
 ) -> Simulation:
-    """Integrate ``J(q) q'' + J'(q)/2 q'^2 = Q`` for a mechanism with one rotary input that turns fully.
+    """Integrate the equations of motion ``M(q) q'' + b(q, q') = tau(t, q, q')`` in the inputs.
 
     Parameters
     ----------
     mech : Mechanism
     t : array_like
         Increasing output times (s); the motion starts at ``t[0]``.
-    q0, qdot0 : float
-        Input angle (rad) and speed (rad/s) at ``t[0]``.
-    torque : float or callable
-        Driving torque on the input, a number or ``f(t, q, qdot)``.
+    q0, qdot0 : float or (W,)
+        Inputs (rad, or length for slider inputs) and their speeds at ``t[0]``.
+    torque : number, (W,), dict or callable
+        Driving torque (force, slider input) of each input: a number (one
+        input, or 0 for all), ``W`` numbers, ``{input label: number or f(t, q, qdot)}``
+        (missing inputs free), or ``f(t, q, qdot)`` returning ``W`` numbers
+        (one input: called with floats, returns a number).
     masses, loads, gravity
         As for :func:`inverse_dynamics`; loads must be constant (not arrays over rows).
     rtol, atol : float
         Tolerances of :func:`scipy.integrate.solve_ivp` (method DOP853).
     grid : int
-        Points per turn of the periodic tables of ``J`` and of the loads' generalized force.
+        One rotary input that turns fully: points per turn of the periodic
+        tables of ``J`` and of the loads' generalized force (over as many
+        turns as they take to repeat, at most 12).
+    max_evals : int
+        Several inputs (or one that does not repeat after a turn): cap on the
+        evaluations of the equations of motion; a longer run is refused.
+    efficiency : float or dict, optional
+        Mesh efficiency (default the model's).  With losses the driver forces
+        depend on the direction of the power flow through each mesh, found
+        at every evaluation by a fixed point (:func:`inverse_dynamics`); the
+        equations are then only piecewise smooth (slower integration where a
+        direction switches), and a train that locks is refused.
 
     Returns
     -------
     Simulation
 
+    Examples
+    --------
+    A free crank with a 1 kg mass at radius 1 keeps its speed:
+
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> s = simulate(m, [0.0, 1.0], 0.0, 2.0, masses={"crank": {"mass": 1.0, "centre": "A"}})
+    >>> np.round(s.q[:, 0], 9).tolist(), np.round(s.kinetic_energy, 9).tolist()
+    ([0.0, 2.0], [2.0, 2.0])
+
     Notes
     -----
-    Lagrange's equation for one generalized coordinate with the kinetic energy
-    ``J(q) qdot^2 / 2`` (the "equation of motion of a machine" of the
-    reduced-inertia method, e.g. Nikravesh 1988, ch. 6).  ``J(q)`` and the
-    loads' generalized force ``Q_L(q) = sum F . dP/dq + ...`` are tabulated over
-    one turn and interpolated by periodic cubic splines, whose derivative is
-    used for ``J'``.  The equation is integrated in the variables ``q`` and
-    ``u = sqrt(J) q'`` (so that ``J q'^2 / 2 = u^2 / 2``):
-    ``q' = u / sqrt(J)``, ``u' = Q / sqrt(J)``, which follows from
-    ``J q'' + J' q'^2 / 2 = Q`` and keeps the kinetic energy constant to
-    rounding when ``Q = 0``, with no singularity where the motion reverses.
+    Lagrange's equations in the input coordinates (:func:`dynamic_terms`;
+    Nikravesh 1988, ch. 6; Kane and Levinson 1985, ch. 6): ``M`` is the
+    mass matrix of the kinetic energy ``T = q'^T M q' / 2`` and ``b`` the
+    convective terms minus the loads' generalized forces, from the kinematic
+    solver's analytic velocities and accelerations; ``q'' = M^-1 (tau - b)``.
+    Where ``M``, ``b`` repeat after a whole number of turns of a rotary input
+    (checked numerically, at most 12 turns) they are evaluated within half a
+    period of the start, which keeps each kinematic solve short.
+
+    One rotary input that turns fully and repeats after ``k`` turns: the
+    "equation of motion of a machine" of the reduced-inertia method,
+    ``J(q) q'' + J'(q)/2 q'^2 = Q`` with ``J`` and the loads' generalized
+    force tabulated over ``k`` turns and interpolated by periodic cubic
+    splines (``J'`` their derivative), integrated in the variables ``q`` and
+    ``u = sqrt(J) q'``: ``q' = u / sqrt(J)``, ``u' = Q / sqrt(J)``, which
+    keeps ``J q'^2 / 2 = u^2 / 2`` constant to rounding when ``Q = 0``.
+
+    The drivers' work ``int tau . q' dt``, the loads' ``int P_L dt`` and the
+    meshes' losses are integrated with the motion, so
+    ``T(t) - T(t0) = work + load_work - loss_work`` can be checked.
     """
+    m = mech.model
+    W = len(m.inputs)
+    tt = V.nonempty_array("t", t)
+    if tt.ndim != 1 or (tt.size > 1 and np.any(np.diff(tt) <= 0)):
+        raise GearleverError("t must be a 1-D array of increasing times")
+    q0a = np.atleast_1d(np.asarray(q0, dtype=float)).ravel()
+    qd0a = np.atleast_1d(np.asarray(qdot0, dtype=float)).ravel()
+    for name, a in (("q0", q0a), ("qdot0", qd0a)):
+        if a.shape != (W,) or not np.all(np.isfinite(a)):
+            raise GearleverError(f"{name} must be {W} finite number(s), one per input, got {a.tolist()}")
+    grid = V.positive_int("grid", grid)
+    if grid < 16 or grid > 100_000:
+        raise GearleverError(f"grid must be between 16 and 100000, got {grid}")
+    max_evals = V.positive_int("max_evals", max_evals)
+    effs = mesh_efficiency_of(m, efficiency)
+    lossy = any(e < 1.0 for e in effs.values())
+    ms = parse_masses(m, masses)
+    lds = parse_loads(m, loads, 1)
+    _constant_only(lds)
+    g = gravity_of(m, gravity)
+    tau = _torque_function(torque, m)
+    if W == 1 and m.inputs[0].kind == "link" and not lossy:
+        period = _periods(mech, q0a, ms, lds, g)[0]
+        if np.isfinite(period):
+            turns = round(period / (2 * np.pi))
+            out = _simulate_periodic(
+                mech, tt, float(q0a[0]), float(qd0a[0]), tau, ms, lds, g, rtol, atol, grid, turns, max_evals
+            )
+            if out is not None:
+                return out
+    raw = dict(masses=masses, loads=loads, gravity=g, efficiency=effs) if lossy else None
+    return _simulate_general(mech, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, max_evals, raw)
+
+
+#: One input on spline tables: an evaluation costs about 1/50 of a kinematic solve, so it may take this many
+#: times ``max_evals`` evaluations (10^6 by default, about a minute at most).
+SPLINE_EVALS_FACTOR = 5
+#: Largest number of turns of a rotary input tried as the period of the equations of motion.
+MAX_PERIOD_TURNS = 12
+
+
+def _periods(mech, q0, ms, lds, g):
+    """Period (rad) of the equations of motion in each rotary input, ``inf`` if none up to MAX_PERIOD_TURNS turns.
+
+    ``M``, ``b`` and the loads' power depend on the inputs through the link
+    poses; a gear pair of ratio ``z_a / z_b`` repeats them after a whole
+    number of turns only (three for 20:30).  Checked at three sample states.
+    """
+    m = mech.model
+    W = len(m.inputs)
+    rng = np.random.default_rng(0)
+    qs = q0[None, :] + rng.uniform(-1.0, 1.0, (3, W))
+    qds = rng.uniform(0.5, 1.5, (3, W))
+    ref = _terms(mech, qs, qds, ms, lds, g)
+    out = np.full(W, np.inf)
+    for i, spec in enumerate(m.inputs):
+        if spec.kind != "link":
+            continue
+        for k in range(1, MAX_PERIOD_TURNS + 1):
+            shift = np.zeros(W)
+            shift[i] = 2 * np.pi * k
+            got = _terms(mech, qs + shift, qds, ms, lds, g)
+            if not (ref[3].all() and got[3].all()):
+                break
+            if all(
+                np.allclose(a, b, rtol=0, atol=1e-10 * max(np.abs(a).max(), 1e-300)) for a, b in zip(ref[:3], got[:3])
+            ):
+                out[i] = 2 * np.pi * k
+                break
+    return out
+
+
+def _lossy_acceleration(mech, time, q, qd, tq, qdd, raw):
+    """``q''`` and the meshes' dissipated power with losses: fixed point on the power-flow directions.
+
+    For given directions the driver forces are linear in ``q''`` (the lossy
+    equilibrium rows do not depend on it): ``tau = A q'' + c`` from one
+    inverse-dynamics call of ``W + 1`` rows; solve, find the directions at the
+    new ``q''``, repeat until they agree.
+    """
+    W = q.size
+    for _ in range(MAX_PASSES):
+        d = inverse_dynamics(mech, q[None, :], qd[None, :], qdd[None, :], **raw)
+        drv = np.array([[v[0] for v in d.mesh_driven.values()]], dtype=np.int8)
+        rows_qdd = np.vstack([np.zeros(W), np.eye(W)])
+        dd = inverse_dynamics(
+            mech, np.repeat(q[None, :], W + 1, 0), np.repeat(qd[None, :], W + 1, 0), rows_qdd, **raw, _driven=drv
+        )
+        c = dd.input_force[0]
+        A = (dd.input_force[1:] - c).T
+        if not np.all(np.isfinite(A)) or not np.all(np.isfinite(c)):
+            raise GearleverError(
+                f"simulate: at t = {time:.6g} s the lossy equations have no solution (the train locks)"
+            )
+        new = np.linalg.solve(A, tq - c)
+        loss = np.array([v[0] + (v[1:] - v[0]) @ new for v in dd.mesh_loss.values()]).sum()
+        if np.allclose(new, qdd, rtol=1e-11, atol=1e-11 * (1.0 + np.abs(new).max())):
+            return new, float(loss)
+        qdd = new
+    raise GearleverError(  # pragma: no cover - the directions settle in a pass or two away from switching points
+        f"self-locking: at t = {time:.6g} s the power flow through the meshes does not settle (the train locks)"
+    )
+
+
+def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals, raw=None):
+    from scipy.integrate import solve_ivp
+
+    m = mech.model
+    W = len(m.inputs)
+    count = [0]
+    period = _periods(mech, q0, ms, lds, g)
+    fin = np.isfinite(period)
+    per = np.where(fin, period, 1.0)
+
+    def accel(time, q, qd):
+        # the terms repeat with the period: evaluate within half a period of the start (short continuation)
+        qe = np.where(fin, q0 + np.mod(q - q0 + per / 2, per) - per / 2, q)
+        M, b, PL, closed = _terms(mech, qe[None, :], qd[None, :], ms, lds, g)
+        if not closed[0]:
+            raise GearleverError(
+                f"simulate: at t = {time:.6g} s the mechanism does not close at q = {np.round(q, 9).tolist()} "
+                "(the motion reaches a limit of the inputs' range)"
+            )
+        Mq = M[0]
+        ev = np.linalg.eigvalsh(Mq)
+        if not ev[0] > 1e-12 * max(ev[-1], 1e-300):
+            raise GearleverError(
+                f"simulate: the mass matrix is singular at t = {time:.6g} s, q = {np.round(q, 9).tolist()} "
+                "(give masses or inertias to links that every input moves)"
+            )
+        tq = tau(time, q, qd)
+        qdd = np.linalg.solve(Mq, tq - b[0])
+        loss = 0.0
+        if raw is not None:
+            qdd, loss = _lossy_acceleration(mech, time, qe, qd, tq, qdd, raw)
+        return qdd, tq, PL[0], Mq, loss
+
+    def rhs(time, y):
+        count[0] += 1
+        if count[0] > max_evals:
+            raise GearleverError(
+                f"simulate: more than max_evals = {max_evals} evaluations of the equations of motion; "
+                "simulate a shorter time or loosen rtol"
+            )
+        q, qd = y[:W], y[W : 2 * W]
+        qdd, tq, PL, _, loss = accel(time, q, qd)
+        return np.concatenate([qd, qdd, [tq @ qd, PL, loss]])
+
+    y0 = np.concatenate([q0, qd0, [0.0, 0.0, 0.0]])
+    sol = solve_ivp(rhs, (tt[0], tt[-1]), y0, t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
+    if not sol.success:  # pragma: no cover - DOP853 on a smooth ODE
+        raise GearleverError(f"simulate: the integration failed: {sol.message}")
+    q, qd = sol.y[:W].T, sol.y[W : 2 * W].T
+    n = len(sol.t)
+    qdd, tq, Ms = np.zeros((n, W)), np.zeros((n, W)), np.zeros((n, W, W))
+    for k in range(n):
+        qdd[k], tq[k], _, Ms[k], _ = accel(sol.t[k], q[k], qd[k])
+    ke = 0.5 * np.einsum("ni,nij,nj->n", qd, Ms, qd)
+    return Simulation(
+        t=sol.t,
+        q=q,
+        qdot=qd,
+        qddot=qdd,
+        torque=tq,
+        kinetic_energy=ke,
+        inertia=Ms,
+        work=sol.y[2 * W],
+        load_work=sol.y[2 * W + 1],
+        inputs=tuple(spec.label for spec in m.inputs),
+        loss_work=sol.y[2 * W + 2],
+    )
+
+
+def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, rtol, atol, grid, turns=1, max_evals=MAX_EVALS):
+    """One rotary input that turns fully, ``J`` repeating after ``turns`` turns (spline tables); None otherwise."""
     from scipy.integrate import solve_ivp
     from scipy.interpolate import CubicSpline
 
     m = mech.model
-    if len(m.inputs) != 1 or m.inputs[0].kind != "link":
-        raise GearleverError("simulate needs a mechanism with one rotary input (a link angle)")
-    tt = V.nonempty_array("t", t)
-    if tt.ndim != 1 or (tt.size > 1 and np.any(np.diff(tt) <= 0)):
-        raise GearleverError("t must be a 1-D array of increasing times")
-    q0 = V.finite("q0", q0)
-    qdot0 = V.finite("qdot0", qdot0)
-    grid = V.positive_int("grid", grid)
-    if grid < 16 or grid > 100_000:
-        raise GearleverError(f"grid must be between 16 and 100000, got {grid}")
-    ms = parse_masses(m, masses)
-    lds = parse_loads(m, loads, 1)
-    for ld in lds:
-        if (ld.force is not None and ld.force.shape[0] != 1) or (ld.torque is not None and ld.torque.shape[0] != 1):
-            raise GearleverError("loads: simulate takes constant loads only")
-    g = gravity_of(m, gravity)
-    qg = q0 + np.linspace(0.0, 2 * np.pi, grid + 1)
+    qg = q0 + np.linspace(0.0, 2 * np.pi * turns, grid * turns + 1)
     r = mech.solve(qg, np.ones_like(qg), np.zeros_like(qg))
     if not r.closed.all():
-        raise GearleverError("simulate: the input does not turn fully (the mechanism does not close over a turn)")
-    J = reduced_inertia(mech, qg, masses)
+        return None
+    J, _, _, _ = _terms(mech, qg[:, None], np.ones((len(qg), 1)), ms, [], np.zeros(2))
+    J = J[:, 0, 0]
     if not np.all(np.isfinite(J)) or np.any(J <= 0):
         raise GearleverError("simulate: the reduced inertia must be positive over the turn (give masses)")
     N1 = len(qg)
-    loads1 = [
-        {
-            "link": ld.link,
-            **({"point": _sketch_of(m, ld), "force": np.repeat(ld.force, N1, axis=0)} if ld.force is not None else {}),
-            **({"torque": np.repeat(ld.torque, N1)} if ld.torque is not None else {}),
-        }
-        for ld in lds
-    ]
-    QL = _load_power(mech, r, ms, parse_loads(m, loads1, N1), g)
+    QL = _load_power(mech, r, ms, _const_loads(lds, N1), g)
     scale = max(abs(J).max(), 1e-300)
-    if abs(J[-1] - J[0]) > 1e-7 * scale:
-        raise GearleverError("simulate: the reduced inertia does not repeat after one input turn")
+    if abs(J[-1] - J[0]) > 1e-7 * scale or abs(QL[-1] - QL[0]) > 1e-7 * max(abs(QL).max(), 1e-300):
+        return None
     J[-1] = J[0]
     QL[-1] = QL[0]
     Js = CubicSpline(qg, J, bc_type="periodic")
     dJs = Js.derivative()
     Qs = CubicSpline(qg, QL, bc_type="periodic")
-    period = 2 * np.pi
+    period = 2 * np.pi * turns
 
     def wrap(q):
         return q0 + np.mod(q - q0, period)
 
-    if callable(torque):
-        tau = torque
-    else:
-        tv = V.finite("torque", torque)
+    def torque1(time, q, qd):
+        return float(tau(time, np.array([q]), np.array([qd]))[0])
 
-        def tau(_t, _q, _qd):
-            return tv
+    count = [0]
 
     def rhs(time, state):
-        q, u = state
+        count[0] += 1
+        if count[0] > SPLINE_EVALS_FACTOR * max_evals:
+            raise GearleverError(
+                f"simulate: more than {SPLINE_EVALS_FACTOR} x max_evals = {SPLINE_EVALS_FACTOR * max_evals} "
+                "evaluations of the equation of motion; simulate a shorter time or loosen rtol"
+            )
+        q, u = state[0], state[1]
         qq = wrap(q)
         sJ = np.sqrt(Js(qq))
         qd = u / sJ
-        return [qd, (float(tau(time, q, qd)) + Qs(qq)) / sJ]
+        tq = torque1(time, q, qd)
+        ql = Qs(qq)
+        return [qd, (tq + ql) / sJ, tq * qd, ql * qd]
 
     u0 = math.sqrt(Js(wrap(q0))) * qdot0
-    sol = solve_ivp(rhs, (tt[0], tt[-1]), [q0, u0], t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
+    sol = solve_ivp(rhs, (tt[0], tt[-1]), [q0, u0, 0.0, 0.0], t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
     if not sol.success:  # pragma: no cover - DOP853 on a smooth ODE
         raise GearleverError(f"simulate: the integration failed: {sol.message}")
-    q, u = sol.y
+    q, u = sol.y[0], sol.y[1]
     qq = wrap(q)
     Jq = Js(qq)
     qd = u / np.sqrt(Jq)
-    Qt = np.array([float(tau(ti, qi, di)) for ti, qi, di in zip(sol.t, q, qd)]) + Qs(qq)
-    qdd = (Qt - 0.5 * dJs(qq) * qd * qd) / Jq
-    return Simulation(t=sol.t, q=q, qdot=qd, qddot=qdd, kinetic_energy=0.5 * Jq * qd * qd, inertia=Jq)
-
-
-def _sketch_of(model, ld):
-    """Sketch location of a load's body-fixed point."""
-    lk = model.links[ld.link]
-    c, s = math.cos(lk.angle0), math.sin(lk.angle0)
-    x, y = ld.point
-    return [lk.origin[0] + c * x - s * y, lk.origin[1] + s * x + c * y]
+    tq = np.array([torque1(ti, qi, di) for ti, qi, di in zip(sol.t, q, qd)])
+    qdd = (tq + Qs(qq) - 0.5 * dJs(qq) * qd * qd) / Jq
+    return Simulation(
+        t=sol.t,
+        q=q[:, None],
+        qdot=qd[:, None],
+        qddot=qdd[:, None],
+        torque=tq[:, None],
+        kinetic_energy=0.5 * Jq * qd * qd,
+        inertia=Jq[:, None, None],
+        work=sol.y[2],
+        load_work=sol.y[3],
+        inputs=(m.inputs[0].label,),
+        loss_work=np.zeros_like(sol.t),
+    )

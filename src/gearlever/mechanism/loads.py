@@ -5,6 +5,8 @@ Model file tables (kept raw by the model loader in ``MechanismModel.extra``)::
     [mechanism]
     gravity = [0.0, -9.81]          # optional, acceleration of gravity (length/s^2 of the model)
     pressure_angle = 20.0           # optional, degrees, of every gear pair (default 20)
+    mesh_efficiency = 0.98          # optional, tooth efficiency of every gear pair (default 1);
+                                    # a pair's own [[meshes]] efficiency = ... takes precedence
     [masses]
     crank = { mass = 0.5, centre = "O2", inertia = 0.001 }   # centre: a point of the link, or [x, y] in the sketch
     [[loads]]
@@ -18,9 +20,16 @@ Model file tables (kept raw by the model loader in ``MechanismModel.extra``)::
 The Python API takes the same loads as a list of dicts whose ``force`` may be
 an array ``(N, 2)`` and ``torque`` an array ``(N,)`` over the input rows.
 
-Units are the user's, consistent: with lengths in m, masses in kg, inertias
-in kg m^2, forces come out in N and torques in N m (a model drawn in mm needs
-its gravity and inertias in mm: 9810 mm/s^2, kg mm^2, forces in kg mm/s^2 = mN).
+Units. Lengths, and so positions, velocities, accelerations and gravity,
+are in the model's length unit ``u`` (``[mechanism] units``); masses are in
+kg and moments of inertia in kg u^2.  For a known length unit (m, cm, mm,
+km, in, ft) forces are in N and torques in N u, whatever ``u`` is: a model
+drawn in mm gives N and N mm, and takes its ``[[loads]]`` in N and N mm
+(gravity is then ``[0, -9810]`` mm/s^2).  This is done by giving each mass
+and inertia the factor :func:`metres_per_unit` (a mass m in kg times an
+acceleration in u/s^2 times metres per u is a force in N).  For a model
+without a unit, or with another one, no factor is applied and forces are in
+kg u/s^2.  :func:`force_units` names the units.
 
 Imports numpy and the model only.
 """
@@ -36,7 +45,17 @@ import numpy as np
 from gearlever.errors import GearleverError
 from gearlever.mechanism.model import GROUND, MechanismModel
 
-__all__ = ["MassSpec", "LoadSpec", "parse_masses", "parse_loads", "gravity_of", "pressure_angle_of"]
+__all__ = [
+    "MassSpec",
+    "LoadSpec",
+    "parse_masses",
+    "parse_loads",
+    "gravity_of",
+    "pressure_angle_of",
+    "mesh_efficiency_of",
+    "force_units",
+    "metres_per_unit",
+]
 
 #: Default pressure angle of the gear pairs (rad): 20 degrees.
 DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
@@ -104,6 +123,12 @@ def parse_masses(model: MechanismModel, masses=None) -> dict:
     ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
     >>> parse_masses(m, {"crank": {"mass": 3.0, "centre": [1.0, 0.0], "inertia": 0.5}})["crank"].centre
     (1.0, 0.0)
+
+    Notes
+    -----
+    The returned mass and inertia carry the factor :func:`metres_per_unit`
+    of the model's length unit, so that forces come out in N (see the module
+    docstring); for a model in m (or without a unit) they are as given.
     """
     raw = model.extra.get("masses", {}) if masses is None else masses
     if not isinstance(raw, dict):
@@ -125,7 +150,8 @@ def parse_masses(model: MechanismModel, masses=None) -> dict:
             centre = (0.0, 0.0)
         else:
             raise GearleverError(f"{where}: missing key 'centre' (a point of the link or [x, y])")
-        out[link] = MassSpec(link, mass, centre, inertia)
+        k = metres_per_unit(model)
+        out[link] = MassSpec(link, mass * k, centre, inertia * k)
     return out
 
 
@@ -199,3 +225,83 @@ def pressure_angle_of(model: MechanismModel, pressure_angle=None) -> float:
     if not 0.0 <= a < math.radians(60.0):
         raise GearleverError(f"{where} must be in [0, 60) degrees, got {math.degrees(a):g} deg")
     return a
+
+
+def mesh_efficiency_of(model: MechanismModel, efficiency=None) -> dict:
+    """Tooth efficiency of every mesh, ``{mesh name: eta}``, each in (0, 1].
+
+    ``efficiency``: a number for every mesh, or ``{mesh name: number}`` (the
+    others keep the model's value); default the model's: a mesh's own
+    ``efficiency`` in ``[[meshes]]``, else ``[mechanism] mesh_efficiency``, else 1.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> m = model_from_dict({"mechanism": {"mesh_efficiency": 0.97},
+    ...     "points": {"O": [0, 0], "C": [3, 0]}, "links": {"ground": ["O", "C"], "a": ["O"], "b": ["C"]},
+    ...     "gears": {"ga": {"link": "a", "centre": "O", "teeth": 20}, "gb": {"link": "b", "centre": "C", "teeth": 40}},
+    ...     "meshes": [{"gears": ["ga", "gb"]}], "inputs": [{"link": "a"}]})
+    >>> mesh_efficiency_of(m), mesh_efficiency_of(m, {"ga-gb": 0.9})
+    ({'ga-gb': 0.97}, {'ga-gb': 0.9})
+    """
+
+    def check(where, v):
+        x = _num(where, v)
+        if not 0.0 < x <= 1.0:
+            raise GearleverError(f"{where} must be in (0, 1], got {v!r}")
+        return x
+
+    default = 1.0
+    if "mesh_efficiency" in model.extra:
+        default = check("mechanism.mesh_efficiency", model.extra["mesh_efficiency"])
+    out = {}
+    for mesh in model.meshes:
+        eff = getattr(mesh, "efficiency", None)
+        out[mesh.name] = default if eff is None else float(eff)
+    if efficiency is None:
+        return out
+    if isinstance(efficiency, dict):
+        for k, v in efficiency.items():
+            if k not in out:
+                raise GearleverError(f"efficiency: unknown mesh {k!r} (meshes: {', '.join(out) or 'none'})")
+            out[k] = check(f"efficiency[{k!r}]", v)
+        return out
+    x = check("efficiency", efficiency)
+    return dict.fromkeys(out, x)
+
+
+#: Metres per length unit, for the units whose forces are given in N.
+METRES_PER_UNIT = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "km": 1e3, "in": 0.0254, "ft": 0.3048}
+
+
+def _unit(model: MechanismModel) -> str:
+    return "".join(c if c.isalnum() else "_" for c in (model.units or "").strip())
+
+
+def metres_per_unit(model: MechanismModel) -> float:
+    """Metres per length unit of the model (1 for a model without a known unit).
+
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> metres_per_unit(model_from_dict({"mechanism": {"units": "mm"}, "points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]}))
+    0.001
+    """
+    return METRES_PER_UNIT.get(_unit(model), 1.0)
+
+
+def force_units(model: MechanismModel) -> tuple:
+    """Names of the force and torque units, ``(force, torque)``, from ``[mechanism] units``.
+
+    For a known length unit ``u`` (see :data:`METRES_PER_UNIT`) forces are in
+    N and torques in N u: ``m`` gives ``("N", "N_m")``, ``mm`` gives
+    ``("N", "N_mm")``.  Another unit ``u`` gives ``("kg_u_s2", "kg_u_s2_u")``
+    (masses in kg, lengths in u), no unit ``("kg_L_s2", "kg_L_s2_L")``.
+
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> force_units(model_from_dict({"mechanism": {"units": "mm"}, "points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]}))
+    ('N', 'N_mm')
+    """
+    u = _unit(model) or "L"
+    f = "N" if u in METRES_PER_UNIT else f"kg_{u}_s2"
+    return f, f"{f}_{u}"

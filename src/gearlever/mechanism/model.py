@@ -11,12 +11,12 @@ is wrong.
 
 Schema (top-level tables)::
 
-    [mechanism]  name, units, module; gravity, pressure_angle (kept in extra)
+    [mechanism]  name, units, module; gravity, pressure_angle, mesh_efficiency (kept in extra)
     [points]     NAME = [x, y]
     [links]      NAME = ["P1", "P2", ...]        (the link "ground" is the frame)
     [[sliders]]  link, on, point, direction [, name]
     [gears]      NAME = { link, centre, teeth [, internal] }
-    [[meshes]]   gears = ["a", "b"] [, carrier]
+    [[meshes]]   gears = ["a", "b"] [, carrier] [, efficiency (0, 1], see mechanism.dynamics)]
     [[inputs]]   link [, relative_to]   or   slider
     [lengths]    LINK = length   or   "LINK.P-Q" = length   (see below)
     [masses], [[loads]]   not read here: kept raw in MechanismModel.extra
@@ -65,7 +65,7 @@ NEWLINE = b"\n"
 _TOP = ("mechanism", "points", "links", "sliders", "gears", "meshes", "inputs")
 _KEPT_TABLES = ("masses", "loads", "lengths")
 _MECH_KEYS = ("name", "units", "module")
-_KEPT_MECH_KEYS = ("gravity", "pressure_angle")
+_KEPT_MECH_KEYS = ("gravity", "pressure_angle", "mesh_efficiency")
 
 
 @dataclass(frozen=True)
@@ -130,6 +130,7 @@ class Mesh:
     a: str
     b: str
     carrier: str
+    efficiency: float | None = None  # tooth efficiency of this pair (None: [mechanism] mesh_efficiency or 1)
 
 
 @dataclass(frozen=True)
@@ -488,7 +489,7 @@ def model_from_dict(d) -> MechanismModel:
     meshes = []
     for i, t in enumerate(_array_of_tables("meshes", d.get("meshes", []))):
         where = f"meshes[{i}]"
-        _table(where, t, ("gears", "carrier"), ("gears",))
+        _table(where, t, ("gears", "carrier", "efficiency"), ("gears",))
         pair = t["gears"]
         if not isinstance(pair, list) or len(pair) != 2 or not all(isinstance(g, str) for g in pair):
             raise GearleverError(f"{where}.gears must be a pair of gear names, got {pair!r}")
@@ -527,7 +528,12 @@ def model_from_dict(d) -> MechanismModel:
                     f"{where}: centre distance {dist:.9g} does not match module {module:g}: "
                     f"m (z_a {'-' if internal else '+'} z_b) / 2 = {want:.9g}"
                 )
-        meshes.append(Mesh(f"{a}-{b}", a, b, carrier))
+        eff = None
+        if "efficiency" in t:
+            eff = _num(f"{where}.efficiency", t["efficiency"])
+            if not 0.0 < eff <= 1.0:
+                raise GearleverError(f"{where}.efficiency must be in (0, 1], got {t['efficiency']!r}")
+        meshes.append(Mesh(f"{a}-{b}", a, b, carrier, eff))
 
     # inputs
     inputs = []
