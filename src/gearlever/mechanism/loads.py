@@ -36,7 +36,15 @@ import numpy as np
 from gearlever.errors import GearleverError
 from gearlever.mechanism.model import GROUND, MechanismModel
 
-__all__ = ["MassSpec", "LoadSpec", "parse_masses", "parse_loads", "gravity_of", "pressure_angle_of"]
+__all__ = [
+    "MassSpec",
+    "LoadSpec",
+    "parse_masses",
+    "parse_loads",
+    "gravity_of",
+    "pressure_angle_of",
+    "validate_extra",
+]
 
 #: Default pressure angle of the gear pairs (rad): 20 degrees.
 DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
@@ -199,3 +207,21 @@ def pressure_angle_of(model: MechanismModel, pressure_angle=None) -> float:
     if not 0.0 <= a < math.radians(60.0):
         raise GearleverError(f"{where} must be in [0, 60) degrees, got {math.degrees(a):g} deg")
     return a
+
+
+def validate_extra(model: MechanismModel) -> None:
+    """Check the model's ``[masses]``, ``[[loads]]``, ``gravity`` and ``pressure_angle`` (called at load).
+
+    Every sub-command that reads a model file refuses a bad mass or load,
+    not only the ones that use them; the messages name the file element
+    (``masses.crank.mass``, ``loads[0].link``, ``mechanism.pressure_angle``).
+    """
+    parse_masses(model)
+    parse_loads(model)
+    if "gravity" in model.extra:
+        g = model.extra["gravity"]
+        if not isinstance(g, (list, tuple)) or len(g) != 2:
+            raise GearleverError(f"mechanism.gravity must be a pair of numbers [gx, gy], got {g!r}")
+        _num("mechanism.gravity[0]", g[0])
+        _num("mechanism.gravity[1]", g[1])
+    pressure_angle_of(model)

@@ -102,9 +102,34 @@ def numeric_rank(A: np.ndarray, tol: float = RANK_TOL) -> int:
 
 
 def independent_rows(A: np.ndarray, tol: float = RANK_TOL) -> list:
-    """Indices of rows of ``A`` that raise the rank, taken greedily in order."""
+    """Indices of rows of ``A`` that raise the rank, taken greedily in order.
+
+    One pass of Gram-Schmidt (orthogonalised twice): a row is kept when its
+    part orthogonal to the kept rows is longer than ``tol`` times the largest
+    singular value of ``A``; cubic in the size like one SVD.  When the count
+    differs from :func:`numeric_rank` (a row at the threshold), the rows are
+    decided one SVD each, as the definition reads.
+    """
+    A = np.asarray(A, dtype=float)
+    if A.size == 0:
+        return []
+    sv = np.linalg.svd(A, compute_uv=False)
+    rank = int(np.sum(sv > tol * max(sv[0], 1e-300)))
+    thresh = tol * max(sv[0], 1e-300)
+    basis = np.zeros((min(A.shape), A.shape[1]))
     keep: list = []
-    r = 0
+    for i in range(A.shape[0]):
+        v = A[i].copy()
+        B = basis[: len(keep)]
+        for _ in range(2):
+            v -= B.T @ (B @ v)
+        norm = float(np.linalg.norm(v))
+        if norm > thresh and len(keep) < basis.shape[0]:
+            basis[len(keep)] = v / norm
+            keep.append(i)
+    if len(keep) == rank:
+        return keep
+    keep, r = [], 0
     for i in range(A.shape[0]):
         if numeric_rank(A[keep + [i]], tol) > r:
             keep.append(i)
