@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, positive_int, to_json
+from gearlever.cli._common import emit, finite_float, positive_int, table_text, to_json
 from gearlever.errors import GearleverError
 
 #: Largest ``--points`` accepted (rows of a sweep).
@@ -142,24 +142,13 @@ def _analyze(args) -> int:
     mech = _load(args.model)
     q, qdot = sweep(mech, args.points, args.input)
     r = mech.solve(q, qdot)
-    cols = r.columns(degrees=True)
-    names = list(cols)
-    arr = np.column_stack([cols[k] for k in names])
+    cols = dict(r.columns(degrees=True))
+    cols["closed"] = r.closed.astype(bool)
     if args.format == "csv":
-        lines = [",".join(names + ["closed", "reason"])]
-        for i in range(arr.shape[0]):
-            lines.append(
-                ",".join(_fmt(v) for v in arr[i].tolist()) + f",{int(r.closed[i])},{r.reason[i].split(':')[0]}"
-            )
-        text = "\n".join(lines)
+        cols["reason"] = [str(x).split(":")[0] for x in r.reason]
     else:
-        recs = []
-        for i in range(arr.shape[0]):
-            rec = dict(zip(names, arr[i].tolist()))
-            rec["closed"] = bool(r.closed[i])
-            rec["reason"] = r.reason[i] or None
-            recs.append(rec)
-        text = to_json({"mechanism": mech.model.name, "rows": recs})
+        cols["reason"] = [x or None for x in r.reason]
+    text = table_text(cols, args.format, {"mechanism": mech.model.name})
     emit(text, args.out)
     return 0
 

@@ -295,7 +295,7 @@ def _name(where: str, v) -> str:
 
 def _count(where: str, n: int, cap: int) -> None:
     if n > cap:
-        raise GearleverError(f"{where}: {n} elements, more than the cap of {cap}")
+        raise GearleverError(f"{where}: {n} entries, more than the cap of {cap}")
 
 
 def depth(obj, cap: int = MAX_DEPTH) -> int:
@@ -493,7 +493,8 @@ def model_from_dict(d) -> MechanismModel:
     lk = d["links"]
     if not isinstance(lk, dict) or not lk:
         raise GearleverError("[links] must be a non-empty table of NAME = [points]")
-    _count("[links]", len(lk), MAX_LINKS + 1)
+    if len(lk) - (GROUND in lk) > MAX_LINKS:
+        raise GearleverError(f"[links]: {len(lk) - (GROUND in lk)} moving links, more than the cap of {MAX_LINKS}")
     for k in lk:
         _name("[links]", k)
     if GROUND not in lk:
