@@ -197,13 +197,28 @@ def _oserror_text(flag: str, path, exc: OSError) -> str:
     return f"{flag} {where!r}: {reason}{culprit}"
 
 
+class ReaderGone(Exception):
+    """stdout's reader went away (``gearlever ... | head``): not an error, exit 0.
+
+    Not an :class:`OSError`, so that a handler catching write errors of an
+    output file does not report a closed pipe as an ``--out`` problem.
+    """
+
+
 def emit(text: str, out: str | None = None, flag: str = "--out") -> None:
-    """Print ``text`` to stdout, or write it atomically to the file ``out`` (checked first)."""
+    """Print ``text`` to stdout, or write it atomically to the file ``out`` (checked first).
+
+    A closed pipe on stdout raises :class:`ReaderGone` (``main`` exits 0).
+    """
     if out is not None:
         check_output(out, flag)
         write_text_atomic(out, text if text.endswith("\n") else text + "\n")
     else:
-        print(text)
+        try:
+            print(text)
+            sys.stdout.flush()
+        except BrokenPipeError:
+            raise ReaderGone() from None
 
 
 def to_json(obj) -> str:
