@@ -93,22 +93,40 @@ def _chosen_parser(parser: argparse.ArgumentParser, args) -> argparse.ArgumentPa
         parser = subs[0].choices[name]
 
 
+#: Library parameter names that stand for a CLI flag of another name (a message
+#: "qdot must be ..." from a command with ``--rpm`` reads "--rpm must be ...").
+PARAMETER_FLAGS = {
+    "qdot": "rpm",
+    "qdot0": "rpm",
+    "mean_speed_rpm": "rpm",
+    "period": "period_deg",
+    "applied": "torque",
+}
+
+
 def _with_flag(message: str, parser: argparse.ArgumentParser | None) -> str:
     """Name the user's flag in front of a ``message`` that starts with a parameter name the parser knows.
 
     ``"steps_per_turn must be ..."`` becomes ``"--steps-per-turn: steps_per_turn must be ..."``;
-    ``"step: the way-points need ..."`` becomes ``"--step: the way-points need ..."``.
+    ``"step: the way-points need ..."`` becomes ``"--step: the way-points need ..."``; a library
+    name of :data:`PARAMETER_FLAGS` is replaced: ``"qdot must be ..."`` becomes ``"--rpm must be ..."``
+    when the command has ``--rpm``.
     """
     if parser is None:
         return message
     m = re.match(r"([A-Za-z_][A-Za-z0-9_]*)\b", message)
     if not m:
         return message
-    for action in parser._actions:
-        if action.dest == m.group(1) and action.option_strings:
-            flag = max(action.option_strings, key=len)
-            rest = message[m.end() :]
-            return flag + rest if rest.startswith(":") else f"{flag}: {message}"
+    name = m.group(1)
+    dests = {a.dest: a for a in parser._actions if a.option_strings}
+    alias = PARAMETER_FLAGS.get(name)
+    if name not in dests and alias in dests:
+        flag = max(dests[alias].option_strings, key=len)
+        return flag + message[m.end() :]
+    if name in dests:
+        flag = max(dests[name].option_strings, key=len)
+        rest = message[m.end() :]
+        return flag + rest if rest.startswith(":") else f"{flag}: {message}"
     return message
 
 
