@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, positive_int, table_text, to_json
+from gearlever.cli._common import check_input_span, emit, finite_float, positive_int, table_text, to_json
 from gearlever.errors import GearleverError
 
 #: Largest ``--points`` accepted (rows of a sweep).
@@ -104,6 +104,7 @@ def sweep(mech, points: int, ranges=None):
     else:
         if len(ranges) != W:
             raise GearleverError(f"--input must be given once per input: {W} expected, got {len(ranges)}")
+        check_input_span(m, ranges)
         start = np.array([r[0] * c for r, c in zip(ranges, conv)])
         stop = np.array([r[1] * c for r, c in zip(ranges, conv)])
         t = np.linspace(0.0, 1.0, points)
