@@ -85,6 +85,7 @@ FILES = {
     "orphan.toml": _fourbar(**{"P  = [30.0, 45.0]": "P  = [30.0, 45.0]\nQ = [1.0, 2.0]"}),
     "teeth.toml": _fourbar('\n[gears]\ng = { link = "crank", centre = "O2", teeth = ' + "9" * 400 + " }\n"),
     "far.toml": _fourbar(**{"P  = [30.0, 45.0]": "P  = [1e308, 45.0]"}),
+    "scale.toml": _fourbar(**{"P  = [30.0, 45.0]": "P  = [1e11, 45.0]"}),
     "deep.toml": "x = " + "[" * 5000 + "]" * 5000 + "\n",
     "deep20.toml": _fourbar("\n[[loads]]\nlink = 'crank'\ntorque = " + "[" * (MAX_DEPTH + 4) + "]" * (MAX_DEPTH + 4)),
     "big.toml": "# " + "x" * (MAX_MODEL_BYTES + 10) + "\n",
@@ -128,6 +129,7 @@ MODEL_CASES = {
     # class 4: caps
     "teeth-huge": ("teeth.toml", ["gears.g.teeth"]),
     "coordinate-huge": ("far.toml", ["points.P"]),
+    "scale-ratio": ("scale.toml", ["links.", "1e+06"]),
     "nesting-deep": ("deep.toml", ["nested deeper", str(MAX_DEPTH)]),
     "nesting-deep-parsed": ("deep20.toml", ["nested deeper", str(MAX_DEPTH)]),
     "file-too-big": ("big.toml", ["cap"]),

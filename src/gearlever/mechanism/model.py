@@ -35,7 +35,8 @@ Caps (a file beyond any real mechanism is refused naming the cap, before it
 can make the analysis hang): file size :data:`MAX_MODEL_BYTES`, nesting depth
 :data:`MAX_DEPTH`, :data:`MAX_LINKS` links, :data:`MAX_POINTS` points,
 :data:`MAX_ELEMENTS` sliders, gears, meshes or inputs each, teeth at most
-:data:`MAX_TEETH`, coordinates at most :data:`MAX_COORDINATE` in size.
+:data:`MAX_TEETH`, coordinates at most :data:`MAX_COORDINATE` in size, and
+no link shorter than ``1 /`` :data:`MAX_SCALE_RATIO` of the model's size.
 
 Standard library and numpy only.
 """
@@ -94,6 +95,10 @@ MAX_TEETH = 100_000
 #: Largest coordinate size (model units): beyond it squared distances lose the
 #: precision the rank decision needs next to lengths of order 1.
 MAX_COORDINATE = 1e12
+#: Largest ratio of the model's size to a link's length (its first two points):
+#: the structure's rank decisions are relative (1e-9); a crank of 10 in a model
+#: spanning 1e11 made a one-dof four-bar read as three dof.
+MAX_SCALE_RATIO = 1e6
 
 
 @dataclass(frozen=True)
@@ -516,6 +521,7 @@ def model_from_dict(d) -> MechanismModel:
                 raise GearleverError(f"{where}: point {p!r} listed twice")
             seen.append(p)
         links[lname] = _make_link(lname, tuple(seen), points)
+    _check_scale(points, links)
     moving = tuple(n for n in links if n != GROUND)
     if not moving:
         raise GearleverError("[links]: the mechanism needs at least one moving link besides ground")
@@ -690,6 +696,22 @@ def model_from_dict(d) -> MechanismModel:
 
     validate_extra(model)
     return model
+
+
+def _check_scale(points, links) -> None:
+    """Refuse a link whose length (first two points) is below ``1 / MAX_SCALE_RATIO`` of the model's size."""
+    xs = [p[0] for p in points.values()]
+    ys = [p[1] for p in points.values()]
+    cx, cy = sum(xs) / len(xs), sum(ys) / len(ys)
+    size = max(math.hypot(x - cx, y - cy) for x, y in zip(xs, ys))
+    for name, link in links.items():
+        if len(link.points) >= 2:
+            length = math.dist(points[link.points[0]], points[link.points[1]])
+            if length * MAX_SCALE_RATIO < size:
+                raise GearleverError(
+                    f"links.{name}: its length {length:.6g} is less than 1/{MAX_SCALE_RATIO:g} of the model's size "
+                    f"{size:.6g}; the structure analysis cannot resolve it (draw the model to one scale)"
+                )
 
 
 def _check_columns(points, links, sliders, inputs, units) -> None:
