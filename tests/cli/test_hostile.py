@@ -92,6 +92,8 @@ FILES = {
     "chain.toml": _chain(MAX_LINKS + 1),
     "points.toml": _many_points(MAX_POINTS + 1),
     "mass_text.toml": _fourbar('\n[masses]\ncrank = { mass = "x" }\n'),
+    "mass_huge_int.toml": _fourbar("\n[masses]\ncrank = { mass = 1" + "0" * 400 + ', centre = "A" }\n'),
+    "torque_huge_int.toml": _fourbar('\n[[loads]]\nlink = "crank"\ntorque = 1' + "0" * 400 + "\n"),
     "mass_negative.toml": _fourbar('\n[masses]\ncrank = { mass = -1.0, centre = "A" }\n'),
     "inertia_negative.toml": _fourbar('\n[masses]\ncrank = { mass = 1.0, centre = "A", inertia = -2.0 }\n'),
     "centre_unknown.toml": _fourbar('\n[masses]\ncrank = { mass = 1.0, centre = "Z" }\n'),
@@ -138,6 +140,8 @@ MODEL_CASES = {
     # class 8: the whole model is validated at load
     "mass-text": ("mass_text.toml", ["masses.crank.mass"]),
     "mass-negative": ("mass_negative.toml", ["masses.crank.mass"]),
+    "mass-huge-integer": ("mass_huge_int.toml", ["masses.crank.mass"]),
+    "load-huge-integer": ("torque_huge_int.toml", ["loads[0].torque"]),
     "inertia-negative": ("inertia_negative.toml", ["masses.crank.inertia"]),
     "mass-centre-unknown": ("centre_unknown.toml", ["masses.crank.centre"]),
     "load-link-unknown": ("load_link.toml", ["loads[0].link"]),

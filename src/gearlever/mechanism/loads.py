@@ -216,6 +216,10 @@ def validate_extra(model: MechanismModel) -> None:
     not only the ones that use them; the messages name the file element
     (``masses.crank.mass``, ``loads[0].link``, ``mechanism.pressure_angle``).
     """
+    for key, where in (("masses", "masses"), ("loads", "loads"), ("gravity", "mechanism.gravity")):
+        if key in model.extra:
+            _no_huge_ints(where, model.extra[key])
+    _no_huge_ints("mechanism.pressure_angle", model.extra.get("pressure_angle"))
     parse_masses(model)
     parse_loads(model)
     if "gravity" in model.extra:
@@ -225,3 +229,16 @@ def validate_extra(model: MechanismModel) -> None:
         _num("mechanism.gravity[0]", g[0])
         _num("mechanism.gravity[1]", g[1])
     pressure_angle_of(model)
+
+
+def _no_huge_ints(where: str, obj) -> None:
+    """Refuse an integer too large for a float (``10**400``) anywhere in ``obj``, naming its place."""
+    stack = [(where, obj)]
+    while stack:
+        w, o = stack.pop()
+        if isinstance(o, dict):
+            stack.extend((f"{w}.{k}", v) for k, v in o.items())
+        elif isinstance(o, (list, tuple)):
+            stack.extend((f"{w}[{i}]", v) for i, v in enumerate(o))
+        elif isinstance(o, int) and not isinstance(o, bool) and abs(o) > 2**1023:
+            raise GearleverError(f"{w} must be a finite number, got an integer of {len(str(abs(o)))} digits")
