@@ -17,7 +17,10 @@ imports matplotlib or pandas:
 
 :mod:`gearlever.tables` (pandas) and :mod:`gearlever.plotting` (matplotlib)
 sit on top of them and are imported only when asked for; :mod:`gearlever.cli`
-is the command line.  Radians everywhere in the API; bad input raises
+is the command line.  ``gearlever.simulate_chariot`` is the chariot's
+simulation (:func:`gearlever.gears.chariot.simulate`); ``gearlever.simulate``
+is the same function, kept for existing code: a mechanism's motion is
+:meth:`Mechanism.simulate`.  Radians everywhere in the API; bad input raises
 :class:`GearleverError` (a :class:`ValueError`).
 
 >>> import gearlever
@@ -32,6 +35,7 @@ from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
 from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate  # noqa: E402
+from gearlever.gears.chariot import simulate as simulate_chariot  # noqa: E402
 from gearlever.gears.networks import Network  # noqa: E402
 from gearlever.loops import LoopSystem, Vector, fourbar, grashof  # noqa: E402
 from gearlever.mechanism.core import Mechanism  # noqa: E402
@@ -72,6 +76,7 @@ __all__ = [
     "NuttallTeeth",
     "design_nuttall",
     "simulate",
+    "simulate_chariot",
     "car_differential",
     "train_ratio",
     "design_train",

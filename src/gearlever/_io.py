@@ -11,7 +11,9 @@ import errno
 import json
 import math
 import os
+import signal
 import tempfile
+import threading
 from fractions import Fraction
 from pathlib import Path
 
@@ -110,6 +112,42 @@ def check_folder(folder, *, create: bool = False) -> Path:
     return folder
 
 
+class _Terminated(BaseException):
+    """SIGTERM arrived while an atomic write was under way (raised to run the clean-up)."""
+
+
+@contextlib.contextmanager
+def _sigterm_unwinds():
+    """While the body runs, a SIGTERM with the default action first unwinds, then kills.
+
+    The default action ends the process at once, leaving the temporary file of
+    a write in progress.  When SIGTERM still has its default action (and this
+    is the main thread), a handler raises :class:`_Terminated` instead; once
+    the clean-up has run the default action is restored and the signal sent
+    again, so the process ends as it would have.  A program with its own
+    handler (the ``gearlever`` command) is left alone.
+    """
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGTERM) not in (
+        signal.SIG_DFL,
+        None,
+    ):
+        yield
+        return
+
+    def handler(signum, frame):
+        raise _Terminated()
+
+    old = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    except _Terminated:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGTERM)
+        raise
+    finally:
+        signal.signal(signal.SIGTERM, old)
+
+
 @contextlib.contextmanager
 def atomic_path(target, suffix: str | None = None, *, mkdir: bool = False):
     """Yield a temporary path in ``target``'s folder; rename it onto ``target`` on success.
@@ -117,8 +155,9 @@ def atomic_path(target, suffix: str | None = None, *, mkdir: bool = False):
     The target is checked first with :func:`check_target`: a directory, a
     device, a folder that does not exist (it is created only when ``mkdir``
     is true) or an unwritable folder raise :class:`OSError` naming the path,
-    before anything is written.  If the body raises, the temporary file is
-    removed and ``target`` is left as it was.  A symbolic link is written
+    before anything is written.  If the body raises, or the process gets
+    SIGTERM or Ctrl-C, the temporary file is removed and ``target`` is left
+    as it was.  A symbolic link is written
     through (its target is replaced), as a plain ``open`` would.
 
     >>> import tempfile, pathlib
@@ -128,6 +167,13 @@ def atomic_path(target, suffix: str | None = None, *, mkdir: bool = False):
     >>> (d / "x.txt").read_text()
     'hi'
     """
+    with _sigterm_unwinds():
+        with _atomic_path(target, suffix, mkdir) as tmp:
+            yield tmp
+
+
+@contextlib.contextmanager
+def _atomic_path(target, suffix, mkdir):
     target = Path(target)
     if target.is_symlink():
         target = Path(os.path.realpath(target))

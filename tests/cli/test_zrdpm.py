@@ -23,7 +23,8 @@ def test_mobility_prints_the_papers_cases(capsys, argv, out):
 def test_zrdpm_json_records(capsys):
     assert main(["zrdpm", "--contour", "1", "--phi", "0", "90", "--ratio", "0.5", "--format", "json"]) == 0
     recs = json.loads(capsys.readouterr().out)
-    assert [list(r) for r in recs] == [["phi_deg", "u_carrier", "u_gear", "e_carrier", "e_gear"]] * 2
+    keys = ["phi_deg", "u_carrier", "u_gear", "e_carrier", "e_gear", "a_B_cm", "a_A_cm"]
+    assert [list(r) for r in recs] == [keys] * 2
     assert recs[0]["u_carrier"] == pytest.approx(1.0) and recs[0]["u_gear"] == pytest.approx(1.0)
     assert recs[1]["e_gear"] == pytest.approx(-1.5)
 
@@ -31,10 +32,10 @@ def test_zrdpm_json_records(capsys):
 def test_zrdpm_range_table_and_csv(capsys):
     assert main(["zrdpm", "--contour", "2", "--start", "0", "--stop", "360", "--step", "90"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
-    assert lines[0].split() == ["phi_deg", "u_2", "u_7", "e_2", "e_7"] and len(lines) == 6
+    assert lines[0].split() == ["phi_deg", "u_2", "u_7", "e_2", "e_7", "a_D_cm", "a_E_cm"] and len(lines) == 6
     assert main(["zrdpm", "--contour", "2", "--phi", "45", "--format", "csv"]) == 0
     out = capsys.readouterr().out.strip().splitlines()
-    assert out[0] == "phi_deg,u_carrier,u_gear,e_carrier,e_gear"
+    assert out[0] == "phi_deg,u_carrier,u_gear,e_carrier,e_gear,a_D_cm,a_E_cm"
     assert float(out[1].split(",")[1]) == pytest.approx(2**0.5)
 
 
@@ -130,3 +131,22 @@ def test_zrdpm_json_at_its_cap_is_written(capsys, tmp_path):
     )
     recs = json.loads(target.read_text())
     assert len(recs) == 100_000 and recs[-1]["phi_deg"] == pytest.approx(359.9964)
+
+
+def test_zrdpm_point_accelerations_are_the_apis_a_B_a_A():
+    """The CLI's a_B_cm, a_A_cm columns are the API's ``analogues(...).named(1)`` values (paper Table I names)."""
+    import io
+    from contextlib import redirect_stdout
+
+    import numpy as np
+
+    from gearlever import zrdpm
+
+    buf = io.StringIO()
+    with redirect_stdout(buf):
+        assert main(["zrdpm", "--contour", "1", "--phi", "0", "30", "77", "--format", "json"]) == 0
+    recs = json.loads(buf.getvalue())
+    p = zrdpm.ZrdpmContour(contour=1).with_ratio(0.5)
+    api = zrdpm.analogues(p, np.deg2rad([0.0, 30.0, 77.0])).named(1)
+    assert [r["a_B_cm"] for r in recs] == pytest.approx(api["a_B"].tolist(), rel=1e-12)
+    assert [r["a_A_cm"] for r in recs] == pytest.approx(api["a_A"].tolist(), rel=1e-12)

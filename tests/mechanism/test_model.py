@@ -47,13 +47,13 @@ def test_model_is_frozen_and_has_body_fixed_coordinates():
 
 def test_masses_loads_gravity_pressure_angle_are_kept_raw_in_extra():
     d = base()
-    d["masses"] = {"crank": {"mass": 1.0}}
+    d["masses"] = {"crank": {"mass": 1.0, "centre": "A"}}
     d["loads"] = [{"link": "rocker", "torque": 2.0}]
     d["mechanism"]["gravity"] = [0.0, -9.81]
     d["mechanism"]["pressure_angle"] = 20.0
     m = model_from_dict(d)
     assert m.extra == {
-        "masses": {"crank": {"mass": 1.0}},
+        "masses": {"crank": {"mass": 1.0, "centre": "A"}},
         "loads": [{"link": "rocker", "torque": 2.0}],
         "gravity": [0.0, -9.81],
         "pressure_angle": 20.0,

@@ -17,7 +17,9 @@ Exit status and errors (handled here, once, for every sub-command):
   :class:`OSError` (the line names the path and the reason), an
   :class:`OverflowError`, or a :class:`MemoryError` (the caps on sizes should
   prevent it).
-* 130: interrupted (Ctrl-C), one line.
+* 130: interrupted (Ctrl-C), one line; 143: terminated (SIGTERM), one line.
+  Both unwind normally, so a file being written is removed, never left half
+  written or as a temporary file.
 * 1: an internal error (a bug), one line asking for a report; set
   ``GEARLEVER_TRACEBACK=1`` to see the traceback instead.
 
@@ -35,7 +37,9 @@ import importlib
 import os
 import pkgutil
 import re
+import signal
 import sys
+import threading
 import warnings
 
 
@@ -89,22 +93,40 @@ def _chosen_parser(parser: argparse.ArgumentParser, args) -> argparse.ArgumentPa
         parser = subs[0].choices[name]
 
 
+#: Library parameter names that stand for a CLI flag of another name (a message
+#: "qdot must be ..." from a command with ``--rpm`` reads "--rpm must be ...").
+PARAMETER_FLAGS = {
+    "qdot": "rpm",
+    "qdot0": "rpm",
+    "mean_speed_rpm": "rpm",
+    "period": "period_deg",
+    "applied": "torque",
+}
+
+
 def _with_flag(message: str, parser: argparse.ArgumentParser | None) -> str:
     """Name the user's flag in front of a ``message`` that starts with a parameter name the parser knows.
 
     ``"steps_per_turn must be ..."`` becomes ``"--steps-per-turn: steps_per_turn must be ..."``;
-    ``"step: the way-points need ..."`` becomes ``"--step: the way-points need ..."``.
+    ``"step: the way-points need ..."`` becomes ``"--step: the way-points need ..."``; a library
+    name of :data:`PARAMETER_FLAGS` is replaced: ``"qdot must be ..."`` becomes ``"--rpm must be ..."``
+    when the command has ``--rpm``.
     """
     if parser is None:
         return message
     m = re.match(r"([A-Za-z_][A-Za-z0-9_]*)\b", message)
     if not m:
         return message
-    for action in parser._actions:
-        if action.dest == m.group(1) and action.option_strings:
-            flag = max(action.option_strings, key=len)
-            rest = message[m.end() :]
-            return flag + rest if rest.startswith(":") else f"{flag}: {message}"
+    name = m.group(1)
+    dests = {a.dest: a for a in parser._actions if a.option_strings}
+    alias = PARAMETER_FLAGS.get(name)
+    if name not in dests and alias in dests:
+        flag = max(dests[alias].option_strings, key=len)
+        return flag + message[m.end() :]
+    if name in dests:
+        flag = max(dests[name].option_strings, key=len)
+        rest = message[m.end() :]
+        return flag + rest if rest.startswith(":") else f"{flag}: {message}"
     return message
 
 
@@ -117,6 +139,24 @@ def _oserror_line(exc: OSError) -> str:
     reason = exc.strerror or _one_line(exc) or type(exc).__name__
     names = [repr(str(f)) for f in (exc.filename, exc.filename2) if f is not None]
     return f"gearlever: error: {' -> '.join(names) + ': ' if names else ''}{reason}"
+
+
+class Terminated(KeyboardInterrupt):
+    """Raised in the main thread by SIGTERM, so that clean-up (``finally``) runs as for Ctrl-C."""
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
+def _install_sigterm():
+    """Install the SIGTERM handler (main thread only); return the old handler, or None."""
+    if threading.current_thread() is not threading.main_thread():
+        return None
+    try:
+        return signal.signal(signal.SIGTERM, _on_sigterm)
+    except (ValueError, OSError):
+        return None
 
 
 def _print_error(line: str) -> None:
@@ -132,7 +172,16 @@ def main(argv=None) -> int:
     # The command line writes files and never opens windows: it, not the library,
     # chooses a non-interactive matplotlib backend (the user's MPLBACKEND wins).
     os.environ.setdefault("MPLBACKEND", "Agg")
-    from gearlever.cli._common import check_output
+    old_sigterm = _install_sigterm()
+    try:
+        return _main(argv)
+    finally:
+        if old_sigterm is not None:
+            signal.signal(signal.SIGTERM, old_sigterm)
+
+
+def _main(argv) -> int:
+    from gearlever.cli._common import ReaderGone, check_output
 
     chosen = None
     try:
@@ -150,7 +199,7 @@ def main(argv=None) -> int:
     except UsageError as exc:
         _print_error(_one_line(exc))
         return 2
-    except BrokenPipeError:
+    except (BrokenPipeError, ReaderGone):
         # the reader went away (``gearlever ... | head``): not an error; keep
         # Python from complaining again when it flushes stdout at exit
         try:
@@ -173,6 +222,9 @@ def main(argv=None) -> int:
             "gearlever: error: out of memory: a size argument is too large for this machine (see the caps in --help)"
         )
         return 2
+    except Terminated:
+        _print_error("gearlever: terminated")
+        return 143
     except KeyboardInterrupt:
         _print_error("gearlever: interrupted")
         return 130

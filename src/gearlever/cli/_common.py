@@ -197,13 +197,28 @@ def _oserror_text(flag: str, path, exc: OSError) -> str:
     return f"{flag} {where!r}: {reason}{culprit}"
 
 
+class ReaderGone(Exception):
+    """stdout's reader went away (``gearlever ... | head``): not an error, exit 0.
+
+    Not an :class:`OSError`, so that a handler catching write errors of an
+    output file does not report a closed pipe as an ``--out`` problem.
+    """
+
+
 def emit(text: str, out: str | None = None, flag: str = "--out") -> None:
-    """Print ``text`` to stdout, or write it atomically to the file ``out`` (checked first)."""
+    """Print ``text`` to stdout, or write it atomically to the file ``out`` (checked first).
+
+    A closed pipe on stdout raises :class:`ReaderGone` (``main`` exits 0).
+    """
     if out is not None:
         check_output(out, flag)
         write_text_atomic(out, text if text.endswith("\n") else text + "\n")
     else:
-        print(text)
+        try:
+            print(text)
+            sys.stdout.flush()
+        except BrokenPipeError:
+            raise ReaderGone() from None
 
 
 def to_json(obj) -> str:
@@ -317,7 +332,8 @@ def table_text(cols: dict, fmt: str = "csv", meta: dict | None = None, digits: i
     ``digits`` significant digits), bools (1/0 in CSV) or strings (quoted in
     CSV when they hold a comma, quote or newline).  JSON is
     ``{**meta, "rows": [{name: value, ...}, ...]}`` with NaN and infinities
-    as null.  The one writer of tabular output for every sub-command.
+    as null; JSON numbers are rounded to the same ``digits`` significant
+    digits as CSV.  The one writer of tabular output for every sub-command.
 
     >>> print(table_text({"x": [0.5, 2.0], "reason": ["", "dead point: a, b"]}))
     x,reason
@@ -334,7 +350,13 @@ def table_text(cols: dict, fmt: str = "csv", meta: dict | None = None, digits: i
         raise GearleverError(f"table columns differ in length: {dict(zip(names, map(len, columns)))}")
     rows = list(zip(*columns)) if columns else []
     if fmt == "json":
-        recs = [dict(zip(names, row)) for row in rows]
+
+        def rounded(v):  # the digits of the CSV: 60 from exact degrees, not 59.99999999999999
+            if isinstance(v, float) and math.isfinite(v):
+                return float(f"{v + 0.0:.{digits}g}")
+            return v
+
+        recs = [dict(zip(names, map(rounded, row))) for row in rows]
         return to_json({**(meta or {}), "rows": recs})
     if fmt != "csv":
         raise GearleverError(f"format must be 'csv' or 'json', got {fmt!r}")
@@ -393,3 +415,45 @@ def named_values(given, flag: str, names, *, parse=None, bare_ok: bool = True) -
         except (argparse.ArgumentTypeError, ValueError) as exc:
             raise GearleverError(f"{flag} {name}: {exc}") from None
     return out
+
+
+#: Largest sweep of one rotary input (turns): the continuation walks the range
+#: in steps of a few degrees, so 1000 turns is ~10^5 steps (seconds); a range of
+#: 1e9 degrees would step for hours.
+MAX_INPUT_TURNS = 1000
+#: Largest sweep of one slider input, in multiples of the model's size.
+MAX_SLIDER_SPAN = 1000.0
+
+
+def check_input_span(model, ranges, flag: str = "--input") -> None:
+    """Refuse an ``--input START STOP`` (degrees, or length for a slider) that spans more than the cap.
+
+    ``model`` is a :class:`~gearlever.mechanism.model.MechanismModel`; ``ranges``
+    the pairs given once per input in ``[[inputs]]`` order (None: nothing to check).
+
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> check_input_span(m, [(0.0, 720.0)])
+    >>> check_input_span(m, [(0.0, 1e9)])
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: --input 0 1e+09 (crank) spans 2.78e+06 turns, more than the cap of 1000 turns
+    """
+    if ranges is None:
+        return
+    for spec, pair in zip(model.inputs, ranges):
+        start, stop = (float(v) for v in pair)
+        span = abs(stop - start)
+        if spec.kind == "slider":
+            cap = MAX_SLIDER_SPAN * model.length_scale
+            if not span <= cap:
+                raise GearleverError(
+                    f"{flag} {start:g} {stop:g} ({spec.label}) spans {span:.3g}, more than the cap of "
+                    f"{MAX_SLIDER_SPAN:g} times the model's size ({cap:.3g})"
+                )
+        elif not span / 360.0 <= MAX_INPUT_TURNS:
+            raise GearleverError(
+                f"{flag} {start:g} {stop:g} ({spec.label}) spans {span / 360.0:.3g} turns, "
+                f"more than the cap of {MAX_INPUT_TURNS} turns"
+            )

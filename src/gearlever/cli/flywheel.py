@@ -20,7 +20,7 @@ import io
 import math
 
 from gearlever._io import read_text_capped
-from gearlever.cli._common import emit, positive_float, to_json
+from gearlever.cli._common import capped_float, emit, flagged, positive_float, to_json
 from gearlever.errors import GearleverError
 
 #: Largest torque file read (bytes).
@@ -43,7 +43,7 @@ def register(sub) -> None:
     g.add_argument("--inertia", type=positive_float, metavar="I", help="flywheel moment of inertia (kg m^2)")
     p.add_argument(
         "--period-deg",
-        type=positive_float,
+        type=capped_float(360_000.0),  # 1000 turns: gearlever.dynamics.flywheel.MAX_PERIOD
         default=None,
         metavar="DEG",
         help="cycle length (deg) when the last row does not close it, e.g. 720 for rows 0..710",
@@ -80,6 +80,10 @@ def read_torque_file(path: str, max_rows: int | None = None):
                 raise GearleverError(f"{where} row {k}, column {j}: must be a finite number, got {cell!r}")
             values.append(v)
         if values is None:
+            names = [c for c in cells if c]
+            dup = next((c for i, c in enumerate(names) if c in names[:i]), None)
+            if dup is not None:
+                raise GearleverError(f"{where} row {k}: column {dup!r} appears twice in the header")
             seen_data = True
             continue
         seen_data = True
@@ -122,8 +126,15 @@ def _run(args) -> int:
         )
     except GearleverError as exc:
         msg = str(exc)
-        if msg.startswith("period"):
-            raise GearleverError(f"--period-deg: {msg}") from None
+        flags = {
+            "period": "--period-deg",
+            "mean_speed_rpm": "--rpm",
+            "fluctuation": "--fluctuation",
+            "inertia": "--inertia",
+        }
+        lead = msg.split(":")[0].split(" ")[0]
+        if lead in flags:
+            raise flagged(exc, flags) from None
         raise GearleverError(f"--torque-file {args.torque_file!r}: {msg}") from None
     s = res.summary()
     if args.format == "json":

@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from gearlever.cli._common import capped_int, emit, positive_float, progress, to_json
+from gearlever.cli._common import capped_int, emit, positive_float, progress, table_text, to_json
 
 COLUMNS = (
     "theta2_deg",
@@ -91,18 +91,12 @@ def change_point_note(ground, crank, coupler, rocker, branch) -> str | None:
     )
 
 
-def _fmt(v) -> str:
-    if isinstance(v, bool):
-        return "1" if v else "0"
-    return "nan" if math.isnan(v) else f"{v:.12g}"
-
-
 def _run(args) -> int:
     links = (args.ground, args.crank, args.coupler, args.rocker)
     with progress("solving the four-bar"):
         table = rows(*links, args.points, args.branch)
         if args.format == "csv":
-            text = "\n".join([",".join(COLUMNS)] + [",".join(_fmt(v) for v in row) for row in table])
+            text = table_text({c: [row[i] for row in table] for i, c in enumerate(COLUMNS)}, "csv")
         else:
             text = to_json([dict(zip(COLUMNS, row)) for row in table])
     emit(text, args.out)

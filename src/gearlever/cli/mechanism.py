@@ -45,7 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, named_values, positive_int, table_text, to_json
+from gearlever.cli._common import check_input_span, emit, finite_float, named_values, positive_int, table_text, to_json
 from gearlever.errors import GearleverError
 
 #: Largest ``--points`` accepted (rows of a sweep).
@@ -225,6 +225,7 @@ def sweep(mech, points: int = DEFAULT_POINTS, ranges=None):
             f"--input: model {m.name!r} has {W} input{'s' if W != 1 else ''} ({labels}); give --input START STOP "
             f"once per input (got {len(ranges)}), or none to turn the first a full turn with the others held"
         )
+    check_input_span(m, ranges)
     conv = [1.0 if spec.kind == "slider" else math.pi / 180.0 for spec in m.inputs]
     start = np.array([r[0] * c for r, c in zip(ranges, conv)])
     stop = np.array([r[1] * c for r, c in zip(ranges, conv)])

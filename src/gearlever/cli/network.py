@@ -21,12 +21,14 @@ def register(sub) -> None:
     p.add_argument(
         "--inputs",
         default=None,
+        action="append",
         metavar="A,B",
         help="input members, comma separated (default: counts and redundancy only)",
     )
     p.add_argument(
         "--teeth",
-        default="",
+        default=None,
+        action="append",
         metavar="SYM=N,...",
         help="values of tooth-number symbols used in FILE, e.g. n2=30,n5=24",
     )
@@ -42,15 +44,30 @@ def register(sub) -> None:
         metavar="MEMBER",
         help="with --tabular: the member turned +1 (default: the first gear meshing on CARRIER)",
     )
-    p.add_argument("--torque", default="", metavar="M=T,...", help="applied torques, e.g. sun=100 (with --loads)")
-    p.add_argument("--loads", default="", metavar="A,B", help="members whose torques are unknown (one per dof)")
+    p.add_argument("--torque", action="append", metavar="M=T,...", help="applied torques, e.g. sun=100 (with --loads)")
+    p.add_argument("--loads", action="append", metavar="A,B", help="members whose torques are unknown (one per dof)")
     p.add_argument(
-        "--speeds", default="", metavar="M=W,...", help="speeds of independent members (default: the inputs at 1)"
+        "--speeds", action="append", metavar="M=W,...", help="speeds of independent members (default: the inputs at 1)"
     )
     p.add_argument("--efficiency", default="1", metavar="ETA", help="mesh efficiency in (0, 1] (default 1)")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--out", default=None, metavar="FILE", help="write to FILE instead of stdout")
     p.set_defaults(func=_run)
+
+
+def _joined(given) -> str:
+    """The values of a flag given once or more (``--teeth n2=30 --teeth n5=24``) as one comma list."""
+    return ",".join(given or ())
+
+
+def _names(given, flag: str) -> list[str]:
+    """Member names of ``--inputs``/``--loads`` (given once or more, comma separated), none twice."""
+    out: list[str] = []
+    for name in filter(None, (x.strip() for x in _joined(given).split(","))):
+        if name in out:
+            raise GearleverError(f"{flag}: member {name!r} is given twice")
+        out.append(name)
+    return out
 
 
 def _teeth(text: str) -> dict[str, int]:
@@ -59,6 +76,8 @@ def _teeth(text: str) -> dict[str, int]:
         name, sep, value = item.partition("=")
         if not sep or not name.strip():
             raise GearleverError(f"--teeth must be SYMBOL=INTEGER pairs, got {item!r}")
+        if name.strip() in out:
+            raise GearleverError(f"--teeth: symbol {name.strip()!r} is given twice")
         try:
             out[name.strip()] = int(value)
         except ValueError:
@@ -74,7 +93,7 @@ def _run(args) -> int:
     from gearlever.gears.networks import format_linear, parse_network
 
     text = read_text_capped(args.file, "network file")
-    net = parse_network(text, teeth=_teeth(args.teeth))
+    net = parse_network(text, teeth=_teeth(_joined(args.teeth)))
     a = net.analyse()
     result = {
         "unknowns": a.unknowns,
@@ -98,7 +117,7 @@ def _run(args) -> int:
     if a.locked:
         lines.append("members forced to stand still: " + ", ".join(f"{m} (by ({c}))" for m, c in a.locked.items()))
     if args.inputs:
-        inputs = [x.strip() for x in args.inputs.split(",") if x.strip()]
+        inputs = _names(args.inputs, "--inputs")
         sol = net.solve(inputs)
         result["inputs"] = list(sol.inputs)
         result["coefficients"] = {n: [_frac(c) for c in cs] for n, cs in sol.coefficients.items()}
@@ -128,22 +147,29 @@ def _run(args) -> int:
         }
         lines += [""] + tab.lines()
     if args.torque or args.loads:
+        from gearlever.cli._common import flagged
         from gearlever.gears.torques import parse_assignments, parse_number, torque_report
 
         inputs = result.get("inputs", [])
-        speeds = parse_assignments(args.speeds, "--speeds") or ({k: 1 for k in inputs} if inputs else None)
-        loads = [x.strip() for x in args.loads.split(",") if x.strip()]
-        rep = torque_report(
-            net,
-            parse_assignments(args.torque, "--torque"),
-            loads,
-            speeds=speeds,
-            efficiency=parse_number(args.efficiency, "--efficiency"),
-        )
+        speeds = parse_assignments(_joined(args.speeds), "--speeds") or ({k: 1 for k in inputs} if inputs else None)
+        loads = _names(args.loads, "--loads")
+        try:
+            rep = torque_report(
+                net,
+                parse_assignments(_joined(args.torque), "--torque"),
+                loads,
+                speeds=speeds,
+                efficiency=parse_number(args.efficiency, "--efficiency"),
+            )
+        except GearleverError as exc:
+            flags = {"applied": "--torque", "loads": "--loads", "speeds": "--speeds", "efficiency": "--efficiency"}
+            if speeds is not None and not args.speeds:
+                flags["speeds"] = "--inputs (their speeds, 1 each)"
+            raise flagged(exc, flags) from None
         result.update(rep)
         lines += [""] + [f"torque on {k}: {v}" for k, v in rep["torques"].items()]
         lines += [f"frame reaction ({k}): {v}" for k, v in rep["frame_reactions"].items()]
-        lines += [f"power of {k}: {v}" for k, v in rep.get("power", {}).items()]
+        lines += [f"power of {k}: {v}" for k, v in (rep.get("power") or {}).items()]
     if args.format == "json":
         emit(to_json(result), args.out)
     else:

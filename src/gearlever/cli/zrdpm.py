@@ -11,11 +11,14 @@ from gearlever.cli._common import (
     positive_float,
     positive_int,
     progress,
+    table_text,
     to_json,
 )
 from gearlever.errors import GearleverError
 
-#: Keys of the JSON records and the CSV columns.
+#: Keys of the JSON records and the CSV columns, followed by the two point
+#: accelerations named as in the API (``a_B_cm, a_A_cm`` for contour 1,
+#: ``a_D_cm, a_E_cm`` for contour 2; cm over the leading link's omega^2).
 KEYS = ("phi_deg", "u_carrier", "u_gear", "e_carrier", "e_gear")
 
 #: Most angles in a table or CSV: a row is ~70 bytes of text and the model
@@ -110,14 +113,14 @@ def _angles(args):
 
 
 def _format(phi_deg, kin, names, fmt) -> str:
-    cols = (phi_deg, kin.u_carrier, kin.u_gear, kin.e_carrier, kin.e_gear)
+    """``names``: the six paper names of the contour (``u_1, u_8, e_1, e_8, a_B, a_A``)."""
+    keys = (*KEYS, *(f"{n}_cm" for n in names[4:6]))
+    cols = (phi_deg, kin.u_carrier, kin.u_gear, kin.e_carrier, kin.e_gear, kin.a_x, kin.a_y)
     if fmt == "json":
-        return to_json([dict(zip(KEYS, map(float, row))) for row in zip(*cols)])
+        return to_json([dict(zip(keys, map(float, row))) for row in zip(*cols)])
     if fmt == "csv":
-        lines = [",".join(KEYS)]
-        lines += [",".join(f"{v:.12g}" for v in row) for row in zip(*(c.tolist() for c in cols))]
-        return "\n".join(lines)
-    header = ["phi_deg", *names]
+        return table_text(dict(zip(keys, cols)), "csv")
+    header = ["phi_deg", *names[:4], *(f"{n}_cm" for n in names[4:6])]
     lines = ["".join(f"{h:>12}" for h in header)]
     lines += ["".join(f"{v:12.6f}" for v in row) for row in zip(*(c.tolist() for c in cols))]
     return "\n".join(lines)
@@ -137,6 +140,6 @@ def _run(args) -> int:
         params = zrdpm.ZrdpmContour(contour=args.contour, mesh=args.mesh, **kwargs).with_ratio(ratio)
     with progress("computing the analogues"):
         kin = zrdpm.analogues(params, np.deg2rad(phi_deg))
-        text = _format(phi_deg, kin, params.names[:4], args.format)
+        text = _format(phi_deg, kin, params.names, args.format)
     emit(text, args.out)
     return 0

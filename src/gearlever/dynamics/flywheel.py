@@ -34,6 +34,15 @@ __all__ = ["Flywheel", "flywheel", "MAX_SAMPLES", "MEAN_MISMATCH"]
 MAX_SAMPLES = 1_000_000
 #: Largest relative difference between the mean driving and mean load torque taken as rounding.
 MEAN_MISMATCH = 1e-3
+#: Longest cycle (rad): 1000 turns, far beyond any engine's (a four-stroke cycle is 2 turns).
+MAX_PERIOD = 2000.0 * math.pi
+
+
+def _representable(name: str, value: float, what: str, nonzero: bool = False) -> float:
+    """Refuse a result that overflowed (inf) or underflowed to 0 (when it cannot be 0), naming ``name``."""
+    if not math.isfinite(value) or (nonzero and value == 0.0):
+        raise GearleverError(f"{name}: {what} is {value:g}, beyond double precision: give values of more moderate size")
+    return value
 
 
 @dataclass(frozen=True)
@@ -224,6 +233,8 @@ def flywheel(
     ``s = e_i h / (e_i - e_{i+1})`` with ``E = E_i + e_i s / 2``.
     """
     th = V.finite_array("theta", theta)
+    if th.size and float(np.max(np.abs(th))) > 1e15:
+        raise GearleverError("theta must be crank angles of at most 1e15 rad in size")
     if th.ndim != 1 or th.size < 2:
         raise GearleverError(f"theta must be a 1-D array of at least 2 crank angles, got shape {th.shape}")
     n = th.size
@@ -246,18 +257,26 @@ def flywheel(
         th_c, T_c = th, T
     else:
         P = V.positive("period", period)
+        if P > MAX_PERIOD:
+            raise GearleverError(f"period must be at most {MAX_PERIOD:g} rad (1000 turns, the cap), got {period!r}")
         if P <= span:
             raise GearleverError(
                 f"period must exceed theta[-1] - theta[0] = {span!r} (the samples lie within one cycle), got {period!r}"
             )
         th_c, T_c = np.append(th, th[0] + P), np.append(T, T[0])
+    L = None if load is None else _curve("load", load, n)
+    # torques are scaled by a power of two (exact) so that sums of torques near the
+    # float limit do not overflow; energies are scaled back at the end
+    big = max(float(np.max(np.abs(T))), 0.0 if L is None else float(np.max(np.abs(L))))
+    k2 = math.frexp(big)[1] if big > 0 else 0
+    T_c = np.ldexp(T_c, -k2)
     work = float(np.sum(0.5 * np.diff(th_c) * (T_c[:-1] + T_c[1:])))
     mean_T = work / P
-    if load is None:
+    if L is None:
         Lc = np.full(th_c.size, mean_T)
         shift = 0.0
     else:
-        L = _curve("load", load, n)
+        L = np.ldexp(L, -k2)
         Lc = L if period is None else np.append(L, L[0])
         mean_L = float(np.sum(0.5 * np.diff(th_c) * (Lc[:-1] + Lc[1:]))) / P
         scale = max(abs(mean_T), abs(mean_L), float(np.mean(np.abs(T))), float(np.mean(np.abs(L))))
@@ -270,11 +289,30 @@ def flywheel(
         Lc = Lc + shift
     e = T_c - Lc
     E, e_max, e_min, t_max, t_min = _energy_extremes(th_c, e)
-    dE = float(e_max - e_min)
+    dE_scaled = float(e_max - e_min)
+
+    def back(name, x, what):  # undo the power-of-two scaling, refusing an overflow
+        with np.errstate(over="ignore"):
+            return _representable(name, float(np.ldexp(x, k2)), what)
+
+    dE = back("torque", dE_scaled, "the energy fluctuation")
+    work = back("torque", work, "the work per cycle")
+    mean_T = back("torque", mean_T, "the mean torque")
+    shift = back("load", shift, "the load shift")
+    Lc = np.ldexp(Lc, k2)
+    with np.errstate(over="ignore"):
+        E = np.ldexp(E, k2)
+    if not np.all(np.isfinite(E)):
+        raise GearleverError(
+            "torque: the energy E(theta) overflows double precision: give torques of more moderate size"
+        )
     if cs is not None:
-        inert = dE / (omega**2 * cs)
+        inert = dE / cs / omega / omega
+        _representable("mean_speed_rpm", inert, "with this fluctuation the flywheel inertia", nonzero=dE > 0)
     elif inert is not None:
-        cs = dE / (inert * omega**2)
+        cs = dE / inert / omega / omega
+        _representable("mean_speed_rpm", cs, "with this inertia the coefficient of fluctuation", nonzero=dE > 0)
+    power = _representable("mean_speed_rpm", mean_T * omega, "the power", nonzero=mean_T != 0)
     return Flywheel(
         theta=th,
         torque=T,
@@ -282,11 +320,11 @@ def flywheel(
         energy=E[:n],
         mean_torque=mean_T,
         mean_speed=omega,
-        power=mean_T * omega,
+        power=power,
         work_per_cycle=work,
         energy_fluctuation=dE,
-        energy_max=float(e_max),
-        energy_min=float(e_min),
+        energy_max=back("torque", float(e_max), "the largest energy"),
+        energy_min=back("torque", float(e_min), "the smallest energy"),
         theta_max_speed=float(t_max),
         theta_min_speed=float(t_min),
         inertia=inert,

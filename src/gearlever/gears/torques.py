@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -321,7 +322,7 @@ def network_torques(
     for name in loads:
         if name in app:
             raise GearleverError(f"loads: member {name!r} has an applied torque; a load's torque is the unknown")
-    network.solve(list(loads))  # checks names, count (= dof) and independence, naming the constraints
+    _solve_as(network, list(loads), "loads")  # checks names, count (= dof) and independence, naming the constraints
     eta = _exact("efficiency", efficiency)
     if not 0 < eta <= 1:
         raise GearleverError(f"efficiency must be in (0, 1], got {efficiency}")
@@ -331,7 +332,7 @@ def network_torques(
         if not isinstance(speeds, Mapping):
             raise GearleverError("speeds must be a mapping {member: speed}")
         given = {str(k): _exact(f"speed of {k!r}", v) for k, v in speeds.items()}
-        sol = network.solve(list(given))
+        sol = _solve_as(network, list(given), "speeds")
         spd = {name: Fraction(sol.rotation(name, given)) for name in network.names}
     if eta < 1:
         if spd is None:
@@ -408,6 +409,13 @@ def network_torques(
     if spd is not None:
         power = {name: torques.get(name, Fraction(0)) * spd[name] for name in network.names}
         input_power = sum((p for p in power.values() if p > 0), Fraction(0))
+        fed = [name for name, p in power.items() if p > 0]
+        if eta < 1 and len(fed) >= 2 and not any(p < 0 for p in power.values()):
+            # every loaded member takes power in: friction holds the train, nothing is driven
+            raise GearleverError(
+                f"efficiency: the train is self-locking when driven this way: power flows in at every "
+                f"loaded member ({', '.join(fed)}) and out at none (at efficiency {float(eta):g})"
+            )
         flows = {}
         for k, d in enumerate(devices):
             if lam_free[k]:
@@ -440,6 +448,15 @@ def network_torques(
 
 def _num(x):
     return None if x is None else float(x)
+
+
+def _solve_as(network: Network, names: list, param: str):
+    """``network.solve(names)``, its refusals naming ``param`` (``loads``, ``speeds``) instead of "inputs"."""
+    try:
+        return network.solve(names)
+    except GearleverError as exc:
+        text = re.sub(r"\binputs\b", param, str(exc))
+        raise GearleverError(text if text.startswith(param) else f"{param}: {text}") from None
 
 
 def torque_report(

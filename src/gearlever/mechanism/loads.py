@@ -55,6 +55,7 @@ __all__ = [
     "mesh_efficiency_of",
     "force_units",
     "metres_per_unit",
+    "validate_extra",
 ]
 
 #: Default pressure angle of the gear pairs (rad): 20 degrees.
@@ -305,3 +306,38 @@ def force_units(model: MechanismModel) -> tuple:
     u = _unit(model) or "L"
     f = "N" if u in METRES_PER_UNIT else f"kg_{u}_s2"
     return f, f"{f}_{u}"
+
+
+def validate_extra(model: MechanismModel) -> None:
+    """Check the model's ``[masses]``, ``[[loads]]``, ``gravity`` and ``pressure_angle`` (called at load).
+
+    Every sub-command that reads a model file refuses a bad mass or load,
+    not only the ones that use them; the messages name the file element
+    (``masses.crank.mass``, ``loads[0].link``, ``mechanism.pressure_angle``).
+    """
+    for key, where in (("masses", "masses"), ("loads", "loads"), ("gravity", "mechanism.gravity")):
+        if key in model.extra:
+            _no_huge_ints(where, model.extra[key])
+    _no_huge_ints("mechanism.pressure_angle", model.extra.get("pressure_angle"))
+    parse_masses(model)
+    parse_loads(model)
+    if "gravity" in model.extra:
+        g = model.extra["gravity"]
+        if not isinstance(g, (list, tuple)) or len(g) != 2:
+            raise GearleverError(f"mechanism.gravity must be a pair of numbers [gx, gy], got {g!r}")
+        _num("mechanism.gravity[0]", g[0])
+        _num("mechanism.gravity[1]", g[1])
+    pressure_angle_of(model)
+
+
+def _no_huge_ints(where: str, obj) -> None:
+    """Refuse an integer too large for a float (``10**400``) anywhere in ``obj``, naming its place."""
+    stack = [(where, obj)]
+    while stack:
+        w, o = stack.pop()
+        if isinstance(o, dict):
+            stack.extend((f"{w}.{k}", v) for k, v in o.items())
+        elif isinstance(o, (list, tuple)):
+            stack.extend((f"{w}[{i}]", v) for i, v in enumerate(o))
+        elif isinstance(o, int) and not isinstance(o, bool) and abs(o) > 2**1023:
+            raise GearleverError(f"{w} must be a finite number, got an integer of {len(str(abs(o)))} digits")

@@ -19,7 +19,25 @@ Schema (top-level tables)::
     [[meshes]]   gears = ["a", "b"] [, carrier] [, efficiency (0, 1], see mechanism.dynamics)]
     [[inputs]]   link [, relative_to]   or   slider
     [lengths]    LINK = length   or   "LINK.P-Q" = length   (see below)
-    [masses], [[loads]]   not read here: kept raw in MechanismModel.extra
+    [masses], [[loads]]   kept raw in MechanismModel.extra, validated at load
+                          (gearlever.mechanism.loads.validate_extra)
+
+Names of points, links, sliders and gears (and the ``units`` label) must
+match :data:`NAME_PATTERN`: a letter (any script: ``O2``, ``кривошип``,
+``曲柄``) or ``_`` first, then letters, digits, ``_``, ``-`` or ``.``, at most
+:data:`MAX_NAME` characters.  A name may not start with a digit, so that it
+never reads as a number in a table, and holds no comma, quote, ``=``, space or
+control character, so that it is safe in a CSV header, a ``NAME=VALUE``
+flag, a JSON key and a figure label.  Two elements whose result columns
+(``{link}_deg``, ``{point}_x_{units}``, ``{slider}_s_{units}``,
+``in_{input}_deg``...) would share a name are refused, naming both.
+
+Caps (a file beyond any real mechanism is refused naming the cap, before it
+can make the analysis hang): file size :data:`MAX_MODEL_BYTES`, nesting depth
+:data:`MAX_DEPTH`, :data:`MAX_LINKS` links, :data:`MAX_POINTS` points,
+:data:`MAX_ELEMENTS` sliders, gears, meshes or inputs each, teeth at most
+:data:`MAX_TEETH`, coordinates at most :data:`MAX_COORDINATE` in size, and
+no link shorter than ``1 /`` :data:`MAX_SCALE_RATIO` of the model's size.
 
 ``[lengths]`` (optional) gives exact link lengths for a rough sketch, read by
 :func:`gearlever.mechanism.assemble.assemble`: ``crank = 10.0`` is the
@@ -38,6 +56,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -66,6 +85,35 @@ _TOP = ("mechanism", "points", "links", "sliders", "gears", "meshes", "inputs")
 _KEPT_TABLES = ("masses", "loads", "lengths")
 _MECH_KEYS = ("name", "units", "module")
 _KEPT_MECH_KEYS = ("gravity", "pressure_angle", "mesh_efficiency")
+
+#: Names of points, links, sliders and gears: a letter of any script or ``_``
+#: first, then letters, digits, ``_``, ``-``, ``.`` (Python's Unicode ``\w``).
+NAME_PATTERN = re.compile(r"[^\W\d]+[\w.\-]*")
+#: Longest name (characters).
+MAX_NAME = 64
+#: Largest model file (bytes): real models are a few kB; 4 MiB parses in about a second.
+MAX_MODEL_BYTES = 4 * 2**20
+#: Deepest nesting of arrays and tables (a model needs 3: ``[gears] g = { ... }``).
+MAX_DEPTH = 16
+#: Most links: the structure analysis is a dense rank decision of a
+#: ``2 P5 + P4`` by ``3 n`` Jacobian (cubic in n).  Measured on a loaded 2-core
+#: machine: a 1000-link chain 1.8 s (a 3000-link chain took 73 s and 0.9 GB);
+#: the worst case, 1000 parallel levers on one bar (997 redundant constraints,
+#: 3996 x 3000), 74 s.
+MAX_LINKS = 1000
+#: Most points.
+MAX_POINTS = 5000
+#: Most sliders, gears, meshes, inputs (each).
+MAX_ELEMENTS = 1000
+#: Most teeth of a gear.
+MAX_TEETH = 100_000
+#: Largest coordinate size (model units): beyond it squared distances lose the
+#: precision the rank decision needs next to lengths of order 1.
+MAX_COORDINATE = 1e12
+#: Largest ratio of the model's size to a link's length (its first two points):
+#: the structure's rank decisions are relative (1e-9); a crank of 10 in a model
+#: spanning 1e11 made a one-dof four-bar read as three dof.
+MAX_SCALE_RATIO = 1e6
 
 
 @dataclass(frozen=True)
@@ -244,17 +292,72 @@ def _is_num(v) -> bool:
     return isinstance(v, numbers.Real) and not isinstance(v, bool)
 
 
+def _short(v) -> str:
+    """``repr(v)``, cut to 60 characters (a 400-digit integer is not echoed whole)."""
+    text = repr(v)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def _num(where: str, v) -> float:
     if not _is_num(v):
-        raise GearleverError(f"{where} must be a number, got {v!r}")
-    if not math.isfinite(float(v)):
-        raise GearleverError(f"{where} must be a finite number, got {v!r}")
-    return float(v)
+        raise GearleverError(f"{where} must be a number, got {_short(v)}")
+    try:
+        f = float(v)
+    except OverflowError:
+        f = math.inf
+    if not math.isfinite(f):
+        raise GearleverError(f"{where} must be a finite number, got {_short(v)}")
+    return f
+
+
+def _name(where: str, v) -> str:
+    """``v`` if it is a safe element name (:data:`NAME_PATTERN`), else refuse naming ``where``."""
+    if not isinstance(v, str):
+        raise GearleverError(f"{where}: a name must be a string, got {_short(v)}")
+    if len(v) > MAX_NAME or NAME_PATTERN.fullmatch(v) is None:
+        raise GearleverError(
+            f"{where}: name {_short(v)} must start with a letter or _ and hold only letters, digits, _ - . "
+            f"(at most {MAX_NAME} characters; no spaces, commas, quotes, = or control characters)"
+        )
+    return v
+
+
+def _count(where: str, n: int, cap: int) -> None:
+    if n > cap:
+        raise GearleverError(f"{where}: {n} entries, more than the cap of {cap}")
+
+
+def depth(obj, cap: int = MAX_DEPTH) -> int:
+    """Nesting depth of lists and dicts in ``obj`` (1 for a flat dict), refusing beyond ``cap``.
+
+    Iterative (no recursion), so that any structure can be measured.
+
+    >>> depth({"a": [1, {"b": [2]}]})
+    4
+    """
+    deepest = 0
+    stack = [(obj, 1)]
+    while stack:
+        o, d = stack.pop()
+        if isinstance(o, (dict, list, tuple)):
+            if d > cap:
+                raise GearleverError(f"nested deeper than the cap of {cap} levels of arrays and tables")
+            deepest = max(deepest, d)
+            stack.extend((v, d + 1) for v in (o.values() if isinstance(o, dict) else o))
+    return deepest
 
 
 def _str(where: str, v) -> str:
     if not isinstance(v, str) or not v:
-        raise GearleverError(f"{where} must be a non-empty string, got {v!r}")
+        raise GearleverError(f"{where} must be a non-empty string, got {_short(v)}")
+    return v
+
+
+def _label(where: str, v) -> str:
+    """A free-text label (mechanism name): one line, no control characters, at most 200 characters."""
+    v = _str(where, v)
+    if len(v) > 200 or any(ord(c) < 32 or 127 <= ord(c) < 160 for c in v):
+        raise GearleverError(f"{where} must be one line of at most 200 characters without control characters")
     return v
 
 
@@ -262,6 +365,8 @@ def _table(where: str, v, allowed, required=()) -> dict:
     if not isinstance(v, dict):
         raise GearleverError(f"{where} must be a table, got {type(v).__name__}")
     for k in v:
+        if not isinstance(k, str):
+            raise GearleverError(f"{where}: keys must be strings, got {_short(k)}")
         if k not in allowed:
             raise GearleverError(f"{where}: unknown key {k!r} (allowed: {', '.join(allowed)})")
     for k in required:
@@ -280,8 +385,15 @@ def _array_of_tables(where: str, v) -> list:
 
 def _vec2(where: str, v) -> tuple:
     if not isinstance(v, (list, tuple)) or len(v) != 2:
-        raise GearleverError(f"{where} must be a pair of numbers [x, y], got {v!r}")
+        raise GearleverError(f"{where} must be a pair of numbers [x, y], got {_short(v)}")
     return (_num(f"{where}[0]", v[0]), _num(f"{where}[1]", v[1]))
+
+
+def _coords(where: str, v) -> tuple:
+    x, y = _vec2(where, v)
+    if max(abs(x), abs(y)) > MAX_COORDINATE:
+        raise GearleverError(f"{where}: coordinates must be at most {MAX_COORDINATE:g} in size, got {_short(v)}")
+    return (x, y)
 
 
 # --------------------------------------------------------------------------- loading
@@ -318,7 +430,7 @@ def load_model(path) -> MechanismModel:
     ('crank',)
     """
     p = Path(path)
-    text = read_text_capped(p, "model file")
+    text = read_text_capped(p, "model file", MAX_MODEL_BYTES)
     raw = text.encode("utf-8")
     try:
         data = tomllib.loads(text)
@@ -327,6 +439,9 @@ def load_model(path) -> MechanismModel:
         if "line" not in msg:
             msg += f" (line {raw.count(NEWLINE) + 1})"
         raise GearleverError(f"{p}: TOML syntax error: {msg}") from None
+    except RecursionError:
+        # tomllib parses nested arrays and inline tables recursively
+        raise GearleverError(f"{p}: nested deeper than the cap of {MAX_DEPTH} levels of arrays and tables") from None
     try:
         return model_from_dict(data)
     except GearleverError as exc:
@@ -372,14 +487,17 @@ def model_from_dict(d) -> MechanismModel:
     """
     if not isinstance(d, dict):
         raise GearleverError(f"model must be a table (dict), got {type(d).__name__}")
+    depth(d)
     for k in d:
+        if not isinstance(k, str):
+            raise GearleverError(f"table names must be strings, got {_short(k)}")
         if k not in _TOP and k not in _KEPT_TABLES:
             raise GearleverError(f"unknown table [{k}] (allowed: {', '.join(_TOP + _KEPT_TABLES)})")
     extra = {k: d[k] for k in _KEPT_TABLES if k in d}
 
     mech = _table("[mechanism]", d.get("mechanism", {}), _MECH_KEYS + _KEPT_MECH_KEYS)
-    name = _str("mechanism.name", mech["name"]) if "name" in mech else "mechanism"
-    units = _str("mechanism.units", mech["units"]) if "units" in mech else ""
+    name = _label("mechanism.name", mech["name"]) if "name" in mech else "mechanism"
+    units = _name("mechanism.units", mech["units"]) if "units" in mech else ""
     module = None
     if "module" in mech:
         module = _num("mechanism.module", mech["module"])
@@ -395,7 +513,8 @@ def model_from_dict(d) -> MechanismModel:
     pts = d["points"]
     if not isinstance(pts, dict) or not pts:
         raise GearleverError("[points] must be a non-empty table of NAME = [x, y]")
-    points = {str(k): _vec2(f"points.{k}", v) for k, v in pts.items()}
+    _count("[points]", len(pts), MAX_POINTS)
+    points = {_name("[points]", k): _coords(f"points.{k}", v) for k, v in pts.items()}
 
     # links
     if "links" not in d:
@@ -403,38 +522,50 @@ def model_from_dict(d) -> MechanismModel:
     lk = d["links"]
     if not isinstance(lk, dict) or not lk:
         raise GearleverError("[links] must be a non-empty table of NAME = [points]")
+    if len(lk) - (GROUND in lk) > MAX_LINKS:
+        raise GearleverError(f"[links]: {len(lk) - (GROUND in lk)} moving links, more than the cap of {MAX_LINKS}")
+    for k in lk:
+        _name("[links]", k)
     if GROUND not in lk:
         raise GearleverError('[links]: missing the frame link "ground"')
     links = {}
     for lname, plist in lk.items():
         where = f"links.{lname}"
         if not isinstance(plist, list):
-            raise GearleverError(f"{where} must be a list of point names, got {plist!r}")
+            raise GearleverError(f"{where} must be a list of point names, got {_short(plist)}")
         if not plist:
             raise GearleverError(f"{where}: a link must carry at least one point")
         seen = []
         for p in plist:
             if not isinstance(p, str):
-                raise GearleverError(f"{where}: point names must be strings, got {p!r}")
+                raise GearleverError(f"{where}: point names must be strings, got {_short(p)}")
             if p not in points:
                 raise GearleverError(f"{where}: unknown point {p!r}")
             if p in seen:
                 raise GearleverError(f"{where}: point {p!r} listed twice")
             seen.append(p)
         links[lname] = _make_link(lname, tuple(seen), points)
+    _check_scale(points, links)
     moving = tuple(n for n in links if n != GROUND)
     if not moving:
         raise GearleverError("[links]: the mechanism needs at least one moving link besides ground")
 
+    carried: dict = {p: [] for p in points}
+    for n, link in links.items():
+        for p in link.points:
+            carried[p].append(n)
     joints = []
-    for p in points:
-        carriers = [n for n in links if p in links[n].local]
+    for p, carriers in carried.items():
+        if not carriers:
+            raise GearleverError(f"points.{p}: no link carries this point (list it in a link of [links], or remove it)")
         for other in carriers[1:]:
             joints.append((p, carriers[0], other))
 
     # sliders
     sliders = []
-    for i, t in enumerate(_array_of_tables("sliders", d.get("sliders", []))):
+    stab = _array_of_tables("sliders", d.get("sliders", []))
+    _count("[[sliders]]", len(stab), MAX_ELEMENTS)
+    for i, t in enumerate(stab):
         where = f"sliders[{i}]"
         _table(where, t, ("name", "link", "on", "point", "direction"), ("link", "on", "point", "direction"))
         link = _str(f"{where}.link", t["link"])
@@ -442,7 +573,7 @@ def model_from_dict(d) -> MechanismModel:
         for k, v in (("link", link), ("on", on)):
             if v not in links:
                 raise GearleverError(f"{where}.{k}: unknown link {v!r}")
-        sname = _str(f"{where}.name", t["name"]) if "name" in t else link
+        sname = _name(f"{where}.name", t["name"]) if "name" in t else link
         where = f"sliders[{i}] ({sname})"
         if on == link:
             raise GearleverError(f"{where}: the guide must be on another link than the sliding link {link!r}")
@@ -465,8 +596,10 @@ def model_from_dict(d) -> MechanismModel:
     gtab = d.get("gears", {})
     if not isinstance(gtab, dict):
         raise GearleverError("[gears] must be a table of NAME = { link, centre, teeth }")
+    _count("[gears]", len(gtab), MAX_ELEMENTS)
     gears = {}
     for gname, t in gtab.items():
+        _name("[gears]", gname)
         where = f"gears.{gname}"
         _table(where, t, ("link", "centre", "teeth", "internal"), ("link", "centre", "teeth"))
         link = _str(f"{where}.link", t["link"])
@@ -478,8 +611,8 @@ def model_from_dict(d) -> MechanismModel:
         if centre not in links[link].local:
             raise GearleverError(f"{where}.centre: point {centre!r} is not on the gear's link {link!r}")
         z = t["teeth"]
-        if isinstance(z, bool) or not isinstance(z, int) or z < 1:
-            raise GearleverError(f"{where}.teeth must be a positive integer, got {z!r}")
+        if isinstance(z, bool) or not isinstance(z, int) or z < 1 or z > MAX_TEETH:
+            raise GearleverError(f"{where}.teeth must be a positive integer at most {MAX_TEETH}, got {_short(z)}")
         internal = t.get("internal", False)
         if not isinstance(internal, bool):
             raise GearleverError(f"{where}.internal must be true or false, got {internal!r}")
@@ -487,7 +620,9 @@ def model_from_dict(d) -> MechanismModel:
 
     # meshes
     meshes = []
-    for i, t in enumerate(_array_of_tables("meshes", d.get("meshes", []))):
+    mtab = _array_of_tables("meshes", d.get("meshes", []))
+    _count("[[meshes]]", len(mtab), MAX_ELEMENTS)
+    for i, t in enumerate(mtab):
         where = f"meshes[{i}]"
         _table(where, t, ("gears", "carrier", "efficiency"), ("gears",))
         pair = t["gears"]
@@ -537,7 +672,9 @@ def model_from_dict(d) -> MechanismModel:
 
     # inputs
     inputs = []
-    for i, t in enumerate(_array_of_tables("inputs", d.get("inputs", []))):
+    itab = _array_of_tables("inputs", d.get("inputs", []))
+    _count("[[inputs]]", len(itab), MAX_ELEMENTS)
+    for i, t in enumerate(itab):
         where = f"inputs[{i}]"
         _table(where, t, ("link", "relative_to", "slider"))
         if ("link" in t) == ("slider" in t):
@@ -573,7 +710,8 @@ def model_from_dict(d) -> MechanismModel:
     if "lengths" in d:
         parse_lengths(d["lengths"], links)
 
-    return MechanismModel(
+    _check_columns(points, links, sliders, inputs, units)
+    model = MechanismModel(
         name=name,
         units=units,
         module=module,
@@ -587,6 +725,72 @@ def model_from_dict(d) -> MechanismModel:
         inputs=tuple(inputs),
         extra=extra,
     )
+    from gearlever.mechanism.loads import validate_extra  # loads imports this module
+
+    validate_extra(model)
+    return model
+
+
+def _check_scale(points, links) -> None:
+    """Refuse a link whose length (first two points) is below ``1 / MAX_SCALE_RATIO`` of the model's size."""
+    xs = [p[0] for p in points.values()]
+    ys = [p[1] for p in points.values()]
+    cx, cy = sum(xs) / len(xs), sum(ys) / len(ys)
+    size = max(math.hypot(x - cx, y - cy) for x, y in zip(xs, ys))
+    for name, link in links.items():
+        if len(link.points) >= 2:
+            length = math.dist(points[link.points[0]], points[link.points[1]])
+            if length * MAX_SCALE_RATIO < size:
+                raise GearleverError(
+                    f"links.{name}: its length {length:.6g} is less than 1/{MAX_SCALE_RATIO:g} of the model's size "
+                    f"{size:.6g}; the structure analysis cannot resolve it (draw the model to one scale)"
+                )
+
+
+def _check_columns(points, links, sliders, inputs, units) -> None:
+    """Refuse two elements whose result columns would share a name, naming both.
+
+    The names mirror :meth:`gearlever.mechanism.solve.MechanismResult.columns`
+    (angles in rad and in deg; rates named as velocities and as analogues per
+    each input), plus the ``closed`` and ``reason`` columns of the command line.
+    """
+    u = units or "len"
+    owner: dict = {}
+
+    def add(col, who):
+        if col in owner and owner[col] != who:
+            raise GearleverError(f"{who}: its result column {col!r} is also a column of {owner[col]}; rename one")
+        owner[col] = who
+
+    names = []
+    for spec in inputs:
+        if spec.kind == "slider":
+            names.append(spec.name)
+        else:
+            names.append(spec.name if spec.relative_to is None else f"{spec.name}_rel_{spec.relative_to}")
+    rates = [("rad_s", "rad_s2", f"{u}_s", f"{u}_s2")]
+    for per in names + ["unit_rates"]:
+        rates.append((f"per_{per}", f"per_{per}_sq", f"{u}_per_{per}", f"{u}_per_{per}_sq"))
+    for r1, r2, l1, l2 in rates:
+        for i, (spec, n) in enumerate(zip(inputs, names)):
+            slider = spec.kind == "slider"
+            for ang in ("rad", "deg"):
+                add(f"input_{n}_{u if slider else ang}", f"inputs[{i}]")
+            add(f"qdot_{n}_{l1 if slider else r1}", f"inputs[{i}]")
+            add(f"qddot_{n}_{l2 if slider else r2}", f"inputs[{i}]")
+        for k in links:
+            if k != GROUND:
+                for col in (f"{k}_angle_rad", f"{k}_angle_deg", f"omega_{k}_{r1}", f"alpha_{k}_{r2}"):
+                    add(col, f"links.{k}")
+        for sl in sliders:
+            for col in (f"{sl.name}_s_{u}", f"v_{sl.name}_{l1}", f"a_{sl.name}_{l2}"):
+                add(col, f"sliders ({sl.name})")
+        for p in points:
+            for col in (f"{p}_x_{u}", f"{p}_y_{u}", f"v_{p}_x_{l1}", f"v_{p}_y_{l1}", f"a_{p}_x_{l2}", f"a_{p}_y_{l2}"):
+                add(col, f"points.{p}")
+    for col in ("closed", "reason"):
+        if col in owner:
+            raise GearleverError(f"{owner[col]}: its result column {col!r} is a reserved column name; rename it")
 
 
 def _make_link(name: str, pts: tuple, points: dict) -> Link:

@@ -1003,7 +1003,7 @@ class MechanismResult(Result):
                 out[k] = np.full(arr.shape[0], ground_value(link))
             else:
                 out[k] = arr[:, self.system.idx[k]]
-        return out
+        return _NamedDict(out, "link")
 
     @cached_property
     def angle(self) -> dict:
@@ -1051,7 +1051,7 @@ class MechanismResult(Result):
             X, Y = arrs[which]
             return np.stack([X[names.index(p)], Y[names.index(p)]], axis=1)
 
-        return _LazyDict([p for p in names if not p.startswith("\0")], compute)
+        return _LazyDict([p for p in names if not p.startswith("\0")], compute, "point")
 
     @cached_property
     def point(self) -> dict:
@@ -1070,7 +1070,7 @@ class MechanismResult(Result):
 
     def _sliders(self, arr):
         n = self.system.n
-        return {s.name: arr[:, n + j] for j, s in enumerate(self.model.sliders)}
+        return _NamedDict({s.name: arr[:, n + j] for j, s in enumerate(self.model.sliders)}, "slider")
 
     @cached_property
     def displacement(self) -> dict:
@@ -1199,20 +1199,52 @@ class MechanismResult(Result):
         return cols
 
 
+class UnknownName(GearleverError, KeyError):
+    """A result looked up by a name the model does not have (a GearleverError and a KeyError)."""
+
+    def __str__(self) -> str:  # KeyError would quote the whole message
+        return str(self.args[0]) if self.args else ""
+
+
+def _unknown(key, kind: str, names) -> UnknownName:
+    import difflib
+
+    names = [str(n) for n in names]
+    close = difflib.get_close_matches(str(key), names, n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    shown = ", ".join(names[:50]) + (", ..." if len(names) > 50 else "")
+    return UnknownName(f"unknown {kind} {key!r}{hint}; the {kind}s are: {shown}")
+
+
+class _NamedDict(dict):
+    """A dict of results by element name; a missing name raises :class:`UnknownName` listing the valid ones."""
+
+    def __init__(self, data, kind: str):
+        super().__init__(data)
+        self._kind = kind
+
+    def __missing__(self, key):
+        raise _unknown(key, self._kind, self)
+
+
 class _LazyDict(Mapping):
     """A read-only mapping whose values are computed on first access."""
 
-    def __init__(self, keys, compute):
+    def __init__(self, keys, compute, kind: str = "name"):
         self._keys = list(keys)
         self._compute = compute
         self._cache = {}
+        self._kind = kind
 
     def __getitem__(self, key):
         if key not in self._cache:
             if key not in self._keys:
-                raise KeyError(key)
+                raise _unknown(key, self._kind, self._keys)
             self._cache[key] = self._compute(key)
         return self._cache[key]
+
+    def __contains__(self, key):
+        return key in self._keys
 
     def __iter__(self):
         return iter(self._keys)

@@ -26,7 +26,7 @@ _PATH_POINTS = 360
 _START_ANGLES = 360
 
 
-def fourbar_mechanism(ground, crank, coupler, rocker, branch="open", units: str = "length units"):
+def fourbar_mechanism(ground, crank, coupler, rocker, branch="open", units: str = ""):
     """The four-bar as a :class:`~gearlever.mechanism.Mechanism`, ground along x, crank as input.
 
     The sketch is the first crank angle (0, 1, 2, ... degrees) where the

@@ -2,11 +2,15 @@
 
 The arrows come from :mod:`gearlever.loops.plan`: each side of the loop
 equation is drawn head to tail from the pole ``p``; both sides end at the same
-point, which is the graphical method's check that the loop is closed.
+point, which is the graphical method's check that the loop is closed.  The
+values drawn are rounded to about 1e-9 of the plan's size (:data:`PLOT_BITS`),
+so that a figure is byte-identical on machines whose arithmetic differs in the
+last bit.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -41,6 +45,31 @@ def _label(prefix, term, labels):
     return f"${prefix}_{{{term.vector}}}" + (f"^{{{sup}}}$" if sup else "$")
 
 
+#: Plotted values are rounded to ``2**-PLOT_BITS`` of the plan's size (about 1e-9):
+#: last-bit differences between CPUs (fused multiply-add, libm) then vanish and the
+#: figure's bytes are the same on every machine.
+PLOT_BITS = 30
+
+
+def _rounded(terms) -> list:
+    """``terms`` with values rounded to a power-of-two grid ``2**-PLOT_BITS`` of the largest one.
+
+    A power of two keeps the rounding exact; the grid is chosen from the largest
+    value's binary exponent, which last-bit differences do not change (except
+    at an exact power of two, where both sides then round alike anyway).
+    """
+    terms = list(terms)
+    big = max([abs(t.value) for t in terms] + [0.0])
+    if not big > 0 or not math.isfinite(big):
+        return terms
+    grid = 2.0 ** (math.frexp(big)[1] - PLOT_BITS)
+
+    def r(x: float) -> float:
+        return round(x / grid) * grid + 0.0
+
+    return [dataclasses.replace(t, value=complex(r(t.value.real), r(t.value.imag))) for t in terms]
+
+
 def draw_plan(terms, ax=None, *, prefix="a", unit="", labels=None, title=None):
     """Draw plan arrows (from :func:`~gearlever.loops.plan.velocity_plan` or
     :func:`~gearlever.loops.plan.acceleration_plan`) head to tail from the pole.
@@ -62,6 +91,7 @@ def draw_plan(terms, ax=None, *, prefix="a", unit="", labels=None, title=None):
     matplotlib Axes
     """
     ax = axes(ax, figsize=(5.5, 5.0))
+    terms = _rounded(terms)
     scale = max([abs(t.value) for t in terms] + [1e-300])
     pts = [0j]
     handles = []
