@@ -221,12 +221,7 @@ CLI_CASES = {
 }
 
 #: Cases that still fail in files of other helpers (strict: a fix there flips them).
-KNOWN = {
-    "forces-rpm-huge": (
-        "mechanism/dynamics.py and cli/_mechanism_dynamics.py (helper dyn) do not yet check the speed: "
-        "call gearlever._validate.speed('qdot', qdot) in inverse_dynamics (main maps qdot to --rpm)"
-    ),
-}
+KNOWN: dict = {}
 CLI_CASES["forces-rpm-huge"] = (
     ["mechanism", "forces", str(EXAMPLES / "engine.toml"), "--rpm", "1e200", "--points", "3"],
     ["--rpm"],

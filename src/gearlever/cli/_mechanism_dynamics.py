@@ -129,6 +129,15 @@ def _speeds(mech, args, required: bool):
     missing = [n for n in lin if n not in spd]
     if missing:
         raise GearleverError(f"--speed: give every slider input, NAME=VALUE once each (missing: {', '.join(missing)})")
+    from gearlever._validate import MAX_SPEED
+
+    for n, r in names:
+        v = rpm[n] * math.pi / 30.0 if r else spd[n]
+        if abs(v) > MAX_SPEED:
+            flag, cap = ("--rpm", f"{MAX_SPEED * 30.0 / math.pi:.3g} rev/min") if r else ("--speed", f"{MAX_SPEED:g}")
+            raise GearleverError(
+                f"{flag} {n}: must be at most {cap} in size (its square enters the forces), got {rpm[n] if r else v:g}"
+            )
     return np.array([rpm[n] * math.pi / 30.0 if r else spd[n] for n, r in names])
 
 

@@ -263,8 +263,10 @@ def _solve_equilibrium(A, Q, L, n3):
 
 def _rows_of(mech, q, qdot, qddot):
     """Input rows ``(N, W)`` and their rates broadcast to them (a scalar, ``(W,)``, ``(N,)`` or ``(N, W)``)."""
+    from gearlever._validate import finite_array, speed
+
     W = len(mech.model.inputs)
-    qa = np.asarray(q, dtype=float)
+    qa = finite_array("q", q)
     if qa.ndim == 0 or (qa.ndim == 1 and W == 1):
         qa = qa.reshape(-1, 1)
     elif qa.ndim == 1 and qa.shape[0] == W:
@@ -276,7 +278,7 @@ def _rows_of(mech, q, qdot, qddot):
     def rate(name, v, default):
         if v is None:
             return np.full((N, W), default)
-        a = np.asarray(v, dtype=float)
+        a = speed(name, v) if name == "qdot" else finite_array(name, v)
         if a.ndim == 0:
             return np.full((N, W), float(a))
         if a.ndim == 1 and a.shape[0] == W and (W > 1 or N == 1):
