@@ -24,7 +24,14 @@ DPI = 90
 
 
 def published_problems() -> dict:
-    """Problem data of the published function-generation examples (``synthesis_published.toml``)."""
+    """Problem data of the published function-generation examples (``synthesis_published.toml``).
+
+    Examples
+    --------
+    >>> p = published_problems()["su-lecture-12"]
+    >>> p["ground"], p["input_angle_deg"]
+    (4.5, [35.02, 67.5, 100.0])
+    """
     import tomllib
 
     from gearlever.data import read_text
@@ -32,7 +39,7 @@ def published_problems() -> dict:
     return tomllib.loads(read_text("synthesis_published.toml"))["function"]
 
 
-def published_quantities(result) -> dict:
+def _quantities(result) -> dict:
     """The quantities the published examples print, from a synthesis result.
 
     ``z1, z2, z3`` are the design unknowns of the lecture with the ground set to 1:
@@ -48,6 +55,19 @@ def published_checks():
     Each example is solved by :func:`~gearlever.synthesis.function.synthesize_function`
     from its printed angles (converted to radians; the data file states the angle
     convention) and ground length.
+
+    Notes
+    -----
+    Freudenstein's equation ``K1 cos(psi) - K2 cos(phi) + K3 = cos(phi - psi)``
+    (F. Freudenstein, "Approximate synthesis of four-bar linkages", Trans. ASME
+    77, 1955, pp. 853-861) through the three printed precision pairs; the
+    tolerances (conditioning of the printed angles) are in the data file.
+
+    Examples
+    --------
+    >>> df = published_checks()
+    >>> bool(df.within.all()), list(df.quantity)
+    (True, ['z1', 'z2', 'z3', 'crank', 'coupler', 'rocker'])
     """
     import numpy as np
 
@@ -61,7 +81,7 @@ def published_checks():
         r = synthesize_function(
             np.radians(p["input_angle_deg"]), np.radians(p["output_angle_deg"]), kind=p["kind"], ground=p["ground"]
         )
-        computed[key] = published_quantities(r)
+        computed[key] = _quantities(r)
     rows = read_records("synthesis_published.csv")
     pub = [float(r["published"]) for r in rows]
     comp = [computed[r["example"]][r["quantity"]] for r in rows]
@@ -84,7 +104,7 @@ def published_checks():
     )
 
 
-def log10_generator():
+def _log10():
     """Targets and the synthesized four-bar of :data:`LOG10`, its structural error over the whole range."""
     import numpy as np
 
@@ -96,14 +116,14 @@ def log10_generator():
     return t, synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
 
 
-def poses_path() -> Path:
+def _poses_path() -> Path:
     """The shipped five poses, ``examples/motion_poses.csv`` (absent from an installed package)."""
     from gearlever.reproduce.mechanism import examples_dir
 
     return examples_dir() / "motion_poses.csv"
 
 
-def five_poses(path: Path):
+def _read_poses(path: Path):
     """Poses of a CSV ``x, y, angle_deg``: ``(points (N, 2), angles (N,) in radians)``."""
     import numpy as np
 
@@ -122,7 +142,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
 
     out = []
     # --- the log10 function generator
-    t, r = log10_generator()
+    t, r = _log10()
     fig = function_figure(r)
     ax = fig.axes[0]
     err = ax.twinx()
@@ -152,9 +172,9 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     )
 
     # --- five poses: Burmester points and the best four-bar
-    poses = poses_path()
+    poses = _poses_path()
     if poses.is_file():
-        pts, ang = five_poses(poses)
+        pts, ang = _read_poses(poses)
         res = synthesize_motion(pts, ang)
         best = res.best
         q0 = best.input_angle[0]
