@@ -39,6 +39,15 @@ def test_function_model_reproduces_reported_errors_under_mechanism_analyze(tmp_p
     assert r["grashof"] == "triple-rocker" and r["defect"] is None
 
 
+def test_function_structural_error_covers_the_whole_input_range(tmp_path, capsys):
+    # Chebyshev targets lie inside --input-range 45..105: the error at its ends (0.169 deg at x = 1) counts
+    rep = tmp_path / "r.json"
+    assert main(["synthesize", "function", *LOG, "--out", str(tmp_path / "m.toml"), "--report", str(rep)]) == 0
+    capsys.readouterr()
+    r = json.loads(rep.read_text())
+    assert r["structural_error_max_deg"] == pytest.approx(0.16864, abs=1e-5)
+
+
 def test_function_figure_and_slider_crank_pairs(tmp_path, capsys):
     a, b, e = 2.0, 5.0, 1.0
     phi = np.radians([10.0, 50.0, 90.0, 130.0])

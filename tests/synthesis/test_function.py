@@ -116,3 +116,20 @@ def test_slider_crank_branch_defect_flagged():
     s[1] = a * np.cos(phi[1]) - root[1]  # the slider behind the crank pin at target 2
     r = synthesize_function(phi, s, kind="slider-crank")
     assert "branch defect" in r.defect
+
+
+def test_input_range_extends_the_structural_error_to_the_ends_of_the_design_range():
+    # Chebyshev targets lie inside the range: its ends (x = 1 and x = 2) must be in the structural error
+    t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
+    inner = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    full = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    np.testing.assert_allclose(full.dense_input[[0, -1]], np.radians([45, 105]), rtol=1e-15)
+    np.testing.assert_allclose(inner.dense_input[[0, -1]], t.input_angle[[0, -1]], rtol=1e-15)
+    np.testing.assert_array_equal(full.lengths["coupler"], inner.lengths["coupler"])
+    # the engine's output at the range ends, against the formula: the worst error is at x = 1
+    end_err = full.dense_generated[[0, -1]] - t.desired(np.radians([45, 105]))
+    assert full.structural_error_max == pytest.approx(np.abs(full.dense_generated - full.dense_desired).max())
+    assert full.structural_error_max == pytest.approx(abs(end_err[0]), rel=1e-12)
+    assert full.structural_error_max > 1.3 * inner.structural_error_max
+    with pytest.raises(GearleverError, match="input_range"):
+        synthesize_function(t.input_angle, t.output, input_range=(1.0, 1.0))

@@ -175,7 +175,14 @@ def _function(args) -> int:
                 args.expr, args.x_range, np.radians(args.input_range), orange, args.points, args.spacing
             )
             phi, out, desired = targets.input_angle, targets.output, targets.desired
-        res = synthesize_function(phi, out, kind=args.kind, ground=args.ground, desired=desired)
+        res = synthesize_function(
+            phi,
+            out,
+            kind=args.kind,
+            ground=args.ground,
+            desired=desired,
+            input_range=None if targets is None else targets.input_range,
+        )
     except GearleverError as exc:
         raise flagged(exc, _FLAGS) from None
     if res.defect:

@@ -305,6 +305,7 @@ def synthesize_function(
     kind: str = "fourbar",
     ground: float = 1.0,
     desired: Callable | None = None,
+    input_range=None,
     dense_points: int = DENSE_POINTS,
     name: str = "",
 ) -> FunctionSynthesis:
@@ -326,6 +327,12 @@ def synthesize_function(
         Wanted output as a function of crank angle (radians) for the
         structural error over the range; default: straight lines between
         the targets in order of input angle.
+    input_range : pair of float, optional
+        Crank angles (radians) of the ends of the design range: the
+        structural error, the dead-point check and the transmission angle
+        then cover it (with the span of the targets), e.g.
+        :attr:`FunctionTargets.input_range`, whose Chebyshev-spaced targets
+        lie inside it.  Default: the span of the targets.
     dense_points : int
         Samples of the input range for the structural error.
     name : str
@@ -366,6 +373,9 @@ def synthesize_function(
     (True, 'triple-rocker', '')
     >>> round(float(np.degrees(r.structural_error_max)), 3)
     0.127
+    >>> r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    >>> round(float(np.degrees(r.structural_error_max)), 3)  # the ends of the range 45..105 deg too
+    0.169
     """
     phi, out = _targets(input_angle, output)
     if kind not in KINDS:
@@ -374,6 +384,9 @@ def synthesize_function(
         raise GearleverError(f"dense_points must be an integer >= 2, got {dense_points!r}")
     dense_points = min(int(dense_points), 100_000)
     lo, hi = float(phi.min()), float(phi.max())
+    if input_range is not None:
+        ra, rb = _range("input_range", input_range)
+        lo, hi = min(lo, ra, rb), max(hi, ra, rb)
     dense = np.linspace(lo, hi, dense_points)
     if desired is None:
         order = np.argsort(phi)
