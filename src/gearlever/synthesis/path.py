@@ -355,26 +355,62 @@ class FourBarPathProblem:
         rel = self.angles - self.angles[0]
         return Z[..., self._col["phi1"], None] + rel
 
+    # ---------------------------------------------------------------- kinematics hooks
+    def mode_of(self, Z):
+        """Discrete part of candidates ``Z`` (the branch sign, +1 open, -1 crossed), (n,)."""
+        return np.where(np.asarray(Z)[..., self._col["branch"]] >= 0, 1.0, -1.0)
+
+    def feasible(self, Z):
+        """Mask (n,) of candidates that are buildable (the crank fits: ``r2max > lo``)."""
+        return self.params(Z)[1]
+
+    def _pts(self, Z, phi, mode, jac=False):
+        """Coupler points (n, m, 2) of candidates ``Z`` (n, d) at crank angles ``phi`` (n, m).
+
+        With ``jac`` also ``dP/dv`` (n, m, 2) for every search name but ``branch``
+        (``phi1`` and the angles as ``"phi"``).
+        """
+        p, _ = self.params(Z)
+        args = [p[k][:, None] for k in ("x0", "y0", "th0", "r1", "r2", "r3", "r4", "cx", "cy")]
+        sig = np.asarray(mode, dtype=float).reshape(-1, 1)
+        if not jac:
+            return _coupler(*args, phi, sig)
+        P, dP = _coupler(*args, phi, sig, jac=True)
+        _, _, droom, span = self._crank(p["r1"], p["r3"], p["r4"], Z[:, self._col["u2"]], grad=True)
+        out = {"phi": dP["phi"]}
+        for n in self.names:
+            if n in ("x0", "y0", "cx", "cy"):
+                out[n] = dP[n]
+            elif n == "theta0":
+                out[n] = dP["th0"]
+            elif n in ("r1", "r3", "r4"):
+                j = ("r1", "r3", "r4").index(n)
+                out[n] = dP[n] + dP["r2"] * droom[:, None, j, None]
+            elif n == "u2":
+                out[n] = dP["r2"] * span[:, None, None]
+        return P, out
+
+    def _grid(self):
+        return np.linspace(0.0, 2 * math.pi, CURVE_SAMPLES, endpoint=False)
+
     # ---------------------------------------------------------------- objective
     def objective(self, Z):
         """Sum of squared target distances of candidates ``Z`` (n, d); ``inf`` where infeasible."""
         Z = np.atleast_2d(np.asarray(Z, dtype=float))
         self.evaluations += Z.shape[0]
-        p, ok = self.params(Z)
+        ok = self.feasible(Z)
         out = np.full(Z.shape[0], np.inf)
         if not ok.any():
             return out
-        q = {k: v[ok] for k, v in p.items()}
-        args = [q[k][:, None] for k in ("x0", "y0", "th0", "r1", "r2", "r3", "r4", "cx", "cy")]
-        sig = q["sigma"][:, None]
+        Zk = Z[ok]
+        mode = self.mode_of(Zk)
         if self.timing == "none":
-            grid = np.linspace(0.0, 2 * math.pi, CURVE_SAMPLES, endpoint=False)
-            P = _coupler(*args, grid[None, :], sig)  # (n, M, 2)
+            P = self._pts(Zk, np.broadcast_to(self._grid(), (Zk.shape[0], CURVE_SAMPLES)), mode)
             diff = self.targets[None, :, None, :] - P[:, None, :, :]
             D = np.einsum("nimk,nimk->nim", diff, diff)
             cost, _ = _monotone_match(D)
         else:
-            P = _coupler(*args, self.phis(Z[ok]), sig)
+            P = self._pts(Zk, self.phis(Zk), mode)
             diff = P - self.targets
             cost = np.einsum("nik,nik->n", diff, diff)
         out[ok] = cost
@@ -390,10 +426,8 @@ class FourBarPathProblem:
         z = np.asarray(z, dtype=float)
         if self.timing != "none":
             return np.asarray(self.phis(z[None, :])[0], dtype=float)
-        p, _ = self.params(z[None, :])
-        args = [p[k][:, None] for k in ("x0", "y0", "th0", "r1", "r2", "r3", "r4", "cx", "cy")]
-        grid = np.linspace(0.0, 2 * math.pi, CURVE_SAMPLES, endpoint=False)
-        P = _coupler(*args, grid[None, :], p["sigma"][:, None])
+        grid = self._grid()
+        P = self._pts(z[None, :], grid[None, :], self.mode_of(z[None, :]))
         diff = self.targets[None, :, None, :] - P[:, None, :, :]
         D = np.einsum("nimk,nimk->nim", diff, diff)
         _, cut = _monotone_match(D)
@@ -410,26 +444,24 @@ class FourBarPathProblem:
             w = np.concatenate([w, self.start_angles(z)])
         return w
 
-    def _split(self, w):
+    def _split(self, w, mode=1.0):
         nb = self.d - 1
-        Z = np.concatenate([w[:nb], [1.0]])  # branch placeholder (sigma is passed separately)
+        Z = np.concatenate([w[:nb], [mode]])  # branch column: the discrete mode, kept out of the polish
         if self.timing == "none":
             return Z, w[nb:]
         return Z, np.asarray(self.phis(Z[None, :])[0], dtype=float)
 
-    def points(self, w, sigma):
-        """Coupler point (N, 2) at the targets' crank angles for polish vector ``w`` and branch ``sigma``."""
-        Z, phi = self._split(np.asarray(w, dtype=float))
-        p, _ = self.params(Z[None, :])
-        args = [p[k][0] for k in ("x0", "y0", "th0", "r1", "r2", "r3", "r4", "cx", "cy")]
-        return _coupler(*args, phi, sigma)
+    def points(self, w, mode):
+        """Coupler point (N, 2) at the targets' crank angles for polish vector ``w`` and discrete ``mode``."""
+        Z, phi = self._split(np.asarray(w, dtype=float), mode)
+        return self._pts(Z[None, :], phi[None, :], np.array([mode]))[0]
 
-    def residual(self, w, sigma):
+    def residual(self, w, mode):
         """Residual ``(P_i - T_i)`` flattened (2N,) of polish vector ``w``."""
         self.evaluations += 1
-        return (self.points(w, sigma) - self.targets).reshape(-1)
+        return (self.points(w, mode) - self.targets).reshape(-1)
 
-    def jacobian(self, w, sigma):
+    def jacobian(self, w, mode):
         """Analytic Jacobian (2N, len(w)) of :meth:`residual` (chain rule through ``r2(r1, r3, r4, u2)``).
 
         Notes
@@ -441,37 +473,13 @@ class FourBarPathProblem:
         and ``dP = dA + J (P - A) d theta3 + e3 d cx + e3_perp d cy`` give every
         column.
         """
-        w = np.asarray(w, dtype=float)
-        Z, phi = self._split(w)
-        p, _ = self.params(Z[None, :])
-        args = [p[k][0] for k in ("x0", "y0", "th0", "r1", "r2", "r3", "r4", "cx", "cy")]
-        _, dP = _coupler(*args, phi, sigma, jac=True)
-        _, _, droom, span = self._crank(
-            np.atleast_1d(p["r1"]), np.atleast_1d(p["r3"]), np.atleast_1d(p["r4"]), Z[None, self._col["u2"]], grad=True
-        )
-        droom = droom[0]
-        cols = []
-        for n in self.names[:-1]:
-            if n == "x0":
-                c = dP["x0"]
-            elif n == "y0":
-                c = dP["y0"]
-            elif n == "theta0":
-                c = dP["th0"]
-            elif n in ("r1", "r3", "r4"):
-                j = ("r1", "r3", "r4").index(n)
-                c = dP[n] + dP["r2"] * droom[j]
-            elif n == "u2":
-                c = dP["r2"] * float(span[0])
-            elif n in ("cx", "cy"):
-                c = dP[n]
-            elif n == "phi1":
-                c = dP["phi"]
-            cols.append(np.broadcast_to(c, (self.N, 2)).reshape(-1))
+        Z, phi = self._split(np.asarray(w, dtype=float), mode)
+        _, dP = self._pts(Z[None, :], phi[None, :], np.array([mode]), jac=True)
+        cols = [(dP["phi"] if n == "phi1" else dP[n])[0].reshape(-1) for n in self.names[:-1]]
         J = np.stack(cols, axis=1)
         if self.timing == "none":
             Jphi = np.zeros((self.N, 2, self.N))
-            Jphi[np.arange(self.N), :, np.arange(self.N)] = dP["phi"]
+            Jphi[np.arange(self.N), :, np.arange(self.N)] = dP["phi"][0]
             J = np.concatenate([J, Jphi.reshape(2 * self.N, self.N)], axis=1)
         return J
 
@@ -492,15 +500,14 @@ class FourBarPathProblem:
         inc = np.mod(np.diff(phi), 2 * math.pi)
         return bool(inc.sum() < 2 * math.pi * (1 - 1e-12))
 
-    def feasible_w(self, w):
-        """The polish vector meets every constraint (bounds, Grashof room, order)."""
+    def feasible_w(self, w, mode=1.0):
+        """The polish vector meets every constraint (bounds, buildability, order)."""
         w = np.asarray(w, dtype=float)
         lo, hi = self.polish_bounds()
         if np.any(w < lo) or np.any(w > hi) or not np.all(np.isfinite(w)):
             return False
-        Z, _ = self._split(w)
-        _, ok = self.params(Z[None, :])
-        return bool(ok[0]) and self.in_order(w)
+        Z, _ = self._split(w, mode)
+        return bool(self.feasible(Z[None, :])[0]) and self.in_order(w)
 
     def polish(self, w, sigma):
         """Local least squares from ``w`` (analytic Jacobian, trust region in the box); returns ``(w, f)``."""
@@ -527,7 +534,7 @@ class FourBarPathProblem:
             f1 = float(np.sum(self.residual(w1, sigma) ** 2))
         except (ValueError, np.linalg.LinAlgError):
             return w0, f0
-        if f1 < f0 and self.feasible_w(w1):
+        if f1 < f0 and self.feasible_w(w1, sigma):
             return w1, f1
         return w0, f0
 
@@ -551,7 +558,7 @@ def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> 
         raise GearleverError(f"method must be 'de' or 'cma', got {method!r}")
     if z is None:
         return (math.inf, k, None, 1.0, pb.evaluations)
-    sigma = 1.0 if z[pb._col["branch"]] >= 0 else -1.0
+    sigma = float(pb.mode_of(z[None, :])[0])
     w = pb.to_w(z)
     w, fw = pb.polish(w, sigma)
     return (fw, k, w, sigma, pb.evaluations)
@@ -685,7 +692,7 @@ def _result(pb: FourBarPathProblem, w, sigma, evals, seed, starts, seconds) -> P
     lk = (p["r1"], p["r2"], p["r3"], p["r4"])
     gk = grashof(*lk).kind
     mu = transmission_angle(*lk, np.linspace(0.0, 2 * math.pi, 721))
-    feasible = bool(ok[0]) and pb.feasible_w(w) and gk == "crank-rocker"
+    feasible = bool(ok[0]) and pb.feasible_w(w, sigma) and gk == "crank-rocker"
     return PathSynthesis(
         kind="fourbar",
         targets=pb.targets.copy(),
