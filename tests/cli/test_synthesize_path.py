@@ -85,6 +85,21 @@ def test_analyze_of_the_written_model_reproduces_the_reported_errors(tmp_path, r
         assert math.isclose(float(np.hypot(*(P - t))), e, rel_tol=1e-6, abs_tol=1e-9)
 
 
+def test_geared_fivebar_writes_gears_and_a_mesh(tmp_path, run):
+    pts = tmp_path / "p.csv"
+    pts.write_text(POINTS)
+    out, rep = tmp_path / "m.toml", tmp_path / "r.json"
+    code, _, err = run(pts, "--out", out, "--report", rep, "--type", "geared-fivebar", "--budget", 8000)
+    assert code == 0, err
+    model = tomllib.loads(out.read_text())
+    assert set(model["gears"]) == {"g1", "g2"} and model["meshes"] == [{"gears": ["g1", "g2"]}]
+    r = json.loads(rep.read_text())
+    assert r["type"] == "geared-fivebar" and r["teeth"] == [
+        model["gears"]["g1"]["teeth"],
+        model["gears"]["g2"]["teeth"],
+    ]
+
+
 def test_same_seed_same_bytes_with_one_or_two_workers(tmp_path, run):
     pts = tmp_path / "p.csv"
     pts.write_text(POINTS)

@@ -17,9 +17,12 @@ link, inside the ranges, reaching the targets counter-clockwise in order on
 one assembly branch.  A constraint set that admits no such linkage (a pivot
 outside the coordinate range, an empty range, timing that is not
 counter-clockwise within one turn) is refused with exit 2 naming the flag or
-file element; nothing is written then.  Only the four-bar is implemented:
-``--type geared-fivebar`` and ``--type sixbar`` are refused (exit 2), ``auto``
-is the four-bar.
+file element; nothing is written then.  ``--type geared-fivebar`` synthesizes
+the geared five-bar of :mod:`gearlever.synthesis.fivebar` (a model with
+``[gears]`` and ``[[meshes]]``); ``auto`` tries the four-bar, then the geared
+five-bar when the four-bar does not reach the targets, and the report says
+which type was best (``type``, ``types_tried``).  ``--type sixbar`` is not
+implemented and is refused (exit 2).
 """
 
 from __future__ import annotations
@@ -159,8 +162,8 @@ def _run(args) -> int:
             check_output(path, flag)
     if args.figure is not None and not args.figure.lower().endswith(".png"):
         raise GearleverError(f"--figure must end with .png, got {args.figure!r}")
-    if args.kind in ("geared-fivebar", "sixbar"):
-        raise GearleverError(f"--type {args.kind}: not implemented; only the four-bar is (--type fourbar or auto)")
+    if args.kind == "sixbar":
+        raise GearleverError("--type sixbar: not implemented; use fourbar, geared-fivebar or auto")
     targets, angles = read_targets(args.points)
     timing = args.timing or ("relative" if angles is not None else "none")
     if timing != "none" and angles is None:
@@ -179,6 +182,7 @@ def _run(args) -> int:
         "targets": "POINTS",
         "scheduler": "--scheduler",
         "budget": "--budget",
+        "kind": "--type",
     }
     bar = StderrProgress("gearlever synthesize path")
     try:
@@ -190,6 +194,7 @@ def _run(args) -> int:
             ground_angle=None if args.ground_angle is None else math.radians(args.ground_angle),
             length_range=args.length_range,
             coord_range=args.coord_range,
+            kind=args.kind,
             seed=args.seed,
             budget=args.budget,
             workers=args.workers,
@@ -205,7 +210,7 @@ def _run(args) -> int:
     rep = res.report()
     if res.feasible:
         comment = (
-            f"Synthesized by gearlever synthesize path (four-bar, seed {args.seed}, budget {args.budget}); "
+            f"Synthesized by gearlever synthesize path ({res.kind}, seed {args.seed}, budget {args.budget}); "
             f"objective {res.objective:.6g}; input at the first target {math.degrees(res.input_angles[0]):.12g} deg"
         )
         emit(model_toml(res.model(), comment), args.out)
@@ -219,5 +224,5 @@ def _run(args) -> int:
         ax = path_synthesis_plot(res)
         save(ax.figure, args.figure)
     if not res.feasible:
-        raise GearleverError("no buildable four-bar meets the constraints: the model was not written")
+        raise GearleverError("no buildable linkage meets the constraints: the model was not written")
     return 0

@@ -89,19 +89,20 @@ STARTS = 8
 MAX_TARGETS = 1000
 
 TIMINGS = ("none", "relative", "absolute")
+#: Linkage types of :func:`synthesize_path`.
+KINDS = ("fourbar", "geared-fivebar", "auto")
+#: ``auto`` stops at the first type whose objective is below this fraction of the targets' size squared.
+AUTO_GOOD = 1e-12
 
 
-def _coupler(x0, y0, th0, r1, r2, r3, r4, cx, cy, phi, sigma, jac=False):
-    """Coupler point P (..., 2) of four-bars at crank angles ``phi`` from the ground line (broadcast).
+def _dyad(Ax, Ay, Dx, Dy, r3, r4, cx, cy, sigma, jac=False):
+    """Point ``P`` (..., 2) of the link A-C of an RR dyad closing ``A`` to ``A + D`` (links r3 at A, r4 at A + D).
 
-    With ``jac`` also the derivatives ``dP/dv`` for v in
-    ``x0, y0, th0, r1, r2, r3, r4, cx, cy, phi`` (a dict of (..., 2)).
+    ``P = A + cx e3 + cy e3_perp`` with ``e3`` the unit vector A->C on branch
+    ``sigma``.  With ``jac`` also a function ``d(dAx, dAy, dDx, dDy, dr3, dr4)``
+    giving ``dP`` (..., 2) for a change of A, D and the lengths (``cx, cy``
+    fixed), and ``e3``, ``e3_perp`` (the derivatives in ``cx``, ``cy``).
     """
-    al = th0 + phi
-    ca, sa = np.cos(al), np.sin(al)
-    c0, s0 = np.cos(th0), np.sin(th0)
-    Ax, Ay = x0 + r2 * ca, y0 + r2 * sa
-    Dx, Dy = r1 * c0 - r2 * ca, r1 * s0 - r2 * sa
     f2 = Dx * Dx + Dy * Dy
     f = np.sqrt(f2)
     cg = np.clip((r3 * r3 + f2 - r4 * r4) / (2.0 * r3 * f), -1.0, 1.0)
@@ -118,16 +119,34 @@ def _coupler(x0, y0, th0, r1, r2, r3, r4, cx, cy, phi, sigma, jac=False):
     cg_f = 1.0 / (2.0 * r3) - (r3 * r3 - r4 * r4) / (2.0 * r3 * f2)
     cg_r3 = 1.0 / (2.0 * f) - (f2 - r4 * r4) / (2.0 * r3 * r3 * f)
     cg_r4 = -r4 / (r3 * f)
-    zero = 0.0
 
-    def d(dAx, dAy, dDx, dDy, dr3=zero, dr4=zero):
+    def d(dAx, dAy, dDx, dDy, dr3=0.0, dr4=0.0):
         dpsi = (Dx * dDy - Dy * dDx) / f2
         df = (Dx * dDx + Dy * dDy) / f
         dcg = cg_f * df + cg_r3 * dr3 + cg_r4 * dr4
-        # at a toggle (sin(gamma) = 0, only at the Grashof limit) the derivative is taken as 0
+        # at a toggle (sin(gamma) = 0, only at the limit of closure) the derivative is taken as 0
         dth3 = dpsi - sigma * np.where(sga > 0, dcg / np.where(sga > 0, sga, 1.0), 0.0)
         return np.stack(np.broadcast_arrays(dAx + Qx * dth3, dAy + Qy * dth3), axis=-1)
 
+    e3 = np.stack(np.broadcast_arrays(c3, s3), axis=-1)
+    n3 = np.stack(np.broadcast_arrays(-s3, c3), axis=-1)
+    return P, d, e3, n3
+
+
+def _coupler(x0, y0, th0, r1, r2, r3, r4, cx, cy, phi, sigma, jac=False):
+    """Coupler point P (..., 2) of four-bars at crank angles ``phi`` from the ground line (broadcast).
+
+    With ``jac`` also the derivatives ``dP/dv`` for v in
+    ``x0, y0, th0, r1, r2, r3, r4, cx, cy, phi`` (a dict of (..., 2)).
+    """
+    al = th0 + phi
+    ca, sa = np.cos(al), np.sin(al)
+    c0, s0 = np.cos(th0), np.sin(th0)
+    Ax, Ay = x0 + r2 * ca, y0 + r2 * sa
+    Dx, Dy = r1 * c0 - r2 * ca, r1 * s0 - r2 * sa
+    if not jac:
+        return _dyad(Ax, Ay, Dx, Dy, r3, r4, cx, cy, sigma)
+    P, d, e3, n3 = _dyad(Ax, Ay, Dx, Dy, r3, r4, cx, cy, sigma, jac=True)
     out = {
         "x0": d(1.0, 0.0, 0.0, 0.0),
         "y0": d(0.0, 1.0, 0.0, 0.0),
@@ -136,29 +155,32 @@ def _coupler(x0, y0, th0, r1, r2, r3, r4, cx, cy, phi, sigma, jac=False):
         "r2": d(ca, sa, -ca, -sa),
         "r3": d(0.0, 0.0, 0.0, 0.0, 1.0, 0.0),
         "r4": d(0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
-        "cx": np.stack(np.broadcast_arrays(c3, s3), axis=-1),
-        "cy": np.stack(np.broadcast_arrays(-s3, c3), axis=-1),
+        "cx": e3,
+        "cy": n3,
         "phi": d(-r2 * sa, r2 * ca, r2 * sa, -r2 * ca),
     }
     return P, out
 
 
-def _monotone_match(D):
+def _monotone_match(D, window=None):
     """Cheapest counter-clockwise matching of targets to curve samples, every cyclic start.
 
-    ``D`` (n, N, M): squared distance of target i to sample m.  Returns the
-    cost (n,) of the best assignment ``m_1 <= m_2 <= ... <= m_N`` within one
-    turn (cut at every ``M // N``-th sample: the widest gap of the cyclic
-    assignment holds a cut) and, per candidate, the start of the window.
+    ``D`` (n, N, L): squared distance of target i to sample m of a closed
+    curve of L samples.  Returns the cost (n,) of the best assignment
+    ``m_1 <= m_2 <= ... <= m_N`` within ``window`` consecutive samples (one
+    crank turn; default L) and, per candidate, the start of the window.
+    Windows start at every ``window // N``-th sample: the widest gap of an
+    assignment within a turn is at least that long, so a start falls in it.
     """
-    n, N, M = D.shape
+    n, N, L = D.shape
+    M = L if window is None else window
     step = max(1, M // N)
-    cuts = np.arange(0, M, step)
+    cuts = np.arange(0, L, step)
     best = np.full(n, np.inf)
     best_cut = np.zeros(n, dtype=int)
     ar = np.arange(M)
     for s in cuts:
-        Dw = D[:, :, (s + ar) % M]
+        Dw = D[:, :, (s + ar) % L]
         g = Dw[:, 0, :]
         for i in range(1, N):
             g = Dw[:, i, :] + np.minimum.accumulate(g, axis=1)
@@ -390,8 +412,12 @@ class FourBarPathProblem:
                 out[n] = dP["r2"] * span[:, None, None]
         return P, out
 
+    #: Crank turns after which every candidate's motion repeats (the sampled closed curve).
+    turns = 1
+
     def _grid(self):
-        return np.linspace(0.0, 2 * math.pi, CURVE_SAMPLES, endpoint=False)
+        """Crank angles sampling the closed curve: CURVE_SAMPLES per turn over :attr:`turns` turns."""
+        return np.arange(CURVE_SAMPLES * self.turns) * (2 * math.pi / CURVE_SAMPLES)
 
     # ---------------------------------------------------------------- objective
     def objective(self, Z):
@@ -405,10 +431,11 @@ class FourBarPathProblem:
         Zk = Z[ok]
         mode = self.mode_of(Zk)
         if self.timing == "none":
-            P = self._pts(Zk, np.broadcast_to(self._grid(), (Zk.shape[0], CURVE_SAMPLES)), mode)
+            grid = self._grid()
+            P = self._pts(Zk, np.broadcast_to(grid, (Zk.shape[0], grid.size)), mode)
             diff = self.targets[None, :, None, :] - P[:, None, :, :]
             D = np.einsum("nimk,nimk->nim", diff, diff)
-            cost, _ = _monotone_match(D)
+            cost, _ = _monotone_match(D, CURVE_SAMPLES)
         else:
             P = self._pts(Zk, self.phis(Zk), mode)
             diff = P - self.targets
@@ -430,9 +457,9 @@ class FourBarPathProblem:
         P = self._pts(z[None, :], grid[None, :], self.mode_of(z[None, :]))
         diff = self.targets[None, :, None, :] - P[:, None, :, :]
         D = np.einsum("nimk,nimk->nim", diff, diff)
-        _, cut = _monotone_match(D)
-        M = CURVE_SAMPLES
-        win = (cut[0] + np.arange(M)) % M
+        M, L = CURVE_SAMPLES, grid.size
+        _, cut = _monotone_match(D, M)
+        win = (cut[0] + np.arange(M)) % L
         idx = _backtrack(D[0][:, win])
         return grid[0] + (cut[0] + idx) * (2 * math.pi / M)
 
@@ -547,7 +574,7 @@ def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> 
     """
     from gearlever.synthesis import _search
 
-    pb = FourBarPathProblem(**spec)
+    pb = make_problem(spec)
     rng = np.random.default_rng([seed, k])
     pop = max(24, 6 * pb.d)
     if method == "de":
@@ -562,6 +589,19 @@ def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> 
     w = pb.to_w(z)
     w, fw = pb.polish(w, sigma)
     return (fw, k, w, sigma, pb.evaluations)
+
+
+def make_problem(spec: dict):
+    """The problem object of a spec (``kind`` "fourbar" or "geared-fivebar", then the problem's arguments)."""
+    spec = dict(spec)
+    kind = spec.pop("kind", "fourbar")
+    if kind == "geared-fivebar":
+        from gearlever.synthesis.fivebar import GearedFiveBarPathProblem
+
+        return GearedFiveBarPathProblem(**spec)
+    if kind != "fourbar":
+        raise GearleverError(f"kind must be 'fourbar', 'geared-fivebar' or 'auto', got {kind!r}")
+    return FourBarPathProblem(**spec)
 
 
 def run_chunk(spec: dict, seed: int, ks, evals: int, method: str = "de") -> list:
@@ -625,20 +665,24 @@ class PathSynthesis(Result):
     timing: str
     seconds: float = field(default=0.0, compare=False)
     params: dict = field(default_factory=dict, compare=False)
+    path: np.ndarray = field(default=None, compare=False)
+    teeth: tuple = ()
+    tried: dict = field(default_factory=dict)
 
     def model(self, name: str = "synthesized path generator", units: str = "") -> dict:
         """Model dict (crank input) assembled at the first target."""
-        from gearlever.synthesis._model import fourbar_model
+        from gearlever.synthesis import _model
 
         q = self.points
-        return fourbar_model(q["O2"], q["O4"], q["A"], q["B"], q["P"], name=name, units=units)
+        if self.kind == "geared-fivebar":
+            return _model.geared_fivebar_model(
+                q["O2"], q["O4"], q["A"], q["B"], q["C"], q["P"], self.teeth, name=name, units=units
+            )
+        return _model.fourbar_model(q["O2"], q["O4"], q["A"], q["B"], q["P"], name=name, units=units)
 
-    def curve(self, points: int = 361) -> np.ndarray:
-        """Coupler curve (points, 2) over one crank turn from the first target."""
-        p = self.params
-        phi = self.crank_angles[0] + np.linspace(0.0, 2 * math.pi, points)
-        args = [p[k] for k in ("x0", "y0", "th0", "r1", "r2", "r3", "r4", "cx", "cy")]
-        return _coupler(*args, phi, p["sigma"])
+    def curve(self) -> np.ndarray:
+        """The traced point's closed path (K, 2) from the first target over the period of the motion."""
+        return self.path
 
     def report(self) -> dict:
         """Strict-JSON-ready summary (degrees for angles)."""
@@ -651,11 +695,13 @@ class PathSynthesis(Result):
             "input_deg": np.degrees(self.input_angles).tolist(),
             "crank_deg_from_ground": np.degrees(self.crank_angles).tolist(),
             "grashof": self.grashof,
+            "teeth": list(self.teeth) if self.teeth else None,
             "branch": self.branch,
             "links": dict(self.links),
             "transmission_deg": [math.degrees(v) for v in self.transmission_range],
             "evaluations": self.evaluations,
             "seed": self.seed,
+            "types_tried": dict(self.tried),
             "starts": self.starts,
             "time_s": self.seconds,
         }
@@ -713,6 +759,7 @@ def _result(pb: FourBarPathProblem, w, sigma, evals, seed, starts, seconds) -> P
         timing=pb.timing,
         seconds=float(seconds),
         params=p,
+        path=_coupler(*args, crank[0] + np.linspace(0.0, 2 * math.pi, 721), sigma),
     )
 
 
@@ -722,7 +769,7 @@ def default_ranges(targets) -> tuple:
     Lengths ``[S/20, 5 S]``; coordinates ``[min(c) - 3 S, max(c) + 3 S]``.
 
     >>> default_ranges([[0, 0], [2, 0], [2, 1]])
-    ((0.1, 10.0), (-6.0, 8.0))
+    ((0.1, 10.0), (-5.5, 7.0))
     """
     T = np.asarray(targets, dtype=float)
     ext = T.max(axis=0) - T.min(axis=0)
@@ -760,8 +807,11 @@ def synthesize_path(
     pivot, ground_angle, length_range, coord_range
         Constraints (see :class:`FourBarPathProblem`); ranges default to
         :func:`default_ranges`.
-    kind : {"fourbar"}
-        Linkage type.
+    kind : {"fourbar", "geared-fivebar", "auto"}
+        Linkage type; ``"auto"`` tries the four-bar, then the geared five-bar
+        (:mod:`gearlever.synthesis.fivebar`) when the four-bar's objective is
+        above :data:`AUTO_GOOD` times the targets' size squared, and keeps the
+        better (``tried`` records each type's objective).
     seed : int
         Fixes the result (each start ``k`` draws from ``default_rng([seed, k])``).
     budget : int
@@ -796,12 +846,12 @@ def synthesize_path(
     """
     from gearlever.synthesis._dask import run_starts
 
-    if kind != "fourbar":
-        raise GearleverError(f"kind must be 'fourbar', got {kind!r}")
+    if kind not in KINDS:
+        raise GearleverError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
     if timing is None:
         timing = "none" if angles is None else "relative"
     dl, dc = default_ranges(targets)
-    spec = {
+    base = {
         "targets": np.asarray(targets, dtype=float).tolist(),
         "timing": timing,
         "angles": None if angles is None or timing == "none" else np.asarray(angles, dtype=float).tolist(),
@@ -810,15 +860,38 @@ def synthesize_path(
         "length_range": tuple(length_range) if length_range is not None else dl,
         "coord_range": tuple(coord_range) if coord_range is not None else dc,
     }
-    pb = FourBarPathProblem(**spec)  # checks the input before any work
+    pb = FourBarPathProblem(**base)  # checks the input before any work
     budget = int(budget)
     if not 1 <= budget <= MAX_BUDGET:
         raise GearleverError(f"budget must be 1..{MAX_BUDGET}, got {budget}")
+    kinds = ["fourbar", "geared-fivebar"] if kind == "auto" else [kind]
+    S2 = float(np.sum(np.ptp(pb.targets, axis=0) ** 2))
     t0 = time.perf_counter()
-    per = max(budget // STARTS, 1)
-    results = run_starts(spec, seed, STARTS, per, method, workers=workers, scheduler=scheduler, progress=progress)
-    evals = sum(r[4] for r in results)
-    best = results[0]
-    if best[2] is None:
-        raise GearleverError("no buildable four-bar found within the constraints (length_range, coord_range)")
-    return _result(pb, best[2], best[3], evals, seed, STARTS, time.perf_counter() - t0)
+    best_res, tried, evals = None, {}, 0
+    for kd in kinds:
+        spec = {"kind": kd, **base}
+        pk = make_problem(spec)
+        per = max(budget // STARTS, 1)
+        results = run_starts(spec, seed, STARTS, per, method, workers=workers, scheduler=scheduler, progress=progress)
+        evals += sum(r[4] for r in results)
+        best = results[0]
+        if best[2] is None:
+            tried[kd] = None
+            continue
+        if kd == "geared-fivebar":
+            from gearlever.synthesis.fivebar import fivebar_result
+
+            res = fivebar_result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
+        else:
+            res = _result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
+        tried[kd] = res.objective if res.feasible else None
+        if res.feasible and (best_res is None or res.objective < best_res.objective):
+            best_res = res
+        # auto: a type is tried only when the ones before it do not reach the targets
+        if kind == "auto" and best_res is not None and best_res.objective <= AUTO_GOOD * S2:
+            break
+    if best_res is None:
+        raise GearleverError("no buildable linkage found within the constraints (length_range, coord_range)")
+    from dataclasses import replace
+
+    return replace(best_res, evaluations=evals, seconds=time.perf_counter() - t0, tried=tried)
