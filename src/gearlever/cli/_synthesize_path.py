@@ -20,9 +20,9 @@ counter-clockwise within one turn) is refused with exit 2 naming the flag or
 file element; nothing is written then.  ``--type geared-fivebar`` synthesizes
 the geared five-bar of :mod:`gearlever.synthesis.fivebar` (a model with
 ``[gears]`` and ``[[meshes]]``); ``auto`` tries the four-bar, then the geared
-five-bar when the four-bar does not reach the targets, and the report says
-which type was best (``type``, ``types_tried``).  ``--type sixbar`` is not
-implemented and is refused (exit 2).
+five-bar and then the Stephenson six-bar (:mod:`gearlever.synthesis.sixbar`)
+while the targets are not reached, and the report says which type was best
+(``type``, ``types_tried``).
 """
 
 from __future__ import annotations
@@ -162,8 +162,6 @@ def _run(args) -> int:
             check_output(path, flag)
     if args.figure is not None and not args.figure.lower().endswith(".png"):
         raise GearleverError(f"--figure must end with .png, got {args.figure!r}")
-    if args.kind == "sixbar":
-        raise GearleverError("--type sixbar: not implemented; use fourbar, geared-fivebar or auto")
     targets, angles = read_targets(args.points)
     timing = args.timing or ("relative" if angles is not None else "none")
     if timing != "none" and angles is None:

@@ -27,7 +27,12 @@ def path_synthesis_plot(result, ax=None):
         ax.annotate(str(i + 1), (x, y), textcoords="offset points", xytext=(5, 5), fontsize=8, color="tab:red")
     q = {k: np.asarray(v) for k, v in result.points.items()}
     ax.plot(*np.array([q["O2"], q["A"]]).T, "-", color="k", lw=2.5, label="crank")
-    if "C" in q:  # geared five-bar: second crank O4-B, couplers A-C(-P) and B-C
+    if "D" in q:  # Stephenson six-bar: four-bar with C on its coupler, dyad C-D-O6, P on C-D
+        ax.fill(*np.array([q["A"], q["B"], q["C"]]).T, color="0.6", alpha=0.4, ec="k", lw=1.5, label="coupler")
+        ax.plot(*np.array([q["O4"], q["B"]]).T, "-", color="0.3", lw=2.5, label="rocker")
+        ax.fill(*np.array([q["C"], q["D"], q["P"]]).T, color="tab:orange", alpha=0.3, ec="k", lw=1.5, label="link5")
+        ax.plot(*np.array([q["O6"], q["D"]]).T, "-", color="0.45", lw=2.5, label="output")
+    elif "C" in q:  # geared five-bar: second crank O4-B, couplers A-C(-P) and B-C
         ax.fill(*np.array([q["A"], q["C"], q["P"]]).T, color="0.6", alpha=0.4, ec="k", lw=1.5, label="coupler")
         ax.plot(*np.array([q["O4"], q["B"]]).T, "-", color="0.3", lw=2.5, label="geared crank")
         ax.plot(*np.array([q["B"], q["C"]]).T, "-", color="0.45", lw=2.0, label="link5")
@@ -37,10 +42,10 @@ def path_synthesis_plot(result, ax=None):
         ax.fill(*np.array([q["A"], q["B"], q["P"]]).T, color="0.6", alpha=0.4, ec="k", lw=1.5, label="coupler")
         ax.plot(*np.array([q["O4"], q["B"]]).T, "-", color="0.3", lw=2.5, label="rocker")
     ax.plot(*np.array([q["O2"], q["O4"]]).T, ":", color="0.3", lw=1.0)
-    for name in ("O2", "O4"):
+    for name in [n for n in ("O2", "O4", "O6") if n in q]:
         ax.plot(*q[name], "^", color="k", ms=10)
         ax.annotate(name, q[name], textcoords="offset points", xytext=(6, -12), fontsize=9)
-    for name in [n for n in ("A", "B", "C", "P") if n in q]:
+    for name in [n for n in ("A", "B", "C", "D", "P") if n in q]:
         ax.plot(*q[name], "o", color="k", ms=4)
         ax.annotate(name, q[name], textcoords="offset points", xytext=(5, 4), fontsize=9)
     ax.set_aspect("equal", adjustable="datalim")

@@ -64,8 +64,11 @@ def run_starts(spec, seed, n_starts, evals, method="de", *, workers=None, schedu
         Chunk function ``fn(spec, seed, ks, evals, method) -> list`` (default
         :func:`gearlever.synthesis.path.run_chunk`).
     """
+    from gearlever.synthesis._search import STOP
+
     if fn is None:
         from gearlever.synthesis.path import run_chunk as fn
+    STOP.clear()
     chunks = _chunks(n_starts)
     total = len(chunks)
     if scheduler is not None:
@@ -73,10 +76,14 @@ def run_starts(spec, seed, n_starts, evals, method="de", *, workers=None, schedu
         try:
             futs = [client.submit(fn, spec, seed, ks, evals, method, pure=False) for ks in chunks]
             out = []
-            for done, fut in enumerate(futs, 1):
-                out.append(fut.result())
-                if progress is not None:
-                    progress("starts", done, total)
+            try:
+                for done, fut in enumerate(futs, 1):
+                    out.append(fut.result())
+                    if progress is not None:
+                        progress("starts", done, total)
+            except KeyboardInterrupt:
+                client.cancel(futs)
+                raise
         finally:
             client.close()
     else:
@@ -94,6 +101,10 @@ def run_starts(spec, seed, n_starts, evals, method="de", *, workers=None, schedu
                     progress("starts", self.done, total)
 
         tasks = [dask.delayed(fn, pure=False)(spec, seed, ks, evals, method) for ks in chunks]
-        with _Tick():
-            out = dask.compute(*tasks, scheduler="threads", num_workers=workers)
+        try:
+            with _Tick():
+                out = dask.compute(*tasks, scheduler="threads", num_workers=workers)
+        except KeyboardInterrupt:
+            STOP.set()  # the worker threads end their searches at the next generation
+            raise
     return _order([r for chunk in out for r in chunk])

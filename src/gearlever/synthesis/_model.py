@@ -164,3 +164,40 @@ def geared_fivebar_model(
         "meshes": [{"gears": ["g1", "g2"]}],
         "inputs": [{"link": "crank"}],
     }
+
+
+def stephenson_sixbar_model(
+    O2, O4, O6, A, B, C, D, P, *, name: str = "synthesized Stephenson six-bar", units: str = ""
+) -> dict:
+    """Model dict of a Stephenson III six-bar: a four-bar whose coupler point C drives a dyad C-D-O6.
+
+    Points ``O2, O4, O6`` ground pivots, ``A`` crank pin, ``B`` rocker pin,
+    ``C`` on the coupler, ``D`` the dyad's joint, ``P`` traced point on
+    ``C-D``; links ``ground`` (O2, O4, O6), ``crank``, ``coupler`` (A, B, C),
+    ``rocker``, ``link5`` (C, D, P), ``output`` (O6, D); the crank is the input.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> d = stephenson_sixbar_model((0, 0), (4, 0), (6, 3), (1, 0), (4.5, 2.8), (2, 3), (5, 5), (3, 5))
+    >>> Mechanism.from_dict(d).structure().dof
+    1
+    """
+    names = ("O2", "O4", "O6", "A", "B", "C", "D", "P")
+    pts = {n: _xy(n, v) for n, v in zip(names, (O2, O4, O6, A, B, C, D, P))}
+    mech = {"name": name}
+    if units:
+        mech["units"] = units
+    return {
+        "mechanism": mech,
+        "points": pts,
+        "links": {
+            "ground": ["O2", "O4", "O6"],
+            "crank": ["O2", "A"],
+            "coupler": ["A", "B", "C"],
+            "rocker": ["O4", "B"],
+            "link5": ["C", "D", "P"],
+            "output": ["O6", "D"],
+        },
+        "inputs": [{"link": "crank"}],
+    }

@@ -10,9 +10,14 @@ Pure numpy.
 
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 
-__all__ = ["differential_evolution", "cma_es", "feasible_population"]
+__all__ = ["differential_evolution", "cma_es", "feasible_population", "STOP"]
+
+#: Set to stop every running search at its next generation (Ctrl-C in the caller's thread).
+STOP = threading.Event()
 
 
 def feasible_population(sample, f, n: int, rng, max_rounds: int = 50):
@@ -89,7 +94,7 @@ def differential_evolution(f, lo, hi, rng, *, budget: int, pop: int, init=None, 
         i = int(np.argmin(F)) if n else 0
         return (X[i].copy(), float(F[i]), evals) if n else (None, np.inf, evals)
     idx = np.arange(n)
-    while evals + n <= budget:
+    while evals + n <= budget and not STOP.is_set():
         best = X[np.argmin(F)]
         r1 = rng.integers(0, n - 1, n)
         r1 += r1 >= idx
@@ -159,7 +164,7 @@ def cma_es(f, lo, hi, rng, *, budget: int, pop: int, init=None):
     ps = np.zeros(d)
     B, D = np.eye(d), np.ones(d)
     gen = 0
-    while evals + lam <= budget:
+    while evals + lam <= budget and not STOP.is_set():
         Y = rng.standard_normal((lam, d)) * D @ B.T
         U = m + sigma * Y
         Z = to_box(U)

@@ -38,21 +38,25 @@ Constraints are exact, by construction (never penalties):
 - the length range bounds all four links, the coordinate range bounds
   ``x0, y0, cx, cy`` (the sets of the published benchmarks).
 
-Search (measured in ``benchmarks/bench_synthesis.py`` on this package's
-benchmark cases, 2-core machine, equal budgets of 200 000 evaluations, 8
-starts, medians of the final objective after the same polish):
+Search (measured by ``benchmarks/bench_synthesis.py`` on the cases of
+``gearlever/data/path_benchmarks.toml``, 2-core machine shared with other
+jobs, budget 200 000 evaluations over 8 starts, the same polish; median
+final objective over seeds 0, 1, 2 and median wall time):
 
-============================  =============  ===========
-case                          DE (this)      CMA-ES
-============================  =============  ===========
-cabrera five points, timing   3e-29          3e-29
-kunjur 18 points, timing      see benchmark  see benchmark
-============================  =============  ===========
+=========================  ==========  ==========  ======  ======
+case                       DE          CMA-ES      DE s    CMA s
+=========================  ==========  ==========  ======  ======
+cabrera_line5_timed        0.0187486   0.0187486   3.8     8.6
+cabrera_line6              1.9e-07     2.4e-05     18.6    15.2
+kunjur_closed18_timed      0.0105852   0.0105852   3.0     7.2
+ellipse10                  0.324534    0.387023    34.6    48.7
+=========================  ==========  ==========  ======  ======
 
 Differential evolution (:func:`gearlever.synthesis._search.differential_evolution`)
-is the default: it was as good or better on every case and, unlike CMA-ES,
-keeps the population feasible by one-to-one selection (the rejected
-infeasible candidates cost nothing but their evaluation).  Each start's best
+is the default: it was as good (two cases) or better (two cases) and faster
+on three of four, and its one-to-one selection keeps the population feasible
+(a rejected infeasible trial costs only its evaluation), where CMA-ES ranks
+infeasible samples last and loses them.  Each start's best
 is then polished by :func:`scipy.optimize.least_squares` with the analytic
 Jacobian of the coupler point (:meth:`FourBarPathProblem.jacobian`, checked
 against finite differences in the tests).
@@ -90,7 +94,7 @@ MAX_TARGETS = 1000
 
 TIMINGS = ("none", "relative", "absolute")
 #: Linkage types of :func:`synthesize_path`.
-KINDS = ("fourbar", "geared-fivebar", "auto")
+KINDS = ("fourbar", "geared-fivebar", "sixbar", "auto")
 #: ``auto`` stops at the first type whose objective is below this fraction of the targets' size squared.
 AUTO_GOOD = 1e-12
 
@@ -599,8 +603,12 @@ def make_problem(spec: dict):
         from gearlever.synthesis.fivebar import GearedFiveBarPathProblem
 
         return GearedFiveBarPathProblem(**spec)
+    if kind == "sixbar":
+        from gearlever.synthesis.sixbar import StephensonSixBarPathProblem
+
+        return StephensonSixBarPathProblem(**spec)
     if kind != "fourbar":
-        raise GearleverError(f"kind must be 'fourbar', 'geared-fivebar' or 'auto', got {kind!r}")
+        raise GearleverError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
     return FourBarPathProblem(**spec)
 
 
@@ -674,6 +682,10 @@ class PathSynthesis(Result):
         from gearlever.synthesis import _model
 
         q = self.points
+        if self.kind == "sixbar":
+            return _model.stephenson_sixbar_model(
+                q["O2"], q["O4"], q["O6"], q["A"], q["B"], q["C"], q["D"], q["P"], name=name, units=units
+            )
         if self.kind == "geared-fivebar":
             return _model.geared_fivebar_model(
                 q["O2"], q["O4"], q["A"], q["B"], q["C"], q["P"], self.teeth, name=name, units=units
@@ -807,11 +819,12 @@ def synthesize_path(
     pivot, ground_angle, length_range, coord_range
         Constraints (see :class:`FourBarPathProblem`); ranges default to
         :func:`default_ranges`.
-    kind : {"fourbar", "geared-fivebar", "auto"}
+    kind : {"fourbar", "geared-fivebar", "sixbar", "auto"}
         Linkage type; ``"auto"`` tries the four-bar, then the geared five-bar
-        (:mod:`gearlever.synthesis.fivebar`) when the four-bar's objective is
-        above :data:`AUTO_GOOD` times the targets' size squared, and keeps the
-        better (``tried`` records each type's objective).
+        (:mod:`gearlever.synthesis.fivebar`), then the Stephenson six-bar
+        (:mod:`gearlever.synthesis.sixbar`), each only while the best so far
+        is above :data:`AUTO_GOOD` times the targets' size squared, and keeps
+        the best (``tried`` records each type's objective).
     seed : int
         Fixes the result (each start ``k`` draws from ``default_rng([seed, k])``).
     budget : int
@@ -864,7 +877,7 @@ def synthesize_path(
     budget = int(budget)
     if not 1 <= budget <= MAX_BUDGET:
         raise GearleverError(f"budget must be 1..{MAX_BUDGET}, got {budget}")
-    kinds = ["fourbar", "geared-fivebar"] if kind == "auto" else [kind]
+    kinds = ["fourbar", "geared-fivebar", "sixbar"] if kind == "auto" else [kind]
     S2 = float(np.sum(np.ptp(pb.targets, axis=0) ** 2))
     t0 = time.perf_counter()
     best_res, tried, evals = None, {}, 0
@@ -882,6 +895,10 @@ def synthesize_path(
             from gearlever.synthesis.fivebar import fivebar_result
 
             res = fivebar_result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
+        elif kd == "sixbar":
+            from gearlever.synthesis.sixbar import sixbar_result
+
+            res = sixbar_result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
         else:
             res = _result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
         tried[kd] = res.objective if res.feasible else None
