@@ -120,7 +120,9 @@ def test_same_seed_same_bytes_with_one_or_two_workers(tmp_path, run):
         ([], "x,y\n0,0\n1,abc\n", "row 3"),
         ([], "x,y\n0,0\n", "at least 2"),
         (["--budget", "1e9"], POINTS, "--budget"),
-        (["--type", "sixbar"], POINTS, "--type sixbar"),
+        (["--workers", "0"], POINTS, "--workers"),
+        (["--type", "eightbar"], POINTS, "--type"),
+        (["--figure", "f.gif"], POINTS, "--figure"),
     ],
 )
 def test_bad_input_one_line_exit_2_naming_the_flag(tmp_path, run, extra, content, needle):

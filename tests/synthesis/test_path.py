@@ -146,7 +146,7 @@ def test_unreachable_scheduler_is_refused_naming_the_scheduler():
         ({"coord_range": (1.0, 1.0)}, "coord_range"),
         ({"pivot": (10.0, 0.0), "coord_range": (-5, 5)}, "pivot"),
         ({"budget": 0}, "budget"),
-        ({"kind": "sixbar"}, "kind"),
+        ({"kind": "eightbar"}, "kind"),
     ],
 )
 def test_bad_input_is_refused_naming_the_parameter(kw, match):

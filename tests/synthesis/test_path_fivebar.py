@@ -89,7 +89,7 @@ def test_auto_reports_every_type_tried_and_keeps_the_best():
     T = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0], [2.5, 2.0], [1.0, 2.5], [0.2, 1.2], [-0.5, 1.0]])
     ang = np.radians([0, 40, 80, 130, 190, 250, 300])
     r = synthesize_path(T, ang, kind="auto", seed=1, budget=8_000, workers=1)
-    assert set(r.tried) <= {"fourbar", "geared-fivebar"} and "fourbar" in r.tried
+    assert set(r.tried) <= {"fourbar", "geared-fivebar", "sixbar"} and "fourbar" in r.tried
     done = {k: v for k, v in r.tried.items() if v is not None}
     assert r.objective == min(done.values())
     assert r.tried[r.kind] == r.objective

@@ -2,7 +2,7 @@
 
 Linkage (the geared five-bar of W.-Y. Lin, "Optimum path synthesis of a
 geared five-bar mechanism", Advances in Mechanical Engineering 2013,
-article 157656): crank ``O2-A`` (length ``a``, the input, angle ``phi``
+article 757935): crank ``O2-A`` (length ``a``, the input, angle ``phi``
 from the ground line), second crank ``O4-B`` (length ``b``) driven through
 an external gear pair of teeth ``z1, z2`` at the angle
 ``beta = theta0 + psi + rho phi``, ``rho = -z1 / z2`` (``psi`` the phase),
