@@ -46,10 +46,10 @@ final objective over seeds 0, 1, 2 and median wall time):
 =========================  ==========  ==========  ======  ======
 case                       DE          CMA-ES      DE s    CMA s
 =========================  ==========  ==========  ======  ======
-cabrera_line5_timed        0.0187486   0.0187486   3.8     8.6
-cabrera_line6              1.9e-07     2.4e-05     18.6    15.2
-kunjur_closed18_timed      0.0105852   0.0105852   3.0     7.2
-ellipse10                  0.324534    0.387023    34.6    48.7
+cabrera_line5_timed        0.0187486   0.0187486   2.0     1.8
+cabrera_line6              1.9e-07     2.4e-05     7.6     9.3
+kunjur_closed18_timed      0.0105852   0.0105852   1.6     3.2
+ellipse10                  0.324534    0.387023    10.3    11.3
 =========================  ==========  ==========  ======  ======
 
 Differential evolution (:func:`gearlever.synthesis._search.differential_evolution`)
