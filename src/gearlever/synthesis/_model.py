@@ -156,3 +156,93 @@ def model_toml(model: dict, comment: str = "") -> str:
         for item in model.get(array, []):
             lines += ["", f"[[{array}]]"] + [f"{_key(k)} = {_value(v)}" for k, v in item.items()]
     return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def geared_fivebar_model(
+    O2, O4, A, B, C, P, teeth, *, name: str = "synthesized geared five-bar", units: str = ""
+) -> dict:
+    """Model dict of a geared five-bar: two cranks on O2 and O4 coupled by an external gear pair.
+
+    Points ``O2`` input pivot, ``O4`` second crank pivot, ``A`` crank pin,
+    ``B`` second crank pin, ``C`` joint of the two couplers, ``P`` traced
+    point on the coupler A-C; links ``ground``, ``crank``, ``crank2``,
+    ``coupler`` (A, C, P), ``link5`` (B, C); gears ``g1`` on the crank and
+    ``g2`` on crank2 with ``teeth = (z1, z2)``, one mesh (the ground carries
+    both centres; no module, so the pitch radii follow from the centre
+    distance); the crank is the input.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> d = geared_fivebar_model((0, 0), (5, 0), (1, 0), (5, 1.5), (3, 4), (2, 3), (20, 40))
+    >>> Mechanism.from_dict(d).structure().dof
+    1
+    """
+    z = [int(t) for t in teeth]
+    if len(z) != 2 or min(z) < 1 or any(int(t) != t for t in teeth):
+        raise GearleverError(f"teeth must be two positive integers (z1, z2), got {teeth!r}")
+    pts = {
+        "O2": _xy("O2", O2),
+        "O4": _xy("O4", O4),
+        "A": _xy("A", A),
+        "B": _xy("B", B),
+        "C": _xy("C", C),
+        "P": _xy("P", P),
+    }
+    mech = {"name": name}
+    if units:
+        mech["units"] = units
+    return {
+        "mechanism": mech,
+        "points": pts,
+        "links": {
+            "ground": ["O2", "O4"],
+            "crank": ["O2", "A"],
+            "crank2": ["O4", "B"],
+            "coupler": ["A", "C", "P"],
+            "link5": ["B", "C"],
+        },
+        "gears": {
+            "g1": {"link": "crank", "centre": "O2", "teeth": z[0]},
+            "g2": {"link": "crank2", "centre": "O4", "teeth": z[1]},
+        },
+        "meshes": [{"gears": ["g1", "g2"]}],
+        "inputs": [{"link": "crank"}],
+    }
+
+
+def stephenson_sixbar_model(
+    O2, O4, O6, A, B, C, D, P, *, name: str = "synthesized Stephenson six-bar", units: str = ""
+) -> dict:
+    """Model dict of a Stephenson III six-bar: a four-bar whose coupler point C drives a dyad C-D-O6.
+
+    Points ``O2, O4, O6`` ground pivots, ``A`` crank pin, ``B`` rocker pin,
+    ``C`` on the coupler, ``D`` the dyad's joint, ``P`` traced point on
+    ``C-D``; links ``ground`` (O2, O4, O6), ``crank``, ``coupler`` (A, B, C),
+    ``rocker``, ``link5`` (C, D, P), ``output`` (O6, D); the crank is the input.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> d = stephenson_sixbar_model((0, 0), (4, 0), (6, 3), (1, 0), (4.5, 2.8), (2, 3), (5, 5), (3, 5))
+    >>> Mechanism.from_dict(d).structure().dof
+    1
+    """
+    names = ("O2", "O4", "O6", "A", "B", "C", "D", "P")
+    pts = {n: _xy(n, v) for n, v in zip(names, (O2, O4, O6, A, B, C, D, P))}
+    mech = {"name": name}
+    if units:
+        mech["units"] = units
+    return {
+        "mechanism": mech,
+        "points": pts,
+        "links": {
+            "ground": ["O2", "O4", "O6"],
+            "crank": ["O2", "A"],
+            "coupler": ["A", "B", "C"],
+            "rocker": ["O4", "B"],
+            "link5": ["C", "D", "P"],
+            "output": ["O6", "D"],
+        },
+        "inputs": [{"link": "crank"}],
+    }

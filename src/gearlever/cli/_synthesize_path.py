@@ -1,0 +1,226 @@
+"""``gearlever synthesize path``: a four-bar whose coupler point passes through target points.
+
+Registered on the ``synthesize`` sub-parsers by :func:`register_path`::
+
+    gearlever synthesize path POINTS.csv --out MODEL.toml [--timing none|relative|absolute]
+        [--pivot X Y] [--ground-angle DEG] [--length-range LO HI] [--coord-range LO HI]
+        [--type fourbar|geared-fivebar|sixbar|auto] [--seed N] [--budget EVALS]
+        [--workers N | --scheduler ADDRESS] [--report R.json] [--figure F.png]
+
+POINTS.csv holds ``x,y`` or ``x,y,input_deg`` per row (a header row naming
+the columns is optional; ``#`` lines are skipped).  Timing defaults to
+``relative`` when the ``input_deg`` column is present, else ``none``.
+
+Constraints are exact (see :mod:`gearlever.synthesis.path`): every
+candidate is a buildable Grashof crank-rocker with the crank the shortest
+link, inside the ranges, reaching the targets counter-clockwise in order on
+one assembly branch.  A constraint set that admits no such linkage (a pivot
+outside the coordinate range, an empty range, timing that is not
+counter-clockwise within one turn) is refused with exit 2 naming the flag or
+file element; nothing is written then.  ``--type geared-fivebar`` synthesizes
+the geared five-bar of :mod:`gearlever.synthesis.fivebar` (a model with
+``[gears]`` and ``[[meshes]]``); ``auto`` tries the four-bar, then the geared
+five-bar and then the Stephenson six-bar (:mod:`gearlever.synthesis.sixbar`)
+while the targets are not reached, and the report says which type was best
+(``type``, ``types_tried``).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+
+from gearlever.cli._common import (
+    StderrProgress,
+    capped_int,
+    check_output,
+    emit,
+    finite_float,
+    nonnegative_int,
+    to_json,
+)
+from gearlever.errors import GearleverError
+
+#: Most target rows read from POINTS.
+MAX_TARGETS = 1000
+#: Most dask threads (each holds one chunk of starts; more than the starts is pointless).
+MAX_WORKERS = 256
+
+
+def register_path(ss) -> None:
+    """Add the ``path`` sub-command to the ``synthesize`` sub-parsers ``ss``."""
+    from gearlever.synthesis.path import DEFAULT_BUDGET, MAX_BUDGET
+
+    p = ss.add_parser(
+        "path",
+        help="four-bar whose coupler point passes through target points (path generation)",
+        description="Dimensional synthesis for path generation: a Grashof crank-rocker whose coupler point "
+        "passes through the target points in order as the crank turns counter-clockwise; global search "
+        "(differential evolution, seeded starts on dask) then a least-squares polish. The model is written "
+        "assembled at the first target.",
+    )
+    p.add_argument("points", metavar="POINTS.csv", help="targets: x,y[,input_deg] per row")
+    p.add_argument("--out", required=True, help="model file to write (TOML, atomically)")
+    p.add_argument(
+        "--timing",
+        choices=("none", "relative", "absolute"),
+        default=None,
+        help="none; relative (input_deg increments, start free; default with input_deg); "
+        "absolute (crank angles from the ground line)",
+    )
+    p.add_argument("--pivot", nargs=2, type=finite_float, metavar=("X", "Y"), help="fixed crank pivot O2")
+    p.add_argument("--ground-angle", type=finite_float, metavar="DEG", help="fixed ground line angle O2->O4")
+    p.add_argument("--length-range", nargs=2, type=finite_float, metavar=("LO", "HI"), help="bounds of link lengths")
+    p.add_argument(
+        "--coord-range",
+        nargs=2,
+        type=finite_float,
+        metavar=("LO", "HI"),
+        help="bounds of pivot and coupler-point coordinates",
+    )
+    p.add_argument("--type", dest="kind", choices=("fourbar", "geared-fivebar", "sixbar", "auto"), default="fourbar")
+    p.add_argument("--seed", type=nonnegative_int, default=0, help="fixes the result (default 0)")
+    p.add_argument(
+        "--budget",
+        type=capped_int(MAX_BUDGET, low=100),
+        default=DEFAULT_BUDGET,
+        help=f"candidate evaluations (default {DEFAULT_BUDGET}, at most {MAX_BUDGET:.0e})",
+    )
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--workers", type=capped_int(MAX_WORKERS), default=None, help="local dask threads")
+    g.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a dask.distributed scheduler")
+    p.add_argument("--report", default=None, metavar="R.json", help="write a JSON report")
+    p.add_argument("--figure", default=None, metavar="F.png", help="write a figure (targets, curve, linkage)")
+    p.set_defaults(func=_run)
+
+
+def read_targets(path: str):
+    """Targets (N, 2) and input angles in degrees (N,) or None from a CSV file (the CLI's reader)."""
+    import numpy as np
+
+    from gearlever._io import read_text_capped
+
+    text = read_text_capped(path, "POINTS")
+    rows = [r for r in csv.reader(io.StringIO(text)) if any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
+    if not rows:
+        raise GearleverError(f"POINTS {path!r}: no target rows")
+    names = ["x", "y", "input_deg"]
+    first = rows[0]
+    try:
+        float(first[0])
+        has_header = False
+    except ValueError:
+        has_header = True
+    if has_header:
+        header = [c.strip() for c in first]
+        for need in ("x", "y"):
+            if need not in header:
+                raise GearleverError(f"POINTS {path!r}: the header must name columns x and y, got {header}")
+        cols = [header.index(n) if n in header else None for n in names]
+        rows = rows[1:]
+        start = 2
+    else:
+        ncol = len(first)
+        cols = [0, 1, 2 if ncol >= 3 else None]
+        start = 1
+    if len(rows) > MAX_TARGETS:
+        raise GearleverError(f"POINTS {path!r}: at most {MAX_TARGETS} target rows, got {len(rows)}")
+    xy, ang = [], []
+    for i, r in enumerate(rows):
+        line = i + start
+        vals = []
+        for name, c in zip(names, cols):
+            if c is None:
+                vals.append(None)
+                continue
+            if c >= len(r) or not r[c].strip():
+                raise GearleverError(f"POINTS {path!r} row {line}: column {name} is missing")
+            try:
+                v = float(r[c])
+            except ValueError:
+                raise GearleverError(f"POINTS {path!r} row {line}: {name} must be a number, got {r[c]!r}") from None
+            if not math.isfinite(v):
+                raise GearleverError(f"POINTS {path!r} row {line}: {name} must be finite, got {r[c]!r}")
+            vals.append(v)
+        xy.append(vals[:2])
+        ang.append(vals[2])
+    if len(xy) < 2:
+        raise GearleverError(f"POINTS {path!r}: at least 2 target rows are needed, got {len(xy)}")
+    angles = None if cols[2] is None else np.array(ang, dtype=float)
+    return np.array(xy, dtype=float), angles
+
+
+def _run(args) -> int:
+    import numpy as np
+
+    from gearlever.synthesis._model import model_toml
+    from gearlever.synthesis.path import synthesize_path
+
+    for flag, path in (("--report", args.report), ("--figure", args.figure)):
+        if path is not None:
+            check_output(path, flag)
+    if args.figure is not None and not args.figure.lower().endswith(".png"):
+        raise GearleverError(f"--figure must end with .png, got {args.figure!r}")
+    targets, angles = read_targets(args.points)
+    timing = args.timing or ("relative" if angles is not None else "none")
+    if timing != "none" and angles is None:
+        raise GearleverError(f"--timing {timing}: POINTS {args.points!r} has no input_deg column")
+    if args.length_range is not None and not 0 < args.length_range[0] < args.length_range[1]:
+        lo, hi = args.length_range
+        raise GearleverError(f"--length-range must be 0 < LO < HI, got {lo:g} {hi:g}")
+    if args.coord_range is not None and not args.coord_range[0] < args.coord_range[1]:
+        raise GearleverError(f"--coord-range must be LO < HI, got {args.coord_range[0]:g} {args.coord_range[1]:g}")
+    flags = {
+        "pivot": "--pivot",
+        "ground_angle": "--ground-angle",
+        "length_range": "--length-range",
+        "coord_range": "--coord-range",
+        "angles": "POINTS input_deg",
+        "targets": "POINTS",
+        "scheduler": "--scheduler",
+        "budget": "--budget",
+        "kind": "--type",
+    }
+    bar = StderrProgress("gearlever synthesize path")
+    try:
+        res = synthesize_path(
+            targets,
+            None if angles is None or timing == "none" else np.radians(angles),
+            timing=timing,
+            pivot=args.pivot,
+            ground_angle=None if args.ground_angle is None else math.radians(args.ground_angle),
+            length_range=args.length_range,
+            coord_range=args.coord_range,
+            kind=args.kind,
+            seed=args.seed,
+            budget=args.budget,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            progress=bar,
+        )
+    except GearleverError as exc:
+        from gearlever.cli._common import flagged
+
+        raise flagged(exc, flags) from None
+    finally:
+        bar.close()
+    rep = res.report()
+    if res.feasible:
+        comment = (
+            f"Synthesized by gearlever synthesize path ({res.kind}, seed {args.seed}, budget {args.budget}); "
+            f"objective {res.objective:.6g}; input at the first target {math.degrees(res.input_angles[0]):.12g} deg"
+        )
+        emit(model_toml(res.model(), comment), args.out)
+    if args.report is not None:
+        rep["model"] = args.out if res.feasible else None
+        emit(to_json(rep), args.report, "--report")
+    if args.figure is not None:
+        from gearlever.plotting._common import save
+        from gearlever.plotting.synthesis_path import path_synthesis_plot
+
+        ax = path_synthesis_plot(res)
+        save(ax.figure, args.figure)
+    if not res.feasible:
+        raise GearleverError("no buildable linkage meets the constraints: the model was not written")
+    return 0

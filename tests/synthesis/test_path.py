@@ -1,0 +1,155 @@
+"""Four-bar path synthesis: analytic Jacobian, exact recovery, exact constraints, dask equality."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from gearlever.errors import GearleverError
+from gearlever.loops import fourbar, grashof
+from gearlever.synthesis._model import model_toml
+from gearlever.synthesis.path import FourBarPathProblem, _coupler, synthesize_path
+
+#: A crank-rocker (ground 4, crank 1, coupler 3.5, rocker 3) placed at O2 = (0.3, -0.2), ground at 0.4 rad,
+#: coupler point (1.2, 0.8) in the coupler frame, open branch.
+KNOWN = dict(x0=0.3, y0=-0.2, th0=0.4, r1=4.0, r2=1.0, r3=3.5, r4=3.0, cx=1.2, cy=0.8)
+PHI = 0.3 + np.array([0.0, 0.5, 1.1, 1.8, 2.6])
+RANGES = dict(length_range=(0.5, 6.0), coord_range=(-5.0, 5.0))
+
+
+def known_points(phi, sigma=1.0):
+    return _coupler(*(KNOWN[k] for k in ("x0", "y0", "th0", "r1", "r2", "r3", "r4", "cx", "cy")), phi, sigma)
+
+
+def test_coupler_point_agrees_with_the_closed_form_fourbar():
+    # the coupler angle of loops.fourbar (ground along +x) rotated by theta0 gives the same point
+    phi = np.linspace(0, 2 * np.pi, 13)
+    r = fourbar(4.0, 1.0, 3.5, 3.0, phi, branch="open")
+    th0 = KNOWN["th0"]
+    A = np.stack([np.cos(phi + th0), np.sin(phi + th0)], -1)
+    e3 = np.stack([np.cos(r.theta3 + th0), np.sin(r.theta3 + th0)], -1)
+    n3 = np.stack([-e3[:, 1], e3[:, 0]], -1)
+    P = np.array([0.3, -0.2]) + A + 1.2 * e3 + 0.8 * n3
+    assert np.allclose(known_points(phi), P, atol=1e-13)
+
+
+@pytest.mark.parametrize("timing", ["none", "relative", "absolute"])
+@pytest.mark.parametrize("fixed", [{}, {"pivot": (0.5, 0.2)}, {"ground_angle": 0.3}])
+def test_jacobian_matches_central_finite_differences(timing, fixed):
+    rng = np.random.default_rng(7)
+    T = rng.random((5, 2)) * 3
+    ang = None if timing == "none" else np.radians([10, 30, 60, 100, 150])
+    pb = FourBarPathProblem(T, timing, ang, **RANGES, **fixed)
+    Z = pb.sample(rng, 200)
+    Z = Z[np.isfinite(pb.objective(Z))][:3]
+    for z in Z:
+        sigma = 1.0 if z[-1] >= 0 else -1.0
+        w = pb.to_w(z)
+        J = pb.jacobian(w, sigma)
+        Jn = np.empty_like(J)
+        for j in range(w.size):
+            h = 1e-6 * max(1.0, abs(w[j]))
+            e = np.zeros_like(w)
+            e[j] = h
+            Jn[:, j] = (pb.residual(w + e, sigma) - pb.residual(w - e, sigma)) / (2 * h)
+        assert np.abs(J - Jn).max() <= 1e-7 * np.abs(J).max()
+
+
+def size2(T):
+    ext = np.ptp(T, axis=0)
+    return float(ext @ ext)
+
+
+@pytest.mark.parametrize(
+    "timing, angles",
+    [("none", None), ("relative", PHI - PHI[0] + 1.0), ("absolute", PHI)],
+)
+def test_targets_of_a_known_crank_rocker_are_met_exactly(timing, angles):
+    T = known_points(PHI)
+    r = synthesize_path(T, angles, timing=timing, **RANGES, seed=1, budget=100_000, workers=1)
+    assert r.feasible and r.grashof == "crank-rocker"
+    assert r.objective < 1e-12 * size2(T)
+
+
+def test_result_meets_every_constraint_exactly():
+    T = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0], [2.5, 2.0], [1.0, 2.5], [-0.5, 1.5]])
+    lo, hi = 0.4, 4.0
+    r = synthesize_path(T, length_range=(lo, hi), coord_range=(-3, 3), seed=3, budget=30_000, workers=1)
+    links = r.links
+    assert all(lo <= v <= hi for v in links.values())
+    g = grashof(links["ground"], links["crank"], links["coupler"], links["rocker"])
+    assert g.kind == "crank-rocker" and g.crank_rotates
+    assert links["crank"] == min(links.values())
+    assert -3 <= r.params["x0"] <= 3 and -3 <= r.params["y0"] <= 3
+    assert -3 <= r.params["cx"] <= 3 and -3 <= r.params["cy"] <= 3
+    # counter-clockwise order within one turn
+    inc = np.diff(r.input_angles)
+    assert np.all(inc >= 0) and r.input_angles[-1] - r.input_angles[0] < 2 * np.pi
+    # the per-target error is the distance from the traced point
+    assert np.allclose(r.errors, np.hypot(*(r.traced - T).T))
+    assert math.isclose(r.objective, float(np.sum(r.errors**2)))
+
+
+def test_fixed_pivot_and_ground_angle_are_kept():
+    T = known_points(PHI)
+    r = synthesize_path(
+        T, PHI, timing="absolute", pivot=(0.3, -0.2), ground_angle=0.4, **RANGES, seed=0, budget=40_000, workers=1
+    )
+    assert r.points["O2"] == [0.3, -0.2]
+    O4 = np.array(r.points["O4"]) - np.array(r.points["O2"])
+    assert math.isclose(math.atan2(O4[1], O4[0]), 0.4, abs_tol=1e-12)
+    assert r.objective < 1e-12 * size2(T)
+
+
+def test_the_written_model_reproduces_the_reported_errors():
+    from gearlever.mechanism import Mechanism
+
+    T = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0], [2.5, 2.0], [1.0, 2.5]])
+    r = synthesize_path(T, seed=2, budget=20_000, workers=1)
+    import tomllib
+
+    m = Mechanism.from_dict(tomllib.loads(model_toml(r.model())))
+    sol = m.solve(r.input_angles)
+    assert sol.closed.all()
+    err = np.hypot(*(sol.point["P"] - T).T)
+    assert np.allclose(err, r.errors, rtol=1e-6, atol=1e-9 * math.sqrt(size2(T)))
+
+
+def test_same_seed_same_model_for_any_number_of_workers_and_on_a_distributed_cluster():
+    distributed = pytest.importorskip("distributed")
+    T = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0], [2.5, 2.0], [1.0, 2.5]])
+
+    def text(**kw):
+        return model_toml(synthesize_path(T, seed=5, budget=8_000, **kw).model())
+
+    serial = text(workers=1)
+    assert text(workers=2) == serial
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as c:
+        assert text(scheduler=c.scheduler_address) == serial
+
+
+def test_unreachable_scheduler_is_refused_naming_the_scheduler():
+    T = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0]])
+    with pytest.raises(GearleverError, match="^scheduler 'tcp://127.0.0.1:9'"):
+        synthesize_path(T, budget=1000, scheduler="tcp://127.0.0.1:9")
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        ({"timing": "relative"}, "angles must be given"),
+        ({"angles": [0.0, 0.5, 0.2]}, "angles must increase"),
+        ({"angles": [0.0, 3.0, 6.5]}, "angles must increase"),
+        ({"length_range": (2.0, 1.0)}, "length_range"),
+        ({"coord_range": (1.0, 1.0)}, "coord_range"),
+        ({"pivot": (10.0, 0.0), "coord_range": (-5, 5)}, "pivot"),
+        ({"budget": 0}, "budget"),
+        ({"kind": "eightbar"}, "kind"),
+    ],
+)
+def test_bad_input_is_refused_naming_the_parameter(kw, match):
+    T = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0]])
+    with pytest.raises(GearleverError, match=match):
+        synthesize_path(T, **kw)
