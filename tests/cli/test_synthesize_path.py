@@ -1,8 +1,6 @@
 """``gearlever synthesize path``: model, report, figure, refusals (one line, exit 2), analyze reproduces errors.
 
-The ``synthesize`` command is wired by the lead at merge; these tests build
-the ``synthesize`` parser themselves with :func:`register_path` and run it
-through :func:`gearlever.cli.main`'s error handling.
+Run through :func:`gearlever.cli.main` (its error handling included).
 """
 
 from __future__ import annotations
@@ -15,28 +13,13 @@ import numpy as np
 import pytest
 
 import gearlever.cli as cli
-from gearlever.cli._synthesize_path import register_path
 
 POINTS = "x,y\n0,0\n1,0.2\n2,1\n2.5,2\n1,2.5\n"
 TIMED = "x,y,input_deg\n0,0,0\n1,0.2,40\n2,1,90\n2.5,2,150\n1,2.5,220\n"
 
 
 @pytest.fixture
-def run(monkeypatch, capsys):
-    original = cli.build_parser
-
-    def build():
-        parser = original()
-        sub = next(a for a in parser._actions if a.dest == "command")
-        if "synthesize" not in sub.choices:
-            p = sub.add_parser("synthesize")
-            ss = p.add_subparsers(dest="synthesize_command", parser_class=cli.OneLineParser)
-            ss.required = True
-            register_path(ss)
-        return parser
-
-    monkeypatch.setattr(cli, "build_parser", build)
-
+def run(capsys):
     def go(*argv):
         code = cli.main(["synthesize", "path", *map(str, argv)])
         out, err = capsys.readouterr()
@@ -77,7 +60,7 @@ def test_analyze_of_the_written_model_reproduces_the_reported_errors(tmp_path, r
     text = capsys.readouterr().out
     assert code == 0
     rows = json.loads(text)["rows"]
-    ang = np.array([row["in_crank_deg"] for row in rows])
+    ang = np.array([row["input_crank_deg"] for row in rows])
     for t, a, e in zip(T, r["input_deg"], r["per_target_error"]):
         i = int(np.argmin(np.abs(ang - a)))
         assert abs(ang[i] - a) < 1e-9

@@ -4,9 +4,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from gearlever.data import read_records
+from gearlever.data import example_path, read_records
 from gearlever.reproduce import synthesis
-from gearlever.reproduce.mechanism import examples_dir
 from gearlever.synthesis.function import function_targets, synthesize_function
 from gearlever.synthesis.motion import synthesize_motion
 
@@ -52,7 +51,7 @@ def test_synthesis_step_lines_report_the_library_results(step):
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
     r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
     assert f"max structural error {np.degrees(r.structural_error_max):.3f} deg over 45..105 deg" in lines[0]
-    poses = pd.read_csv(examples_dir() / "motion_poses.csv")
+    poses = pd.read_csv(example_path("motion_poses.csv"))
     m = synthesize_motion(poses[["x", "y"]].to_numpy(), np.radians(poses.angle_deg.to_numpy()))
     assert f"{len(m.dyads)} Burmester point pairs" in lines[1]
     assert f"crank {m.best.lengths['crank']:.6g}" in lines[1] and m.best.residual < 1e-9

@@ -1,4 +1,4 @@
-"""``gearlever synthesize function|motion``: dimensional synthesis of linkages, written as model files.
+"""``gearlever synthesize function|motion|path``: dimensional synthesis of linkages, written as model files.
 
 ``function``: a four-bar (crank angle -> rocker angle) or slider-crank (crank
 angle -> slider travel) through target pairs from a CSV file, or through
@@ -9,7 +9,9 @@ target; ``--report`` strict JSON; ``--figure`` a PNG.  Caps: at most
 :data:`~gearlever.synthesis.function.MAX_TARGETS` targets or points, 5 poses,
 formulas of 500 characters.
 
-(``path`` generation is registered beside these by the path module.)
+``path``: a four-bar, geared five-bar or six-bar whose coupler point passes
+through target points, with or without timing, searched on dask
+(:mod:`gearlever.cli._synthesize_path`).
 """
 
 from __future__ import annotations
@@ -48,7 +50,9 @@ _FLAGS = {
 
 
 def register(sub) -> None:
-    p = sub.add_parser("synthesize", help="dimensional synthesis: function and motion generation, written as models")
+    p = sub.add_parser(
+        "synthesize", help="dimensional synthesis: function, motion and path generation, written as models"
+    )
     ss = p.add_subparsers(dest="synth_command", metavar="KIND")
     ss.required = True
 
@@ -85,7 +89,9 @@ def register(sub) -> None:
     m.add_argument("--report", help="JSON report to write")
     m.add_argument("--figure", help="PNG figure to write")
     m.set_defaults(func=_motion)
-    # path generation: registered by gearlever.cli._synthesize_path.register_path(ss) at merge
+    from gearlever.cli._synthesize_path import register_path
+
+    register_path(ss)
 
 
 def _read_csv(path: str, flag: str, columns: tuple) -> dict:

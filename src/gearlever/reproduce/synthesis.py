@@ -117,10 +117,10 @@ def _log10():
 
 
 def _poses_path() -> Path:
-    """The shipped five poses, ``examples/motion_poses.csv`` (absent from an installed package)."""
-    from gearlever.reproduce.mechanism import examples_dir
+    """The shipped five poses, ``examples/motion_poses.csv`` (package data)."""
+    from gearlever.data import example_path
 
-    return examples_dir() / "motion_poses.csv"
+    return example_path("motion_poses.csv")
 
 
 def _read_poses(path: Path):
