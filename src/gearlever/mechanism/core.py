@@ -93,11 +93,23 @@ class Mechanism:
 
         return instant_centres(self.solve(q, qdot))
 
-    def inverse_dynamics(self, q, qdot=None, qddot=None, loads=None, **kw):
+    def inverse_dynamics(
+        self, q, qdot=None, qddot=None, loads=None, masses=None, gravity=None, pressure_angle=None, efficiency=None
+    ):
         """Driver torques and pair forces (:func:`~gearlever.mechanism.dynamics.inverse_dynamics`)."""
         from gearlever.mechanism.dynamics import inverse_dynamics
 
-        return inverse_dynamics(self, q, qdot, qddot, loads=loads, **kw)
+        return inverse_dynamics(
+            self,
+            q,
+            qdot,
+            qddot,
+            loads=loads,
+            masses=masses,
+            gravity=gravity,
+            pressure_angle=pressure_angle,
+            efficiency=efficiency,
+        )
 
     def reduced_inertia(self, q, masses=None):
         """Reduced inertia (:func:`~gearlever.mechanism.dynamics.reduced_inertia`)."""
@@ -105,17 +117,47 @@ class Mechanism:
 
         return reduced_inertia(self, q, masses=masses)
 
-    def dynamic_terms(self, q, qdot=None, **kw):
+    def dynamic_terms(self, q, qdot=None, masses=None, loads=None, gravity=None):
         """Mass matrix and velocity terms, tau = M q'' + b (:func:`~gearlever.mechanism.dynamics.dynamic_terms`)."""
         from gearlever.mechanism.dynamics import dynamic_terms
 
-        return dynamic_terms(self, q, qdot, **kw)
+        return dynamic_terms(self, q, qdot, masses=masses, loads=loads, gravity=gravity)
 
-    def simulate(self, t, q0, qdot0, torque=0.0, **kw):
-        """Motion under driving torques, one per input (:func:`~gearlever.mechanism.dynamics.simulate`)."""
-        from gearlever.mechanism.dynamics import simulate
+    def simulate(
+        self,
+        t,
+        q0,
+        qdot0,
+        torque=0.0,
+        masses=None,
+        loads=None,
+        gravity=None,
+        rtol: float = 1e-10,
+        atol: float = 1e-12,
+        max_evals: int | None = None,
+        efficiency=None,
+    ):
+        """Motion under driving torques, one per input (:func:`~gearlever.mechanism.dynamics.simulate`).
 
-        return simulate(self, t, q0, qdot0, torque=torque, **kw)
+        ``max_evals`` None: the library's cap
+        (:data:`gearlever.mechanism.dynamics.MAX_EVALS`).
+        """
+        from gearlever.mechanism.dynamics import MAX_EVALS, simulate
+
+        return simulate(
+            self,
+            t,
+            q0,
+            qdot0,
+            torque=torque,
+            masses=masses,
+            loads=loads,
+            gravity=gravity,
+            rtol=rtol,
+            atol=atol,
+            max_evals=MAX_EVALS if max_evals is None else max_evals,
+            efficiency=efficiency,
+        )
 
     def constraint_labels(self) -> tuple:
         """Row names of :meth:`constraint_jacobian`."""
