@@ -291,6 +291,17 @@ def _targets(input_angle, output):
     return phi, out
 
 
+def _error_and_angle_stats(derr, mu) -> tuple:
+    """Max and RMS of the structural error, min and max transmission angle (NaN rows ignored; NaN if none)."""
+    e, m = np.isfinite(derr).any(), np.isfinite(mu).any()
+    return (
+        float(np.nanmax(np.abs(derr))) if e else math.nan,
+        float(np.sqrt(np.nanmean(derr**2))) if e else math.nan,
+        float(np.nanmin(mu)) if m else math.nan,
+        float(np.nanmax(mu)) if m else math.nan,
+    )
+
+
 def _solve_linear(M, rhs, what):
     if np.linalg.matrix_rank(M, tol=1e-12 * max(1.0, np.abs(M).max())) < 3:
         raise GearleverError(f"{what}: the targets do not determine the three design coefficients (degenerate)")
@@ -472,10 +483,7 @@ def _fourbar(phi, psi, d, dense, want, name):
         dense,
         want,
         gen_d,
-        float(np.nanmax(np.abs(derr))) if np.isfinite(derr).any() else math.nan,
-        float(np.sqrt(np.nanmean(derr**2))) if np.isfinite(derr).any() else math.nan,
-        float(np.nanmin(mu)) if np.isfinite(mu).any() else math.nan,
-        float(np.nanmax(mu)) if np.isfinite(mu).any() else math.nan,
+        *_error_and_angle_stats(derr, mu),
         g,
         defect,
         n == 3,
@@ -563,10 +571,7 @@ def _slider(phi, s, dense, want, name):
         dense,
         want,
         gen_d,
-        float(np.nanmax(np.abs(derr))) if np.isfinite(derr).any() else math.nan,
-        float(np.sqrt(np.nanmean(derr**2))) if np.isfinite(derr).any() else math.nan,
-        float(np.nanmin(mu)) if np.isfinite(mu).any() else math.nan,
-        float(np.nanmax(mu)) if np.isfinite(mu).any() else math.nan,
+        *_error_and_angle_stats(derr, mu),
         "crank turns fully" if b > abs(a) + abs(e) else "crank rocks",
         defect,
         n == 3,
