@@ -1,4 +1,4 @@
-"""gearlever: kinematic analysis of gear-lever differential mechanisms.
+"""gearlever: analysis and synthesis of gear-lever differential mechanisms.
 
 Subpackages by concept; the numeric core (numpy arrays in, arrays out) never
 imports matplotlib or pandas:
@@ -13,7 +13,12 @@ imports matplotlib or pandas:
 - :mod:`gearlever.loops`: the planar vector-loop engine, closed forms (four-bar,
   slider-cranks, the double slider), velocity and acceleration plans.
 - :mod:`gearlever.mechanism`: planar mechanisms of links, pins, sliders and
-  gears read from model files: structure, positions, velocities, accelerations.
+  gears read from model files: structure, positions, velocities, accelerations,
+  instant centres, assembly from lengths, inverse and forward dynamics for any
+  number of inputs.
+- :mod:`gearlever.dynamics`: flywheels and the published textbook problems.
+- :mod:`gearlever.synthesis`: dimensional synthesis (function, motion and path
+  generation) written as model files, scaled out on dask.
 
 :mod:`gearlever.tables` (pandas) and :mod:`gearlever.plotting` (matplotlib)
 sit on top of them and are imported only when asked for; :mod:`gearlever.cli`
