@@ -9,7 +9,7 @@ imports matplotlib or pandas:
   gear networks with meshes on carriers, the tabular method, planetary design,
   the Nuttall south-pointing chariot, the car differential.
 - :mod:`gearlever.trains`: ratio and sense of trains of wheels, tooth-number
-  synthesis by the classical rules, an exact best search, Hooke's coupling.
+  design by the classical rules, an exact best search, Hooke's coupling.
 - :mod:`gearlever.loops`: the planar vector-loop engine, closed forms (four-bar,
   slider-cranks, the double slider), velocity and acceleration plans.
 - :mod:`gearlever.mechanism`: planar mechanisms of links, pins, sliders and

@@ -1,4 +1,4 @@
-"""Trains of wheels: ratio and sense, tooth-number synthesis, exact search, Hooke's coupling.
+"""Trains of wheels: ratio and sense, tooth-number design, exact search, Hooke's coupling.
 
 - :mod:`~gearlever.trains.ratio`: velocity ratio and sense of a simple or
   compound train.

@@ -1,4 +1,4 @@
-"""Size caps and shared argument checks of the train synthesis modules.
+"""Size caps and shared argument checks of the tooth-number design modules.
 
 Every size argument of :mod:`gearlever.trains.design` and
 :mod:`gearlever.trains.search` is bounded so that no call can exhaust the
