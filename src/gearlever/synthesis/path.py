@@ -6,9 +6,7 @@ of mechanisms with genetic algorithms", Mech. Mach. Theory 37 (2002)
 line angle ``theta0``, the link lengths ground ``r1``, crank ``r2``, coupler
 ``r3``, rocker ``r4``, the coupler point ``(cx, cy)`` in the coupler frame
 (along A->B and its normal) and the assembly branch that minimize
-
-    f = sum_i |P(phi_i) - T_i|^2
-
+``f = sum_i |P(phi_i) - T_i|^2``
 over the targets ``T_i``, with ``phi_i`` the crank angle from the ground
 line at target ``i``:
 
