@@ -66,12 +66,16 @@ def check_target(target, *, mkdir: bool = False) -> Path:
             raise _refuse(errno.ENOENT, "folder does not exist", parent)
     if not parent.is_dir():
         raise _refuse(errno.ENOTDIR, "is not a directory", parent)
+    probe = None
     try:
         fd, probe = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".probe", dir=parent)
+        os.close(fd)
     except OSError as exc:
         raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", target) from None
-    os.close(fd)
-    os.unlink(probe)
+    finally:  # also when a signal (SIGTERM, Ctrl-C) arrives between the two calls
+        if probe is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(probe)
     return target
 
 

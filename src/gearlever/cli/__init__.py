@@ -68,7 +68,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     parser = OneLineParser(
         prog="gearlever",
-        description="Kinematic, kinetostatic and dynamic analysis and synthesis of gear-lever differential mechanisms, gear trains and planar linkages.",
+        description="Kinematic, kinetostatic and dynamic analysis and synthesis of gear-lever differential "
+        "mechanisms, gear trains and planar linkages.",
     )
     parser.add_argument("--version", action="version", version=f"gearlever {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)

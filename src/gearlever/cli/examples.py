@@ -22,6 +22,21 @@ from gearlever.errors import GearleverError
 
 #: What a file of each suffix holds.
 KINDS = {".toml": "mechanism model", ".csv": "gear network"}
+#: CSV headers of synthesis targets (``gearlever synthesize``), and what they are.
+TARGET_HEADERS = {
+    "x,y,angle_deg": "motion poses (synthesize motion)",
+    "x,y": "path points (synthesize path)",
+    "x,y,input_deg": "timed path points (synthesize path)",
+    "input_deg,output_deg": "function pairs (synthesize function)",
+}
+
+
+def _kind(name: str, text: str) -> str:
+    """What an example holds: a mechanism model, a gear network or synthesis targets (by its CSV header)."""
+    first = next((ln.strip() for ln in text.splitlines() if ln.strip() and not ln.startswith("#")), "")
+    if name.endswith(".csv") and first.replace(" ", "") in TARGET_HEADERS:
+        return TARGET_HEADERS[first.replace(" ", "")]
+    return KINDS.get(Path(name).suffix, "")
 
 
 def register(sub) -> None:
@@ -58,10 +73,11 @@ def _list(args) -> int:
     from gearlever.data import example_path, list_examples
 
     names = list_examples()
+    texts = [example_path(n).read_text(encoding="utf-8") for n in names]
     cols = {
         "name": names,
-        "kind": [KINDS.get(Path(n).suffix, "") for n in names],
-        "description": [_description(example_path(n).read_text(encoding="utf-8")) for n in names],
+        "kind": [_kind(n, t) for n, t in zip(names, texts)],
+        "description": [_description(t) for t in texts],
     }
     emit(table_text(cols, args.format))
     return 0
