@@ -5,7 +5,7 @@ of mechanisms with genetic algorithms", Mech. Mach. Theory 37 (2002)
 1165-1177, eqs. 1-9): find the crank pivot ``O2 = (x0, y0)``, the ground
 line angle ``theta0``, the link lengths ground ``r1``, crank ``r2``, coupler
 ``r3``, rocker ``r4``, the coupler point ``(cx, cy)`` in the coupler frame
-(along A->B and its normal) and the assembly branch that minimize
+(along A->B and its normal) and the assembly branch that minimize::
 
     f = sum_i |P(phi_i) - T_i|^2
 
