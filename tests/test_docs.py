@@ -129,7 +129,7 @@ def test_guide_toml_fragments_parse_and_use_known_tables_and_keys(body):
     known = {
         "mechanism": set(schema._MECH_KEYS + schema._KEPT_MECH_KEYS),
         "sliders": {"name", "link", "on", "point", "direction"},
-        "meshes": {"gears", "carrier"},
+        "meshes": {"gears", "carrier", "efficiency"},
         "inputs": {"link", "relative_to", "slider"},
         "loads": {"link", "point", "force", "torque"},
     }
@@ -143,6 +143,8 @@ def test_guide_toml_fragments_parse_and_use_known_tables_and_keys(body):
             elif table in entries:
                 for name, entry in row.items():
                     assert set(entry) <= entries[table], (table, name, set(entry) - entries[table])
+            elif table == "lengths":  # LINK or "LINK.P-Q" = a positive length
+                assert all(isinstance(v, int | float) and v > 0 for v in row.values()), row
 
 
 @pytest.mark.parametrize("page", PYTHON_PAGES, ids=lambda p: p.stem)
