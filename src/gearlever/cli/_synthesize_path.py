@@ -205,7 +205,8 @@ def _run(args) -> int:
         raise flagged(exc, flags) from None
     finally:
         bar.close()
-    rep = res.report()
+    rep = _rounded(res.report())
+    rep["time_s"] = round(float(res.seconds), 2)
     if res.feasible:
         comment = (
             f"Synthesized by gearlever synthesize path ({res.kind}, seed {args.seed}, budget {args.budget}); "
@@ -223,4 +224,31 @@ def _run(args) -> int:
         save(ax.figure, args.figure)
     if not res.feasible:
         raise GearleverError("no buildable linkage meets the constraints: the model was not written")
+    err = max(rep["per_target_error"]) if rep["per_target_error"] else math.nan
+    tried = ", ".join(f"{k} {v:.6g}" for k, v in rep["types_tried"].items()) if rep["types_tried"] else res.kind
+    mu = rep["transmission_deg"]
+    emit(
+        "\n".join(
+            [
+                f"type             {res.kind} (tried: {tried})",
+                f"objective        {rep['objective']:.6g} (sum of squared distances to the targets)",
+                f"target error     max {err:.6g}",
+                f"grashof          {rep['grashof']}; branch {rep['branch']}",
+                f"transmission     {mu[0]:.4g} .. {mu[1]:.4g} deg",
+                f"evaluations      {rep['evaluations']} (seed {rep['seed']})",
+                f"model            {args.out} (input at target 1: {rep['input_deg'][0]:.10g} deg)",
+            ]
+        )
+    )
     return 0
+
+
+def _rounded(obj, digits: int = 12):
+    """The report with every float at ``digits`` significant digits, so that it is the same text on any machine."""
+    if isinstance(obj, dict):
+        return {k: _rounded(v, digits) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_rounded(v, digits) for v in obj]
+    if isinstance(obj, float) and math.isfinite(obj):
+        return float(f"{obj:.{digits}g}")
+    return obj
