@@ -273,3 +273,16 @@ def test_simulate_with_mesh_efficiency_reports_the_dissipated_energy(tmp_path):
     assert np.all(np.diff(loss) > 0)
     bal = ke - ke[0] - col["work_mJ"] - col["load_work_mJ"] + loss
     assert np.abs(bal).max() < 1e-8 * np.abs(ke).max()
+
+
+def test_simulate_beyond_the_work_cap_is_refused_naming_time(capsys, monkeypatch):
+    """A motion that needs more evaluations than the cap ends with exit 2 and one line naming --time."""
+    import gearlever.mechanism.dynamics as dyn
+
+    monkeypatch.setattr(dyn, "MAX_EVALS", 50)
+    model = str(Path(__file__).resolve().parents[2] / "examples" / "fivebar_two_inputs.toml")
+    code = main(
+        ["mechanism", "simulate", model, "--rpm", "left=60", "--rpm", "right=0", "--time", "1", "--points", "3"]
+    )
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "--time" in err[0] and "50 evaluations" in err[0]

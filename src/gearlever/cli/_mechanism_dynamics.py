@@ -244,7 +244,17 @@ def _simulate(args) -> int:
     t = np.linspace(0.0, args.time, max(args.points, 2))
     eff = _efficiency(args)
     with progress("mechanism simulate"):
-        s = mech.simulate(t, mech.sketch_inputs, w, torque=torque, efficiency=eff)
+        try:
+            s = mech.simulate(t, mech.sketch_inputs, w, torque=torque, efficiency=eff)
+        except GearleverError as exc:
+            if "max_evals" not in str(exc):
+                raise
+            from gearlever.mechanism.dynamics import MAX_EVALS
+
+            raise GearleverError(
+                f"--time: the motion needs more than {MAX_EVALS} evaluations of its equations "
+                f"(the cap on the work of one run): simulate a shorter --time"
+            ) from None
     L, F, T, P, E = _units(mech)
     cols = {"t_s": s.t}
     for i, (name, rot) in enumerate(names):
