@@ -153,3 +153,16 @@ def test_bad_input_is_refused_naming_the_parameter(kw, match):
     T = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0]])
     with pytest.raises(GearleverError, match=match):
         synthesize_path(T, **kw)
+
+
+def test_a_closing_target_repeating_the_first_is_met_one_crank_turn_later():
+    """A closed path whose last target repeats the first: the result lists every target, the last met at
+    the first one's crank angle plus a full turn with the same error (the crank-rocker repeats its pose)."""
+    import math
+
+    t = [[1.0, 2.0], [1.5, 2.4], [1.8, 3.0], [1.2, 3.5], [0.8, 2.9], [1.0, 2.0]]
+    r = synthesize_path(t, length_range=(0.2, 5), coord_range=(-5, 5), budget=4000, workers=1)
+    assert r.targets.shape == (6, 2) and r.errors.shape == (6,)
+    assert r.errors[-1] == r.errors[0] and np.allclose(r.traced[-1], r.traced[0])
+    assert math.isclose(r.crank_angles[-1] - r.crank_angles[0], 2 * math.pi)
+    assert math.isclose(r.objective, float(np.sum(r.errors**2)), rel_tol=1e-12)

@@ -22,9 +22,9 @@ from gearlever.synthesis.path import GRASHOF_MARGIN, _coupler, synthesize_path
 
 CASES = tomllib.loads(read_text("path_benchmarks.toml"))["cases"]
 SLOW = {"ellipse10"}
-#: Cases whose best published design the default search does not reach (measured: 0.32 against 4.0e-4,
-#: seed 0); strict, so the test fails once the search does reach it.
-NOT_REACHED = {"ellipse10": "default search ends near 0.32; Lin's published design reaches 4.0e-4"}
+#: Cases whose best published design the default search does not reach (strict xfail, so the test fails
+#: once the search does reach it); none at present.
+NOT_REACHED: dict = {}
 PUBLISHED = [(n, d["label"]) for n, c in CASES.items() for d in c.get("published", [])]
 
 
