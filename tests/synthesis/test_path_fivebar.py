@@ -12,29 +12,14 @@ from gearlever.synthesis._model import model_toml
 from gearlever.synthesis.fivebar import RATIOS, TURNS, GearedFiveBarPathProblem
 from gearlever.synthesis.path import synthesize_path
 
+from ._jacobian import check_problem_jacobian
+
 RANGES = dict(length_range=(0.5, 6.0), coord_range=(-5.0, 5.0))
 
 
 @pytest.mark.parametrize("timing", ["none", "relative", "absolute"])
 def test_jacobian_matches_central_finite_differences(timing):
-    rng = np.random.default_rng(3)
-    T = rng.random((5, 2)) * 3
-    ang = None if timing == "none" else np.radians([10, 30, 60, 100, 150])
-    pb = GearedFiveBarPathProblem(T, timing, ang, **RANGES)
-    Z = pb.sample(rng, 600)
-    Z = Z[np.isfinite(pb.objective(Z))][:3]
-    assert len(Z) == 3
-    for z in Z:
-        mode = float(pb.mode_of(z[None, :])[0])
-        w = pb.to_w(z)
-        J = pb.jacobian(w, mode)
-        Jn = np.empty_like(J)
-        for j in range(w.size):
-            h = 1e-6 * max(1.0, abs(w[j]))
-            e = np.zeros_like(w)
-            e[j] = h
-            Jn[:, j] = (pb.residual(w + e, mode) - pb.residual(w - e, mode)) / (2 * h)
-        assert np.abs(J - Jn).max() <= 1e-6 * np.abs(J).max()
+    check_problem_jacobian(GearedFiveBarPathProblem, 3, 600, timing, RANGES)
 
 
 def known_fivebar():
