@@ -66,17 +66,45 @@ def check_target(target, *, mkdir: bool = False) -> Path:
             raise _refuse(errno.ENOENT, "folder does not exist", parent)
     if not parent.is_dir():
         raise _refuse(errno.ENOTDIR, "is not a directory", parent)
-    probe = None
-    try:
-        fd, probe = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".probe", dir=parent)
+    # SIGTERM and Ctrl-C wait until the probe is gone (a handler that raises could otherwise
+    # leave it behind, between its creation and its removal)
+    with _signals_held():
+        try:
+            fd, probe = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".probe", dir=parent)
+        except OSError as exc:
+            raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", target) from None
         os.close(fd)
-    except OSError as exc:
-        raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", target) from None
-    finally:  # also when a signal (SIGTERM, Ctrl-C) arrives between the two calls
-        if probe is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(probe)
+        with contextlib.suppress(OSError):
+            os.unlink(probe)
     return target
+
+
+def _hold_signals():
+    """Hold SIGTERM and SIGINT (main thread, where the platform allows); return what :func:`_release_signals` takes."""
+    import signal
+    import threading
+
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.pthread_sigmask(signal.SIG_BLOCK, (signal.SIGTERM, signal.SIGINT))
+
+
+def _release_signals(old) -> None:
+    """Restore the signal mask saved by :func:`_hold_signals` (a held signal is delivered now); idempotent."""
+    if old is not None:
+        import signal
+
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+@contextlib.contextmanager
+def _signals_held():
+    """Hold SIGTERM and SIGINT for a short critical section."""
+    old = _hold_signals()
+    try:
+        yield
+    finally:
+        _release_signals(old)
 
 
 def check_folder(folder, *, create: bool = False) -> Path:
@@ -182,24 +210,29 @@ def _atomic_path(target, suffix, mkdir):
     if target.is_symlink():
         target = Path(os.path.realpath(target))
     target = check_target(target, mkdir=mkdir)
+    held = _hold_signals()  # a SIGTERM or Ctrl-C waits until the temporary is known, so it is removed
+    tmp = None
     try:
-        fd, tmp_name = tempfile.mkstemp(
-            prefix=f".{target.name}.",
-            suffix=suffix if suffix is not None else ".tmp" + target.suffix,
-            dir=target.parent,
-        )
-    except OSError as exc:
-        raise _refuse(exc.errno or errno.EACCES, exc.strerror or "cannot write", target) from None
-    os.close(fd)
-    tmp = Path(tmp_name)
-    try:
+        try:
+            fd, tmp_name = tempfile.mkstemp(
+                prefix=f".{target.name}.",
+                suffix=suffix if suffix is not None else ".tmp" + target.suffix,
+                dir=target.parent,
+            )
+        except OSError as exc:
+            raise _refuse(exc.errno or errno.EACCES, exc.strerror or "cannot write", target) from None
+        os.close(fd)
+        tmp = Path(tmp_name)
+        _release_signals(held)
         yield tmp
         # mkstemp makes the file 0600; give it the mode a plain open() would.
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
     except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            tmp.unlink()
+        _release_signals(held)
+        if tmp is not None:
+            with contextlib.suppress(FileNotFoundError):
+                tmp.unlink()
         raise
 
 
