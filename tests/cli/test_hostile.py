@@ -197,6 +197,40 @@ CLI_CASES = {
         ["network", "{tmp}/planetary.csv", "--teeth", "n2=30", "--teeth", "n2=31"],
         ["--teeth", "n2"],
     ),
+    # an option of one value given twice: refused, not the last silently kept
+    "network-efficiency-twice": (
+        [
+            "network",
+            "{tmp}/planetary.csv",
+            "--torque",
+            "sun=1",
+            "--loads",
+            "carrier",
+            "--efficiency",
+            "0.9",
+            "--efficiency",
+            "0.8",
+        ],
+        ["--efficiency", "given twice"],
+    ),
+    "analyze-points-twice": (
+        ["mechanism", "analyze", str(EXAMPLES / "fourbar.toml"), "--points", "3", "--points", "4"],
+        ["--points", "given twice"],
+    ),
+    "synthesize-seed-twice": (
+        [
+            "synthesize",
+            "path",
+            str(EXAMPLES / "motion_poses.csv"),
+            "--out",
+            "{tmp}/p.toml",
+            "--seed",
+            "0",
+            "--seed",
+            "1",
+        ],
+        ["--seed", "given twice"],
+    ),
     "network-speeds-unknown": (
         ["network", "{tmp}/planetary.csv", "--torque", "sun=1", "--loads", "carrier", "--speeds", "bogus=1"],
         ["--speeds"],

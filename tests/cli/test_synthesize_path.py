@@ -106,16 +106,49 @@ def test_same_seed_same_bytes_with_one_or_two_workers(tmp_path, run):
         (["--workers", "0"], POINTS, "--workers"),
         (["--type", "eightbar"], POINTS, "--type"),
         (["--figure", "f.gif"], POINTS, "--figure"),
+        (["--min-transmission", "90"], POINTS, "--min-transmission"),
+        (["--min-transmission", "-5"], POINTS, "--min-transmission"),
+        (["--min-transmission", "30", "--type", "auto"], POINTS, "--min-transmission"),
+        (["--min-transmission", "89.9"], POINTS, "--min-transmission"),
     ],
 )
 def test_bad_input_one_line_exit_2_naming_the_flag(tmp_path, run, extra, content, needle):
     pts = tmp_path / "p.csv"
     pts.write_text(content)
     out = tmp_path / "m.toml"
-    code, _, err = run(pts, "--out", out, "--budget", 1000, *extra)
+    budget = [] if "--budget" in extra else ["--budget", 1000]
+    code, _, err = run(pts, "--out", out, *budget, *extra)
     assert code == 2
     assert len(err.strip().splitlines()) == 1 and needle in err, err
     assert not out.exists()
+
+
+def test_min_transmission_holds_over_the_whole_turn_of_the_written_model(tmp_path, run):
+    """Without a bound the five points are met by a four-bar whose transmission angle falls to about 20 deg;
+    with --min-transmission 45 the result stays within 45..135 deg (sampled over a turn in the report)
+    and still meets the points."""
+    pts = tmp_path / "p.csv"
+    pts.write_text(POINTS)
+    free, bound = tmp_path / "free.json", tmp_path / "bound.json"
+    assert run(pts, "--out", tmp_path / "a.toml", "--report", free, "--budget", 8000, "--workers", 1)[0] == 0
+    code, _, err = run(
+        pts,
+        "--out",
+        tmp_path / "b.toml",
+        "--report",
+        bound,
+        "--budget",
+        8000,
+        "--workers",
+        1,
+        "--min-transmission",
+        45,
+    )
+    assert code == 0, err
+    lo, hi = json.loads(bound.read_text())["transmission_deg"]
+    assert 45 <= lo and hi <= 135
+    assert json.loads(bound.read_text())["objective"] < 1e-12
+    assert json.loads(free.read_text())["transmission_deg"][0] < 45  # the bound is active on this case
 
 
 def test_missing_points_file_is_refused(tmp_path, run):

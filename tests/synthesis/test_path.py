@@ -54,6 +54,87 @@ def test_jacobian_matches_central_finite_differences(timing, fixed):
         assert np.abs(J - Jn).max() <= 1e-7 * np.abs(J).max()
 
 
+@pytest.mark.parametrize("timing", ["none", "absolute"])
+def test_weighted_objective_residual_and_jacobian_agree(timing):
+    """Target weights: the batched objective is sum w_i |P_i - T_i|^2 (the best matching without timing),
+    the squared weighted residual gives the same value, and its Jacobian matches central differences."""
+    rng = np.random.default_rng(3)
+    T = rng.random((5, 2)) * 3
+    ang = None if timing == "none" else np.radians([10, 30, 60, 100, 150])
+    wts = [2.0, 1.0, 0.5, 1.0, 3.0]
+    pb = FourBarPathProblem(T, timing, ang, **RANGES, weights=wts)
+    plain = FourBarPathProblem(T, timing, ang, **RANGES)
+    Z = pb.sample(rng, 400)
+    Z = Z[np.isfinite(pb.objective(Z))][:3]
+    assert len(Z) == 3
+    for z in Z:
+        sigma = 1.0 if z[-1] >= 0 else -1.0
+        w = pb.to_w(z)
+        e2 = np.sum((pb.points(w, sigma) - T) ** 2, axis=1)
+        f = float(np.sum(pb.residual(w, sigma) ** 2))
+        assert f == pytest.approx(float(np.dot(wts, e2)), rel=1e-12)
+        # the search objective is the same sum (without timing, at the angles of its own weighted matching)
+        assert pb.objective(z[None])[0] == pytest.approx(f, rel=1e-9)
+        if timing != "none":
+            assert plain.objective(z[None])[0] == pytest.approx(float(e2.sum()), rel=1e-12)
+        J = pb.jacobian(w, sigma)
+        Jn = central_differences(pb.residual, w, sigma)
+        assert np.abs(J - Jn).max() <= 1e-7 * np.abs(J).max()
+
+
+@pytest.mark.parametrize("bad", [[1.0, 1.0], [1.0, 0.0, 1.0, 1.0, 1.0], [1.0, float("nan"), 1.0, 1.0, 1.0]])
+def test_weights_must_be_one_positive_number_per_target(bad):
+    with pytest.raises(GearleverError, match="weights must be 5 finite positive numbers"):
+        FourBarPathProblem(np.arange(10.0).reshape(5, 2), "none", **RANGES, weights=bad)
+
+
+@pytest.mark.parametrize("mt_deg", [20.0, 40.0, 60.0])
+def test_transmission_bound_agrees_with_the_sampled_transmission_angle(mt_deg):
+    """The closed-form feasibility (extremes at crank angles 0 and pi) equals the sampled transmission
+    angle of gearlever.loops over a whole turn staying within [mu, 180 - mu], candidate by candidate."""
+    from gearlever.loops import transmission_angle
+
+    rng = np.random.default_rng(11)
+    T = rng.random((5, 2)) * 3
+    mt = math.radians(mt_deg)
+    pb = FourBarPathProblem(T, "none", **RANGES, min_transmission=mt)
+    plain = FourBarPathProblem(T, "none", **RANGES)
+    Z = pb.sample(rng, 3000)
+    Z = Z[plain.feasible(Z)]
+    p, _ = plain.params(Z)
+    grid = np.linspace(0, 2 * math.pi, 721)
+    mu = np.array(
+        [transmission_angle(*(float(p[k][i]) for k in ("r1", "r2", "r3", "r4")), grid) for i in range(len(Z))]
+    )
+    quality = np.minimum(mu, math.pi - mu).min(axis=1)
+    clear = np.abs(quality - mt) > 1e-9
+    assert clear.sum() > 1000
+    ok = pb.feasible(Z)
+    assert np.array_equal(ok[clear], quality[clear] >= mt)
+    assert 0 < ok.sum() < len(Z)  # the bound keeps some candidates and removes others
+
+
+def test_transmission_bound_is_met_by_the_synthesized_linkage():
+    t = [[0.0, 0.0], [1.0, 0.2], [2.0, 1.0], [2.5, 2.0], [1.0, 2.5]]
+    kw = dict(length_range=(0.2, 5), coord_range=(-5, 5), budget=8000, workers=1)
+    free = synthesize_path(t, **kw)
+    r = synthesize_path(t, **kw, min_transmission=math.radians(45))
+    assert free.transmission_range[0] < math.radians(45)  # the bound is active here
+    assert r.feasible and r.objective < 1e-12
+    assert math.radians(45) <= r.transmission_range[0] and r.transmission_range[1] <= math.radians(135)
+
+
+@pytest.mark.parametrize("bad", [-0.1, math.pi / 2, float("inf")])
+def test_transmission_bound_must_be_below_a_right_angle(bad):
+    with pytest.raises(GearleverError, match="min_transmission must be in"):
+        FourBarPathProblem([[0, 0], [1, 0], [2, 1]], "none", **RANGES, min_transmission=bad)
+
+
+def test_transmission_bound_is_refused_for_other_linkage_types():
+    with pytest.raises(GearleverError, match="kind must be 'fourbar'"):
+        synthesize_path([[0, 0], [1, 0], [2, 1]], kind="auto", min_transmission=0.5, budget=100)
+
+
 def size2(T):
     ext = np.ptp(T, axis=0)
     return float(ext @ ext)

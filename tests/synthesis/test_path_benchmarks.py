@@ -119,7 +119,9 @@ def test_default_settings_reach_the_best_published_design(name):
     ref = published(case, case["best_published"])
     r = run(case)
     assert r.feasible and r.grashof == "crank-rocker"
-    assert r.objective <= ref["objective"] * (1 + case["tolerance"]), (name, r.objective, ref["paper"])
+    # against the design's objective recomputed to full precision (the recorded one has 6 digits)
+    limit = design_objective(case, ref["design"]) * (1 + case["tolerance"])
+    assert r.objective <= limit, (name, r.objective, ref["paper"])
 
 
 def test_every_case_names_its_source_constraint_set_and_a_published_design():

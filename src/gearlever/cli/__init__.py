@@ -47,16 +47,30 @@ class UsageError(Exception):
     """Raised instead of argparse's print-usage-and-exit, to keep errors to one line."""
 
 
+class _StoreOnce(argparse._StoreAction):
+    """``store`` for an option that takes one value: given twice, it is refused (the last would win silently)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        seen = namespace.__dict__.setdefault("_options_given", set())
+        if option_string is not None and self.dest in seen:
+            raise argparse.ArgumentError(self, "given twice (it takes one value)")
+        seen.add(self.dest)
+        super().__call__(parser, namespace, values, option_string)
+
+
 class OneLineParser(argparse.ArgumentParser):
     """An ArgumentParser whose errors are one line, raised as :class:`UsageError`.
 
     Negative numbers in scientific notation (``--torque -1e6``) are taken as
-    values, not as flags (argparse alone knows only ``-5`` and ``-0.5``).
+    values, not as flags (argparse alone knows only ``-5`` and ``-0.5``).  An
+    option that takes one value is refused when given twice.
     """
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = re.compile(r"^-(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?$")
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
 
     def error(self, message):  # noqa: D401 - argparse API
         raise UsageError(f"{self.prog}: {message}")

@@ -4,7 +4,7 @@ Registered on the ``synthesize`` sub-parsers by :func:`register_path`::
 
     gearlever synthesize path POINTS.csv --out MODEL.toml [--timing none|relative|absolute]
         [--pivot X Y] [--ground-angle DEG] [--length-range LO HI] [--coord-range LO HI]
-        [--type fourbar|geared-fivebar|sixbar|auto] [--seed N] [--budget EVALS]
+        [--min-transmission DEG] [--type fourbar|geared-fivebar|sixbar|auto] [--seed N] [--budget EVALS]
         [--workers N | --scheduler ADDRESS] [--report R.json] [--figure F.png]
 
 POINTS.csv holds ``x,y`` or ``x,y,input_deg`` per row (a header row naming
@@ -14,7 +14,9 @@ the columns is optional; ``#`` lines are skipped).  Timing defaults to
 Constraints are exact (see :mod:`gearlever.synthesis.path`): every
 candidate is a buildable Grashof crank-rocker with the crank the shortest
 link, inside the ranges, reaching the targets counter-clockwise in order on
-one assembly branch.  A constraint set that admits no such linkage (a pivot
+one assembly branch; with ``--min-transmission DEG`` the angle between
+coupler and rocker also stays within ``[DEG, 180 - DEG]`` over the whole
+turn (four-bars only).  A constraint set that admits no such linkage (a pivot
 outside the coordinate range, an empty range, timing that is not
 counter-clockwise within one turn) is refused with exit 2 naming the flag or
 file element; nothing is written then.  ``--type geared-fivebar`` synthesizes
@@ -78,6 +80,12 @@ def register_path(ss) -> None:
         type=finite_float,
         metavar=("LO", "HI"),
         help="bounds of pivot and coupler-point coordinates",
+    )
+    p.add_argument(
+        "--min-transmission",
+        type=finite_float,
+        metavar="DEG",
+        help="smallest transmission angle allowed over the turn, 0..90 (four-bar only; default: no bound)",
     )
     p.add_argument("--type", dest="kind", choices=("fourbar", "geared-fivebar", "sixbar", "auto"), default="fourbar")
     p.add_argument("--seed", type=nonnegative_int, default=0, help="fixes the result (default 0)")
@@ -171,6 +179,10 @@ def _run(args) -> int:
         raise GearleverError(f"--length-range must be 0 < LO < HI, got {lo:g} {hi:g}")
     if args.coord_range is not None and not args.coord_range[0] < args.coord_range[1]:
         raise GearleverError(f"--coord-range must be LO < HI, got {args.coord_range[0]:g} {args.coord_range[1]:g}")
+    if args.min_transmission is not None and not 0 <= args.min_transmission < 90:
+        raise GearleverError(f"--min-transmission must be 0 <= DEG < 90, got {args.min_transmission:g}")
+    if args.min_transmission is not None and args.kind != "fourbar":
+        raise GearleverError(f"--min-transmission bounds a four-bar's transmission angle: not with --type {args.kind}")
     flags = {
         "pivot": "--pivot",
         "ground_angle": "--ground-angle",
@@ -181,6 +193,7 @@ def _run(args) -> int:
         "scheduler": "--scheduler",
         "budget": "--budget",
         "kind": "--type",
+        "min_transmission": "--min-transmission",
     }
     bar = StderrProgress("gearlever synthesize path")
     try:
@@ -198,6 +211,7 @@ def _run(args) -> int:
             workers=args.workers,
             scheduler=args.scheduler,
             progress=bar,
+            min_transmission=None if args.min_transmission is None else math.radians(args.min_transmission),
         )
     except GearleverError as exc:
         from gearlever.cli._common import flagged

@@ -37,37 +37,38 @@ Constraints are exact, by construction (never penalties):
   ``x0, y0, cx, cy`` (the sets of the published benchmarks).
 
 Search (measured by ``benchmarks/bench_synthesis.py`` on the cases of
-``gearlever/data/path_benchmarks.toml``, 2-core machine shared with other
-jobs, budget 200 000 evaluations over 8 starts, the same polish; median
-final objective over seeds 0, 1, 2 and median wall time; "published" is
-the objective of the best published design of the case that lies in the
-same constraint set, recomputed from the design: Acharyya and Mandal,
-Mech. Mach. Theory 44 (2009) 1784-1794, for the line; Cabrera, Simon and
-Prado (2002) for the five-point and eighteen-point cases; Lin, Mech. Mach.
-Theory 45 (2010) 1096-1107, for the ellipse):
+``gearlever/data/path_benchmarks.toml``, 2-core machine, budget 200 000
+evaluations split into :func:`n_starts` starts (32 here), the same polish;
+median final objective over seeds 0, 1, 2 and median wall time with 2
+threads; "published" is the objective of the best published design of the
+case that lies in the same constraint set, recomputed from the design:
+Acharyya and Mandal, Mech. Mach. Theory 44 (2009) 1784-1794, for the line;
+Cabrera, Simon and Prado (2002) for the five-point and eighteen-point cases;
+Lin, Mech. Mach. Theory 45 (2010) 1096-1107, for the ellipse):
 
-=========================  ============  ============  ==========  ======  ======
-case                       DE            CMA-ES        published   DE s    CMA s
-=========================  ============  ============  ==========  ======  ======
-line6                      1.9e-07       2.4e-05       0.0151      6.7     7.2
-five_points_timed          7.41575e-07   7.41575e-07   1.83e-06    1.1     2.4
-kunjur_closed18_timed      0.00989475    0.00979883    0.0337      1.9     4.1
-ellipse10                  0.324534      0.387023      0.000402    18.1    19.2
-=========================  ============  ============  ==========  ======  ======
+=========================  ============  ============  ============  ======  ======
+case                       DE            CMA-ES        published     DE s    CMA s
+=========================  ============  ============  ============  ======  ======
+line6                      8.83524e-28   4.47668e-09   0.0150647     13.9    15.6
+five_points_timed          7.41575e-07   7.41575e-07   1.82703e-06   4.1     5.5
+kunjur_closed18_timed      0.00979883    0.00979883    0.033748      6.2     10.9
+ellipse10                  0.000401992   0.000401992   0.000401992   10.0    14.1
+=========================  ============  ============  ============  ======  ======
 
-The ellipse row was measured before the closing target was handled: its
-tenth target repeats the first, a full crank turn later, which the
-counter-clockwise order within one turn could not place (both searches
-stayed near 0.32).  :func:`synthesize_path` now searches a four-bar on the
-nine distinct targets and meets the tenth at the first one's crank angle plus
-2 pi (the crank-rocker repeats its pose): the default result is then 4.0254e-4,
-0.14 % above Lin's design (which weights the first point twice).  On the other
-three cases the default result is below the best published design.
+The ellipse's tenth target repeats the first, a full crank turn later:
+:func:`synthesize_path` searches a four-bar on the nine distinct targets with
+the first weighted twice (the objective Lin's design minimizes) and meets the
+tenth at the first one's crank angle plus 2 pi (the crank-rocker repeats its
+pose); its result, 4.0199205e-4, is just below Lin's design (4.0199219e-4).
+On that case each start lands in the best basin about 1 time in 8, with
+6 250 evaluations as with 25 000, which is why the budget goes to many
+short starts rather than a few long ones (with 8 starts of 25 000, seed 0
+ended at 4.53e-4).
+
 Differential evolution (:func:`gearlever.synthesis._search.differential_evolution`)
-is the default: it was better on two cases, equal on one and within 1 %
-on the eighteen-point case, and faster on all four, and its one-to-one
-selection keeps the population feasible
-(a rejected infeasible trial costs only its evaluation), where CMA-ES ranks
+is the default: it was better on the line, equal on the other three cases
+and faster on all four, and its one-to-one selection keeps the population
+feasible (a rejected infeasible trial costs only its evaluation), where CMA-ES ranks
 infeasible samples last and loses them.  Each start's best
 is then polished by :func:`scipy.optimize.least_squares` with the analytic
 Jacobian of the coupler point (:meth:`FourBarPathProblem.jacobian`, checked
@@ -87,7 +88,7 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 
-__all__ = ["FourBarPathProblem", "PathSynthesis", "synthesize_path", "DEFAULT_BUDGET", "MAX_BUDGET"]
+__all__ = ["FourBarPathProblem", "PathSynthesis", "synthesize_path", "n_starts", "DEFAULT_BUDGET", "MAX_BUDGET"]
 
 #: Relative room kept below Grashof's limit ``s + l = p + q`` (a change point).
 GRASHOF_MARGIN = 1e-6
@@ -98,9 +99,15 @@ DEFAULT_BUDGET = 200_000
 #: Most candidate evaluations: an evaluation costs ~0.1-2 us per target, so
 #: 10^7 of them on 18 targets take about a minute per core.
 MAX_BUDGET = 10**7
-#: Independent starts (each a seeded DE run, then a polish); fixed, so that
-#: the result does not depend on the number of workers.
+#: Fewest independent starts (each a seeded DE run, then a polish).
 STARTS = 8
+#: Most independent starts.
+MAX_STARTS = 32
+#: Evaluations per search variable that one start needs to settle into a basin:
+#: a budget that allows more starts of at least this size is split into more
+#: starts (on the ellipse case each four-bar start lands in the best basin with
+#: about the same chance, 1 in 8, at 6 250 evaluations as at 25 000).
+START_EVALS_PER_VAR = 625
 #: Most target points.
 MAX_TARGETS = 1000
 
@@ -239,6 +246,15 @@ class FourBarPathProblem:
         Fixed ground line angle ``theta0`` (radians).
     length_range, coord_range : pair of float
         Bounds of every link length, and of ``x0, y0, cx, cy``.
+    weights : array_like (N,), optional
+        Positive weight of each target's squared distance in the objective
+        (default 1 each); a closed path's first target, met again one crank
+        turn later, counts twice.
+    min_transmission : float, optional
+        Smallest transmission angle allowed over the whole crank turn,
+        radians in ``[0, pi/2)``: every candidate whose angle between
+        coupler and rocker leaves ``[mu, pi - mu]`` is infeasible (an exact
+        constraint, like buildability).
 
     Notes
     -----
@@ -265,6 +281,8 @@ class FourBarPathProblem:
         ground_angle=None,
         length_range=(1.0, 10.0),
         coord_range=(-10.0, 10.0),
+        weights=None,
+        min_transmission=None,
     ):
         T = np.asarray(targets, dtype=float)
         if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 2:
@@ -277,6 +295,17 @@ class FourBarPathProblem:
             raise GearleverError(f"timing must be one of {', '.join(TIMINGS)}, got {timing!r}")
         self.targets = T
         self.N = T.shape[0]
+        self.weights = np.ones(self.N)
+        if weights is not None:
+            wt = np.asarray(weights, dtype=float).reshape(-1)
+            if wt.size != self.N or not np.all(np.isfinite(wt)) or np.any(wt <= 0):
+                raise GearleverError(f"weights must be {self.N} finite positive numbers, one per target")
+            self.weights = wt
+        self._sqrt_w = np.repeat(np.sqrt(self.weights), 2)
+        mt = 0.0 if min_transmission is None else float(min_transmission)
+        if not (math.isfinite(mt) and 0.0 <= mt < math.pi / 2):
+            raise GearleverError(f"min_transmission must be in [0, pi/2) radians, got {min_transmission!r}")
+        self.min_transmission = mt
         self.timing = timing
         self.angles = None
         if timing != "none":
@@ -399,8 +428,25 @@ class FourBarPathProblem:
         return np.where(np.asarray(Z)[..., self._col["branch"]] >= 0, 1.0, -1.0)
 
     def feasible(self, Z):
-        """Mask (n,) of candidates that are buildable (the crank fits: ``r2max > lo``)."""
-        return self.params(Z)[1]
+        """Mask (n,) of candidates that are buildable (the crank fits: ``r2max > lo``) and transmit.
+
+        Notes
+        -----
+        With :attr:`min_transmission` ``mu_min``, the transmission angle
+        ``mu`` (``cos mu = (r3^2 + r4^2 - f^2) / (2 r3 r4)``, ``f = |O4 - A|``,
+        Norton, *Design of Machinery*, eq. 3.3a) of a crank-rocker is
+        monotone in the crank angle between its extremes at the crank angles
+        0 and pi (``f = r1 - r2`` and ``r1 + r2``), so the whole turn keeps
+        ``mu_min <= mu <= pi - mu_min`` exactly when both extremes do.
+        """
+        p, ok = self.params(Z)
+        if self.min_transmission > 0.0:
+            c = math.cos(self.min_transmission)
+            r1, r2, r3, r4 = p["r1"], p["r2"], p["r3"], p["r4"]
+            s2, den = r3 * r3 + r4 * r4, 2.0 * r3 * r4
+            for f in (r1 - r2, r1 + r2):
+                ok = ok & (np.abs((s2 - f * f) / den) <= c)
+        return ok
 
     def _pts(self, Z, phi, mode, jac=False):
         """Coupler points (n, m, 2) of candidates ``Z`` (n, d) at crank angles ``phi`` (n, m).
@@ -450,12 +496,12 @@ class FourBarPathProblem:
             grid = self._grid()
             P = self._pts(Zk, np.broadcast_to(grid, (Zk.shape[0], grid.size)), mode)
             diff = self.targets[None, :, None, :] - P[:, None, :, :]
-            D = np.einsum("nimk,nimk->nim", diff, diff)
+            D = np.einsum("nimk,nimk->nim", diff, diff) * self.weights[None, :, None]
             cost, _ = _monotone_match(D, CURVE_SAMPLES)
         else:
             P = self._pts(Zk, self.phis(Zk), mode)
             diff = P - self.targets
-            cost = np.einsum("nik,nik->n", diff, diff)
+            cost = np.einsum("nik,nik,i->n", diff, diff, self.weights)
         out[ok] = cost
         return out
 
@@ -472,7 +518,7 @@ class FourBarPathProblem:
         grid = self._grid()
         P = self._pts(z[None, :], grid[None, :], self.mode_of(z[None, :]))
         diff = self.targets[None, :, None, :] - P[:, None, :, :]
-        D = np.einsum("nimk,nimk->nim", diff, diff)
+        D = np.einsum("nimk,nimk->nim", diff, diff) * self.weights[None, :, None]
         M, L = CURVE_SAMPLES, grid.size
         _, cut = _monotone_match(D, M)
         win = (cut[0] + np.arange(M)) % L
@@ -500,9 +546,9 @@ class FourBarPathProblem:
         return self._pts(Z[None, :], phi[None, :], np.array([mode]))[0]
 
     def residual(self, w, mode):
-        """Residual ``(P_i - T_i)`` flattened (2N,) of polish vector ``w``."""
+        """Weighted residual ``sqrt(w_i) (P_i - T_i)`` flattened (2N,) of polish vector ``w``."""
         self.evaluations += 1
-        return (self.points(w, mode) - self.targets).reshape(-1)
+        return (self.points(w, mode) - self.targets).reshape(-1) * self._sqrt_w
 
     def jacobian(self, w, mode):
         """Analytic Jacobian (2N, len(w)) of :meth:`residual` (chain rule through ``r2(r1, r3, r4, u2)``).
@@ -524,7 +570,7 @@ class FourBarPathProblem:
             Jphi = np.zeros((self.N, 2, self.N))
             Jphi[np.arange(self.N), :, np.arange(self.N)] = dP["phi"][0]
             J = np.concatenate([J, Jphi.reshape(2 * self.N, self.N)], axis=1)
-        return J
+        return J * self._sqrt_w[:, None]
 
     def polish_bounds(self):
         nb = self.d - 1
@@ -553,7 +599,12 @@ class FourBarPathProblem:
         return bool(self.feasible(Z[None, :])[0]) and self.in_order(w)
 
     def polish(self, w, sigma):
-        """Local least squares from ``w`` (analytic Jacobian, trust region in the box); returns ``(w, f)``."""
+        """Local least squares from ``w`` (analytic Jacobian, trust region in the box); returns ``(w, f)``.
+
+        A polished point that leaves the feasible set (an active transmission
+        or Grashof constraint) is pulled back along the step by bisection to
+        the last feasible point that still improves.
+        """
         from scipy.optimize import least_squares
 
         lo, hi = self.polish_bounds()
@@ -577,9 +628,22 @@ class FourBarPathProblem:
             f1 = float(np.sum(self.residual(w1, sigma) ** 2))
         except (ValueError, np.linalg.LinAlgError):
             return w0, f0
-        if f1 < f0 and self.feasible_w(w1, sigma):
+        if not f1 < f0:
+            return w0, f0
+        if self.feasible_w(w1, sigma):
             return w1, f1
-        return w0, f0
+        best, fb, t_in, t_out = w0, f0, 0.0, 1.0
+        for _ in range(40):  # bisection on the segment w0 -> w1 for the constraint boundary
+            t = 0.5 * (t_in + t_out)
+            wt = w0 + t * (w1 - w0)
+            if self.feasible_w(wt, sigma):
+                t_in = t
+                ft = float(np.sum(self.residual(wt, sigma) ** 2))
+                if ft < fb:
+                    best, fb = wt, ft
+            else:
+                t_out = t
+        return best, fb
 
 
 def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> tuple:
@@ -787,6 +851,21 @@ def _result(pb: FourBarPathProblem, w, sigma, evals, seed, starts, seconds) -> P
     )
 
 
+def n_starts(budget: int, d: int) -> int:
+    """Independent starts of a search of ``budget`` evaluations over ``d`` variables.
+
+    :data:`STARTS` to :data:`MAX_STARTS`, as many as give each start at least
+    :data:`START_EVALS_PER_VAR` evaluations per variable; it depends on the
+    problem alone, so a seed gives the same result on any number of workers.
+
+    Examples
+    --------
+    >>> n_starts(200_000, 10), n_starts(4000, 10), n_starts(10**7, 16)
+    (32, 8, 32)
+    """
+    return int(min(MAX_STARTS, max(STARTS, int(budget) // (START_EVALS_PER_VAR * int(d)))))
+
+
 def default_ranges(targets) -> tuple:
     """Default length and coordinate ranges from the targets' extent ``S`` and centre ``c``.
 
@@ -818,6 +897,7 @@ def synthesize_path(
     scheduler: str | None = None,
     method: str = "de",
     progress=None,
+    min_transmission: float | None = None,
 ) -> PathSynthesis:
     """Synthesize a four-bar whose coupler point passes through ``targets`` (global search, then polish).
 
@@ -828,7 +908,7 @@ def synthesize_path(
         Crank angles at the targets, radians (see :class:`FourBarPathProblem`).
     timing : {"none", "relative", "absolute"}, optional
         Default ``"relative"`` when ``angles`` are given, else ``"none"``.
-    pivot, ground_angle, length_range, coord_range
+    pivot, ground_angle, length_range, coord_range, min_transmission
         Constraints (see :class:`FourBarPathProblem`); ranges default to
         :func:`default_ranges`.
     kind : {"fourbar", "geared-fivebar", "sixbar", "auto"}
@@ -840,7 +920,9 @@ def synthesize_path(
     seed : int
         Fixes the result (each start ``k`` draws from ``default_rng([seed, k])``).
     budget : int
-        Candidate evaluations of the global search, all :data:`STARTS` starts together.
+        Candidate evaluations of the global search, all starts together; it
+        is split into :func:`n_starts` starts (8 to 32, set by the budget and
+        the number of variables, never by the workers).
     workers : int, optional
         Local dask threads (default: dask's default).
     scheduler : str, optional
@@ -885,6 +967,12 @@ def synthesize_path(
         "length_range": tuple(length_range) if length_range is not None else dl,
         "coord_range": tuple(coord_range) if coord_range is not None else dc,
     }
+    if min_transmission is not None:
+        if kind != "fourbar":
+            raise GearleverError(
+                f"min_transmission bounds a four-bar's transmission angle only: kind must be 'fourbar', got {kind!r}"
+            )
+        base["min_transmission"] = min_transmission
     pb = FourBarPathProblem(**base)  # checks the input before any work
     budget = int(budget)
     if not 1 <= budget <= MAX_BUDGET:
@@ -902,14 +990,17 @@ def synthesize_path(
         and bool(np.array_equal(pb.targets[-1], pb.targets[0]))
     )
     if closing:
-        base = {**base, "targets": base["targets"][:-1]}
+        # the first target stands for two (it is met again one turn later): it weighs twice
+        n = pb.targets.shape[0] - 1
+        base = {**base, "targets": base["targets"][:-1], "weights": [2.0] + [1.0] * (n - 1)}
     t0 = time.perf_counter()
     best_res, tried, evals = None, {}, 0
     for kd in kinds:
         spec = {"kind": kd, **base}
         pk = make_problem(spec)
-        per = max(budget // STARTS, 1)
-        results = run_starts(spec, seed, STARTS, per, method, workers=workers, scheduler=scheduler, progress=progress)
+        starts = n_starts(budget, pk.d)
+        per = max(budget // starts, 1)
+        results = run_starts(spec, seed, starts, per, method, workers=workers, scheduler=scheduler, progress=progress)
         evals += sum(r[4] for r in results)
         best = results[0]
         if best[2] is None:
@@ -918,13 +1009,13 @@ def synthesize_path(
         if kd == "geared-fivebar":
             from gearlever.synthesis.fivebar import fivebar_result
 
-            res = fivebar_result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
+            res = fivebar_result(pk, best[2], best[3], evals, seed, starts, 0.0)
         elif kd == "sixbar":
             from gearlever.synthesis.sixbar import sixbar_result
 
-            res = sixbar_result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
+            res = sixbar_result(pk, best[2], best[3], evals, seed, starts, 0.0)
         else:
-            res = _result(pk, best[2], best[3], evals, seed, STARTS, 0.0)
+            res = _result(pk, best[2], best[3], evals, seed, starts, 0.0)
         tried[kd] = res.objective if res.feasible else None
         if res.feasible and (best_res is None or res.objective < best_res.objective):
             best_res = res
@@ -932,7 +1023,8 @@ def synthesize_path(
         if kind == "auto" and best_res is not None and best_res.objective <= AUTO_GOOD * S2:
             break
     if best_res is None:
-        raise GearleverError("no buildable linkage found within the constraints (length_range, coord_range)")
+        bounds = "length_range, coord_range" + (", min_transmission" if min_transmission else "")
+        raise GearleverError(f"no buildable linkage found within the constraints ({bounds})")
     from dataclasses import replace
 
     if closing:
