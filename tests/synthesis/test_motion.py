@@ -113,3 +113,87 @@ def test_three_poses_moving_pivot_on_a_line_refused():
     # a pure translation along x: a moving pivot's three positions are collinear
     with pytest.raises(GearleverError, match="on a line"):
         synthesize_motion([(0, 0), (1, 0), (2, 0)], [0.0, 0.0, 0.0], moving_pivots=[(0, 1), (1, 1)])
+
+
+# ---------------------------------------------------------------------------
+# completeness of the five-pose solution, against an independent formulation
+# ---------------------------------------------------------------------------
+
+
+def _design_matrix(pts, ang, G):
+    """Rows ``[a_i, -a_i . P_1i]``, ``a_i = (G - P_1i)^T [A(phi_1i) - I]``, i = 2..5, for fixed pivots G (..., 2).
+
+    The RR design equations of J. M. McCarthy and G. S. Soh, *Geometric Design of Linkages*, 2nd ed.,
+    Springer, 2011, eq. 5.17 (P_1i the pole and phi_1i the rotation from pose 1 to pose i), written as
+    linear equations in the moving pivot W_1 (their eq. 5.19): a fixed pivot reaches the five poses
+    exactly when this 4 x 3 matrix has rank two.
+    """
+    z = pts[:, 0] + 1j * pts[:, 1]
+    rows = []
+    for i in range(1, 5):
+        phi = ang[i] - ang[0]
+        e = np.exp(1j * phi)
+        pole = (z[i] - e * z[0]) / (1 - e)
+        p = np.array([pole.real, pole.imag])
+        rot = np.array([[np.cos(phi) - 1, -np.sin(phi)], [np.sin(phi), np.cos(phi) - 1]])
+        a = (G - p) @ rot
+        rows.append(np.concatenate([a, -(a @ p)[..., None]], axis=-1))
+    return np.stack(rows, axis=-2)
+
+
+def _brute_force_fixed_pivots(pts, ang, half, n=400):
+    """Every fixed pivot in the square |x|, |y| < half where the design matrix loses rank: local minima of
+    its smallest relative singular value on an n x n grid, each refined by least squares on the four 3 x 3
+    minors (no use of gearlever's resultant)."""
+    from itertools import combinations
+
+    from scipy.optimize import least_squares
+
+    xs = np.linspace(-half, half, n)
+    G = np.stack(np.meshgrid(xs, xs, indexing="ij"), -1)
+    s = np.linalg.svd(_design_matrix(pts, ang, G), compute_uv=False)
+    q = s[..., 2] / s[..., 0]
+    inner = q[1:-1, 1:-1]
+    around = np.min([q[1 + di : n - 1 + di, 1 + dj : n - 1 + dj] for di in (-1, 0, 1) for dj in (-1, 0, 1)], axis=0)
+    cand = np.argwhere((inner == around) & (inner < 0.05)) + 1
+
+    def minors(g):
+        M = _design_matrix(pts, ang, g)
+        return np.array([np.linalg.det(M[list(k)]) for k in combinations(range(4), 3)]) / np.linalg.norm(M) ** 3
+
+    found = []
+    for i, j in cand:
+        g = least_squares(minors, G[i, j], xtol=1e-15, ftol=1e-15, gtol=1e-15).x
+        sv = np.linalg.svd(_design_matrix(pts, ang, g), compute_uv=False)
+        if sv[2] / sv[0] < 1e-9 and not any(np.hypot(*(g - f)) < 1e-4 * half for f in found):
+            found.append(g)
+    return found
+
+
+def _pose_sets():
+    rng = np.random.default_rng(0)
+    sets = [tuple(np.asarray(v) for v in _poses(5))]
+    for _ in range(6):
+        sets.append((rng.uniform(-2, 2, (5, 2)), np.sort(rng.uniform(0, 1.5, 5))))
+    return sets
+
+
+@pytest.mark.parametrize("k", range(7))
+def test_five_poses_every_burmester_point_is_found_against_mccarthy_soh_design_equations(k):
+    """Completeness: the fixed pivots that gearlever's resultant finds (roots of one polynomial) are exactly
+    those that a brute-force search on McCarthy and Soh's bilinear design equations finds in a square of
+    half-width 12 around the poses (the known four-bar's poses and six random pose sets; 2 or 4 each)."""
+    pts, ang = _pose_sets()[k]
+    half = 12.0
+    ours = [np.array(d.ground_pivot) for d in burmester_points(pts, ang)]
+    ours_in = [g for g in ours if np.all(np.abs(g) < half - 0.05)]
+    brute = [g for g in _brute_force_fixed_pivots(pts, ang, half) if np.all(np.abs(g) < half - 0.05)]
+    assert len(ours) in (2, 4) and len(ours_in) == len(brute), (ours, brute)
+    # (the brute force stops at a relative singular value of 1e-9: where the rank drops slowly, as near
+    # the known pivots of the first set, that leaves its points up to ~1e-6 from the exact ones)
+    for g in brute:
+        assert min(np.hypot(*(g - h)) for h in ours_in) < 1e-5 * half
+    # and each of ours satisfies the design equations: the matrix has rank two
+    for g in ours:
+        sv = np.linalg.svd(_design_matrix(pts, ang, g), compute_uv=False)
+        assert sv[2] < 1e-10 * sv[0]
