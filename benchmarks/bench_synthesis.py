@@ -15,6 +15,13 @@ against pylinkage, one process.
    candidates the way its synthesis verifies one (``solution_to_linkage``,
    then ``Linkage.step`` over the crank turn, numba absent so its Python
    path), trajectories checked to agree.  Prints the ratio.
+4. Motion generation through five poses (``examples/motion_poses.csv``,
+   made from a known four-bar with pivots (0, 0), (4, 0)): gearlever's
+   Burmester points (:func:`gearlever.synthesis.burmester_points`) against
+   pylinkage 1.3 ``motion_generation`` on the same poses, median time of
+   repeated runs, and how exact each tool's dyads are: the spread of the
+   moving pivot's distance to its ground pivot over the five poses
+   (0 for a dyad that reaches them), relative to the poses' size.
 
 Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_synthesis.py [--quick]
 (needs ``pip install pylinkage==1.3.0`` for part 3).
@@ -187,9 +194,71 @@ def part_speed(n_ours=4096, n_pl=200):
     )
 
 
+def _circle_spread(pts, ang, ground, moving):
+    """Spread of |M_j - G| over the poses, for a dyad given at the first pose (M_j carried by the coupler)."""
+    z = pts[:, 0] + 1j * pts[:, 1]
+    Mj = z + np.exp(1j * (ang - ang[0])) * (complex(*moving) - z[0])
+    r = np.abs(Mj - complex(*ground))
+    return float(np.ptp(r))
+
+
+def part_motion(repeats=50):
+    from gearlever.data import example_path
+    from gearlever.synthesis import burmester_points
+
+    print("\n4. motion generation through five poses of a known four-bar (pivots (0, 0) and (4, 0))")
+    P = np.loadtxt(example_path("motion_poses.csv"), delimiter=",", skiprows=1)
+    pts, ang = P[:, :2], np.radians(P[:, 2])
+    size = float(np.ptp(pts, axis=0).max())
+
+    def timed(fn):
+        times = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            out = fn()
+            times.append(time.perf_counter() - t0)
+        return out, statistics.median(times)
+
+    ours, t_ours = timed(lambda: burmester_points(pts, ang))
+    spread = max(_circle_spread(pts, ang, d.ground_pivot, d.moving_pivot) for d in ours) / size
+    known = (
+        min(math.hypot(*d.ground_pivot) for d in ours),
+        min(math.hypot(d.ground_pivot[0] - 4, d.ground_pivot[1]) for d in ours),
+    )
+    print(
+        f"gearlever burmester_points   {t_ours * 1e3:8.3f} ms  {len(ours)} dyads, circle spread <= {spread:.1e} "
+        f"of the size; known pivots found to {max(known):.1e}"
+    )
+    try:
+        from pylinkage.synthesis import Pose, motion_generation
+    except ImportError:
+        print("pylinkage not installed: pip install pylinkage==1.3.0")
+        return
+    poses = [Pose(float(x), float(y), float(a)) for (x, y), a in zip(pts, ang)]
+    res, t_pl = timed(lambda: motion_generation(poses, max_solutions=None, require_grashof=False))
+    dyads = set()
+    for sol in res.solutions:
+        c = {d.name: (d.x, d.y) for d in sol.dyads}
+        dyads.add((c["A"], c["B"]))
+        dyads.add((c["D"], c["C"]))
+    spreads = [_circle_spread(pts, ang, g, m) / size for g, m in dyads]
+    grounds = {g for g, _ in dyads}
+    known = min(math.hypot(*g) for g in grounds), min(math.hypot(g[0] - 4, g[1]) for g in grounds)
+    print(
+        f"pylinkage motion_generation  {t_pl * 1e3:8.3f} ms  {len(res.solutions)} four-bars, {len(dyads)} dyads, circle"
+        f" spread {min(spreads):.1e} .. {max(spreads):.1e} of the size; nearest to the known pivots"
+        f" {known[0]:.3g}, {known[1]:.3g}"
+    )
+    print(f"ratio: gearlever {t_pl / t_ours:.1f}x faster, and its dyads reach the five poses")
+
+
 def main():
     quick = "--quick" in sys.argv
+    if "--motion" in sys.argv:
+        part_motion()
+        return
     part_speed()
+    part_motion()
     if "--speed" in sys.argv:
         return
     part_cases()

@@ -166,9 +166,47 @@ def test_draw_of_a_two_input_model_with_one_range_names_what_is_missing(tmp_path
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and not png.exists()
     assert "--input: model 'ZRDPM gear contour 9-8 on lever 1' has 2 inputs (gear9, lever1); " in err
-    assert "give --input START STOP once per input" in err
+    assert "give --input [NAME=]START STOP once per input" in err
     assert main(["mechanism", "draw", model, "--out", str(png), "--points", "24"]) == 0
     assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_input_ranges_named_after_the_inputs_in_any_order_equal_the_ordered_ones(capsys):
+    model = str(EXAMPLES / "zrdpm_gear_contour.toml")
+    base = ["mechanism", "analyze", model, "--points", "5", "--format", "csv"]
+    outs = []
+    for extra in (
+        ["--input", "0", "360", "--input", "0", "60"],
+        ["--input", "gear9=0", "360", "--input", "lever1=0", "60"],
+        ["--input", "lever1=0", "60", "--input", "gear9=0", "360"],
+    ):
+        assert main([*base, *extra]) == 0
+        outs.append(capsys.readouterr().out)
+    assert outs[0] == outs[1] == outs[2]
+    assert "input_lever1_deg" in outs[0]
+    rows = [ln.split(",") for ln in outs[0].splitlines()]
+    col = rows[0].index("input_lever1_deg")
+    assert [float(r[col]) for r in rows[1:]] == pytest.approx([0, 15, 30, 45, 60], abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "extra, words",
+    [
+        (["--input", "gear9=0", "360"], ["missing: lever1"]),
+        (["--input", "gear9=0", "360", "--input", "0", "60"], ["name every input"]),
+        (["--input", "gear9=0", "360", "--input", "lever=0", "60"], ["unknown input 'lever'", "did you mean 'lever1'"]),
+        (["--input", "gear9=0", "360", "--input", "gear9=0", "60"], ["'gear9' given twice"]),
+        (["--input", "=0", "360", "--input", "0", "60"], ["--input", "name must come before '='"]),
+        (["--input", "gear9=x", "360", "--input", "lever1=0", "60"], ["--input", "number"]),
+    ],
+)
+def test_named_input_ranges_refused_in_one_line(capsys, extra, words):
+    model = str(EXAMPLES / "zrdpm_gear_contour.toml")
+    assert main(["mechanism", "analyze", model, "--points", "3", *extra]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1, err
+    for w in words:
+        assert w in err, err
 
 
 def test_rpm_gives_velocities_in_time_named_as_such(capsys):

@@ -40,6 +40,7 @@ Caps: ``--points`` at most :data:`MAX_POINTS`, ``--frames`` at most
 
 from __future__ import annotations
 
+import argparse
 import math
 from pathlib import Path
 
@@ -149,12 +150,74 @@ def _sweep_args(p, points: bool):
     p.add_argument(
         "--input",
         nargs=2,
-        type=finite_float,
-        action="append",
-        metavar=("START", "STOP"),
-        help="range of one input (deg, or length for a slider), end included; once per input, in [[inputs]] "
-        "order (default: the first input turns a full turn from the sketch, the others stay at the sketch)",
+        action=_InputRange,
+        metavar=("[NAME=]START", "STOP"),
+        help="range of one input (deg, or length for a slider), end included; once per input, named "
+        "(--input crank=0 90) or in [[inputs]] order (default: the first input turns a full turn from the "
+        "sketch, the others stay at the sketch)",
     )
+
+
+class _InputRange(argparse.Action):
+    """``--input [NAME=]START STOP`` (appended): one input's range, as ``(name or None, start, stop)``."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        first, stop = values
+        name, sep, start = str(first).rpartition("=") if "=" in str(first) else (None, "", first)
+        nums = []
+        for v in (start, stop):
+            try:
+                nums.append(finite_float(v))
+            except argparse.ArgumentTypeError as exc:
+                raise argparse.ArgumentError(self, str(exc)) from None
+        if sep and not name.strip():
+            raise argparse.ArgumentError(self, f"an input name must come before '=', got {first!r}")
+        items = list(getattr(namespace, self.dest, None) or [])
+        items.append((name.strip() if sep else None, nums[0], nums[1]))
+        setattr(namespace, self.dest, items)
+
+
+def input_ranges(mech, given):
+    """The ``--input`` ranges in ``[[inputs]]`` order: ``[(start, stop), ...]``, or None when none is given.
+
+    ``given`` holds ``(name or None, start, stop)`` (or ``(start, stop)``): all named, each input once
+    in any order, or all unnamed, in ``[[inputs]]`` order.
+
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> input_ranges(m, [("crank", 0.0, 90.0)]), input_ranges(m, [(None, 10.0, 20.0)])
+    ([(0.0, 90.0)], [(10.0, 20.0)])
+    """
+    if not given:
+        return None
+    items = [g if len(g) == 3 else (None, *g) for g in given]
+    named = [g[0] is not None for g in items]
+    if not any(named):
+        return [(g[1], g[2]) for g in items]
+    labels = input_labels(mech)
+    if not all(named):
+        raise GearleverError(
+            "--input: name every input (--input NAME=START STOP) or none (in [[inputs]] order), not some"
+        )
+    out: dict = {}
+    for name, a, b in items:
+        if name not in labels:
+            import difflib
+
+            close = difflib.get_close_matches(name, labels, n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise GearleverError(f"--input: unknown input {name!r} (inputs: {', '.join(labels)}{hint})")
+        if name in out:
+            raise GearleverError(f"--input: input {name!r} given twice")
+        out[name] = (a, b)
+    missing = [n for n in labels if n not in out]
+    if missing:
+        raise GearleverError(
+            f"--input: model {mech.model.name!r} has inputs {', '.join(labels)}; give --input NAME=START STOP "
+            f"once for each (missing: {', '.join(missing)}), or none to turn the first with the others held"
+        )
+    return [out[n] for n in labels]
 
 
 def sweep(mech, points: int = DEFAULT_POINTS, ranges=None):
@@ -165,9 +228,10 @@ def sweep(mech, points: int = DEFAULT_POINTS, ranges=None):
     mech : gearlever.Mechanism
     points : int
         Rows, at most :data:`MAX_POINTS`.
-    ranges : sequence of (start, stop), optional
-        One per input in ``[[inputs]]`` order, degrees for a link and length
-        for a slider (the ``--input`` values).
+    ranges : sequence of (start, stop) or (name, start, stop), optional
+        One per input, degrees for a link and length for a slider (the
+        ``--input`` values): in ``[[inputs]]`` order, or named
+        (:func:`input_ranges`).
 
     Returns
     -------
@@ -209,6 +273,8 @@ def sweep(mech, points: int = DEFAULT_POINTS, ranges=None):
     m = mech.model
     W = len(m.inputs)
     labels = ", ".join(input_labels(mech))
+    if ranges and any(len(r) == 3 for r in ranges):
+        ranges = input_ranges(mech, ranges)
     if not ranges:
         if m.inputs[0].kind == "slider":
             raise GearleverError(
@@ -222,8 +288,9 @@ def sweep(mech, points: int = DEFAULT_POINTS, ranges=None):
         return q, qdot
     if len(ranges) != W:
         raise GearleverError(
-            f"--input: model {m.name!r} has {W} input{'s' if W != 1 else ''} ({labels}); give --input START STOP "
-            f"once per input (got {len(ranges)}), or none to turn the first a full turn with the others held"
+            f"--input: model {m.name!r} has {W} input{'s' if W != 1 else ''} ({labels}); "
+            f"give --input [NAME=]START STOP once per input (got {len(ranges)}), "
+            "or none to turn the first a full turn with the others held"
         )
     check_input_span(m, ranges)
     conv = [1.0 if spec.kind == "slider" else math.pi / 180.0 for spec in m.inputs]
@@ -267,7 +334,8 @@ def _rates(mech, args, q, qdot):
     """Rates of analyze: ``(qdot, per)``, analogues per the first input, or velocities from ``--rpm``."""
     names = input_labels(mech)
     if not args.rpm:
-        moving_first = args.input is None or args.input[0][0] != args.input[0][1]
+        ranges = input_ranges(mech, args.input)
+        moving_first = ranges is None or ranges[0][0] != ranges[0][1]
         return qdot, (names[0] if moving_first else "sweep")
     rotary = [n for n, spec in zip(names, mech.model.inputs) if spec.kind == "link"]
     if not rotary:
