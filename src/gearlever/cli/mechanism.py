@@ -203,11 +203,9 @@ def input_ranges(mech, given):
     out: dict = {}
     for name, a, b in items:
         if name not in labels:
-            import difflib
+            from gearlever.mechanism.solve import _unknown
 
-            close = difflib.get_close_matches(name, labels, n=1)
-            hint = f"; did you mean {close[0]!r}?" if close else ""
-            raise GearleverError(f"--input: unknown input {name!r} (inputs: {', '.join(labels)}{hint})")
+            raise GearleverError(f"--input: {_unknown(name, 'input', labels)}")
         if name in out:
             raise GearleverError(f"--input: input {name!r} given twice")
         out[name] = (a, b)

@@ -29,6 +29,11 @@ def _xy(where: str, p) -> list:
     return [x + 0.0, y + 0.0]
 
 
+def _mechanism_table(name: str, units: str) -> dict:
+    """The ``[mechanism]`` table of a written model: its name, and its length unit when one is given."""
+    return {"name": name, "units": units} if units else {"name": name}
+
+
 def fourbar_model(O2, O4, A, B, P=None, *, name: str = "synthesized four-bar", units: str = "") -> dict:
     """Model dict of a four-bar with the crank as input, in the pose given.
 
@@ -58,9 +63,7 @@ def fourbar_model(O2, O4, A, B, P=None, *, name: str = "synthesized four-bar", u
     if P is not None:
         pts["P"] = _xy("P", P)
         coupler.append("P")
-    mech = {"name": name}
-    if units:
-        mech["units"] = units
+    mech = _mechanism_table(name, units)
     return {
         "mechanism": mech,
         "points": pts,
@@ -102,9 +105,7 @@ def slider_crank_model(
     u = _xy("direction", direction)
     if math.hypot(*u) == 0.0:
         raise GearleverError("direction must not be zero")
-    mech = {"name": name}
-    if units:
-        mech["units"] = units
+    mech = _mechanism_table(name, units)
     return {
         "mechanism": mech,
         "points": {"O2": _xy("O2", O2), "A": _xy("A", A), "B": _xy("B", B)},
@@ -189,9 +190,7 @@ def geared_fivebar_model(
         "C": _xy("C", C),
         "P": _xy("P", P),
     }
-    mech = {"name": name}
-    if units:
-        mech["units"] = units
+    mech = _mechanism_table(name, units)
     return {
         "mechanism": mech,
         "points": pts,
@@ -230,9 +229,7 @@ def stephenson_sixbar_model(
     """
     names = ("O2", "O4", "O6", "A", "B", "C", "D", "P")
     pts = {n: _xy(n, v) for n, v in zip(names, (O2, O4, O6, A, B, C, D, P))}
-    mech = {"name": name}
-    if units:
-        mech["units"] = units
+    mech = _mechanism_table(name, units)
     return {
         "mechanism": mech,
         "points": pts,
