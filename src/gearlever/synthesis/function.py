@@ -27,7 +27,7 @@ from gearlever._validate import finite_array, positive
 from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.loops.fourbar import fourbar, grashof, transmission_angle
 from gearlever.synthesis._model import fourbar_model, model_toml, slider_crank_model
-from gearlever.synthesis.expr import parse_expression
+from gearlever.synthesis.expr import parse_expression, shown
 
 __all__ = [
     "FunctionTargets",
@@ -53,9 +53,9 @@ MAX_DENSE_POINTS = 100_000
 #: link's loads and the output is sensitive to its length (the textbook three-position problem of
 #: Su's lecture, tables/synthesis_checks.csv, has 11.3 and passes).
 PRACTICAL_LINK_RATIO = 20.0
-#: Longest over shortest link beyond which the targets are refused: relative tolerances of 1e-9
-#: of the largest link no longer resolve the smallest.
-MAX_LINK_RATIO = 1e6
+#: Longest over shortest link beyond which the targets are refused: far past any practical linkage,
+#: and within the mechanism engine's own limit (a link shorter than 1e-6 of the model's size).
+MAX_LINK_RATIO = 1e4
 #: Largest angle (rad) and length accepted as a target, range end or ground.
 MAX_ANGLE = 1e3
 MAX_LENGTH = 1e12
@@ -205,12 +205,12 @@ def function_targets(
     x = precision_points(xr[0], xr[1], int(points), spacing)
     ends = f(np.array(xr))
     if not np.all(np.isfinite(ends)):
-        raise GearleverError(f"expression {expression!r} is not finite at the ends of x_range {xr}")
+        raise GearleverError(f"expression {shown(expression)!r} is not finite at the ends of x_range {xr}")
     if ends[0] == ends[1]:
-        raise GearleverError(f"expression {expression!r} has the same value at both ends of x_range {xr}")
+        raise GearleverError(f"expression {shown(expression)!r} has the same value at both ends of x_range {xr}")
     dense = f(np.linspace(xr[0], xr[1], DENSE_POINTS))
     if not np.all(np.isfinite(dense)):
-        raise GearleverError(f"expression {expression!r} is not finite everywhere in x_range {xr}")
+        raise GearleverError(f"expression {shown(expression)!r} is not finite everywhere in x_range {xr}")
     t = FunctionTargets(expression, x, np.empty(0), np.empty(0), xr, ir, orng)
     phi = ir[0] + (x - xr[0]) / (xr[1] - xr[0]) * (ir[1] - ir[0])
     return FunctionTargets(expression, x, phi, t.desired(phi), xr, ir, orng)
@@ -230,7 +230,8 @@ class FunctionSynthesis(Result):
     generated : ndarray
         The engine's output at the targets (solving :attr:`model`).
     error : ndarray
-        ``generated - output``.
+        ``generated - output`` (four-bar: wrapped to ``(-pi, pi]``, a rocker
+        angle being a pose).
     coefficients : ndarray
         ``(K1, K2, K3)`` of the design equation (see :func:`synthesize_function`).
     lengths : dict
@@ -335,6 +336,18 @@ class FunctionSynthesis(Result):
         )
 
 
+def _length(name: str, v) -> float:
+    """A positive finite length up to :data:`MAX_LENGTH`: a bool is not a length, text is not a number."""
+    if isinstance(v, bool):
+        raise GearleverError(f"{name} must be a positive length (a number), got {v!r}: a bool is not a length")
+    if isinstance(v, (str, bytes)):
+        raise GearleverError(f"{name} must be a positive length (a number), got the text {v!r:.40}")
+    x = positive(name, v)
+    if x > MAX_LENGTH:
+        raise GearleverError(f"{name} must be a positive length of at most {MAX_LENGTH:g}, got {v!r}")
+    return x
+
+
 def _wrap(x):
     return np.arctan2(np.sin(x), np.cos(x))
 
@@ -434,7 +447,8 @@ def synthesize_function(
         Wanted output as a function of an array of crank angles (radians)
         for the structural error over the range, e.g.
         :meth:`FunctionTargets.desired`; default: straight lines between the
-        targets in order of input angle.
+        targets in order of input angle (four-bar: each rocker angle taken
+        within half a turn of the one before).
     input_range : pair of float, optional
         Crank angles (radians) of the ends of the design range: the
         structural error, the dead-point check and the transmission angle
@@ -505,9 +519,7 @@ def synthesize_function(
     if not isinstance(kind, str) or kind not in KINDS:
         raise GearleverError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
     phi, out = _targets(input_angle, output, kind)
-    d = positive("ground", ground)
-    if d > MAX_LENGTH:
-        raise GearleverError(f"ground must be at most {MAX_LENGTH:g}, got {ground!r}")
+    d = _length("ground", ground)
     if isinstance(dense_points, bool) or not isinstance(dense_points, (int, np.integer)):
         raise GearleverError(f"dense_points must be an integer from 2 to {MAX_DENSE_POINTS}, got {dense_points!r}")
     if not 2 <= dense_points <= MAX_DENSE_POINTS:
@@ -527,7 +539,9 @@ def synthesize_function(
     dense = np.linspace(lo, hi, int(dense_points))
     if desired is None:
         order = np.argsort(phi)
-        want = np.interp(dense, phi[order], out[order])
+        # rocker angles are poses: a target given a turn away from its neighbour is the same pose
+        seq = np.unwrap(out[order]) if kind == "fourbar" else out[order]
+        want = np.interp(dense, phi[order], seq)
     else:
         want = _desired_values(desired, dense)
     if kind == "fourbar":
@@ -562,7 +576,10 @@ def _engine(model, phi, dense, out0, output):
     """
     from gearlever.mechanism import Mechanism
 
-    mech = Mechanism.from_dict(model)
+    try:
+        mech = Mechanism.from_dict(model)
+    except GearleverError as exc:
+        raise GearleverError(f"the synthesized linkage is not a model the engine can solve: {exc}") from None
     q_sketch = float(mech.sketch_inputs[0])
     rows = np.concatenate([phi, dense])
     idx = np.arange(rows.size)
@@ -646,7 +663,8 @@ def _fourbar(phi, psi, d, dense, want, name):
         # exact: every target on the sketch's branch; one met only on the other branch is a branch defect
         other = fourbar(d, A_, b, C_, phi + off_a, branch="crossed" if branch == "open" else "open")
         miss_other = np.abs(_wrap(other.theta4 - off_c - psi))
-        worse = (np.abs(gen_t - psi) > _EXACT_TOL) & (miss_other < np.abs(gen_t - psi))
+        miss_t = np.abs(_wrap(gen_t - psi))
+        worse = (miss_t > _EXACT_TOL) & (miss_other < miss_t)
         if np.any(worse):
             j = int(np.flatnonzero(worse)[0])
             defect = f"target {j + 1} is reached only on the other assembly branch (branch defect)"
@@ -656,7 +674,7 @@ def _fourbar(phi, psi, d, dense, want, name):
         phi,
         psi,
         gen_t,
-        gen_t - psi,
+        _wrap(gen_t - psi),
         np.array([K1, K2, K3]),
         {"ground": d, "crank": A_, "coupler": b, "rocker": C_},
         branch,
