@@ -196,3 +196,21 @@ def test_bad_input_exit_2_one_line_naming_the_flag(tmp_path, capsys, argv, needl
     assert rc == 2
     assert needle in cap.err and cap.err.count("\n") == 1 and len(cap.err) < 300
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("rows", "kind", "needle"),
+    [
+        ("input_deg,output_deg\n0,10\n200,20\n400,30\n", "fourbar", "column input_deg: the targets span 400 deg"),
+        ("input_deg,output_deg\n0,10\n1e300,20\n40,30\n", "fourbar", "row 3 column input_deg: must be at most"),
+        ("input_deg,output\n0,10\n10,1e300\n40,30\n", "slider-crank", "row 3 column output: must be at most 1e+12"),
+    ],
+)
+def test_pairs_beyond_a_turn_or_the_caps_exit_2_naming_row_and_column(tmp_path, capsys, rows, kind, needle):
+    pairs = tmp_path / "p.csv"
+    pairs.write_text(rows)
+    out = tmp_path / "m.toml"
+    assert main(["synthesize", "function", str(pairs), "--type", kind, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1
+    assert not out.exists()

@@ -144,7 +144,9 @@ def _function(args) -> int:
     import numpy as np
 
     from gearlever.synthesis._model import model_toml
-    from gearlever.synthesis.function import function_targets, synthesize_function
+    from gearlever.synthesis.function import MAX_ANGLE, MAX_LENGTH, function_targets, synthesize_function
+
+    _MAX_PAIR_DEG = round(math.degrees(MAX_ANGLE), -3)  # 57000 deg, within the library's cap
 
     _check_outputs(args)
     t0 = time.perf_counter()
@@ -163,6 +165,20 @@ def _function(args) -> int:
             if phi.size < 3:
                 raise GearleverError(
                     f"PAIRS {args.pairs!r}: function generation needs at least 3 targets, got {phi.size}"
+                )
+            caps = (("input_deg", _MAX_PAIR_DEG), (out_col, MAX_LENGTH if slider else _MAX_PAIR_DEG))
+            for col, cap in caps:
+                big = [(i, v) for i, v in enumerate(cols[col]) if abs(v) > cap]
+                if big:
+                    i, v = big[0]
+                    raise GearleverError(
+                        f"PAIRS {args.pairs!r} row {i + 2} column {col}: must be at most {cap:g} in size, got {v:g}"
+                    )
+            if max(cols["input_deg"]) - min(cols["input_deg"]) >= 360:
+                raise GearleverError(
+                    f"PAIRS {args.pairs!r} column input_deg: the targets span "
+                    f"{max(cols['input_deg']) - min(cols['input_deg']):g} deg; a crank is back in the same pose "
+                    "after a full turn, so they must span less than 360 deg"
                 )
             seen = {}
             for i, v in enumerate(cols["input_deg"]):
