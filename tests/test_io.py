@@ -57,13 +57,23 @@ def test_device_behind_a_symlink_is_not_replaced(tmp_path):
     assert Path("/dev/null").is_char_device() and link.is_symlink()
 
 
-def test_symlink_to_a_file_writes_through(tmp_path):
+def test_symlink_is_replaced_not_followed(tmp_path):
+    # writing through a link would change a file the user did not name (issue 25)
     real = tmp_path / "real.txt"
     real.write_text("old")
     link = tmp_path / "link.txt"
     link.symlink_to(real)
     write_text_atomic(link, "new")
-    assert link.is_symlink() and real.read_text() == "new"
+    assert not link.is_symlink() and link.read_text() == "new"
+    assert real.read_text() == "old"
+
+
+def test_dangling_symlink_is_replaced_and_its_target_not_created(tmp_path):
+    link = tmp_path / "link.txt"
+    link.symlink_to(tmp_path / "elsewhere.txt")
+    write_text_atomic(link, "new")
+    assert not link.is_symlink() and link.read_text() == "new"
+    assert not (tmp_path / "elsewhere.txt").exists()
 
 
 def test_check_target_leaves_no_probe_file(tmp_path):
