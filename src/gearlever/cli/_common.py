@@ -14,11 +14,16 @@ for every command, and what each command can add):
   a named constant next to the code that allocates and a comment giving the
   memory/time reasoning.  Caps on a product of arguments (turns times steps
   per turn) are checked in the handler with :func:`check_cap`.
-* Outputs: ``main`` checks ``args.out`` with :func:`check_output` before the
-  handler runs; a command with other output arguments calls
-  :func:`check_output` (files) or :func:`check_output_folder` (folders) first
-  thing, before any work.  Write with :func:`emit` or the atomic helpers of
-  :mod:`gearlever._io`, never with ``open(path, "w")``.
+* Outputs: ``main`` runs every handler inside one
+  :func:`gearlever._io.output_set`, so that a command writes all its files
+  or none, and checks ``args.out`` with :func:`check_output` before the
+  handler runs; a command with other output arguments declares them with
+  :func:`check_output` (files, with the suffixes the flag takes) or
+  :func:`check_output_folder` (folders) first thing, before any work: two
+  flags naming one file are refused there.  Write with :func:`emit` or the
+  atomic helpers of :mod:`gearlever._io` (they stage into the set), never
+  with ``open(path, "w")``; call :func:`commit_outputs` before printing the
+  paths written.
 * JSON: :func:`to_json` only (strict: NaN and infinities become null).
 * Long work: wrap it in ``with progress("what"):`` so that a user at a
   terminal sees it is alive (nothing is printed when stderr is not a

@@ -27,6 +27,7 @@ from gearlever.cli._common import (
     capped_int,
     check_output,
     check_output_folder,
+    commit_outputs,
     emit,
     flagged,
     to_json,
@@ -258,6 +259,7 @@ def _function(args) -> int:
         f"transmission     {rep['transmission_angle_deg'][0]:.4g} .. {rep['transmission_angle_deg'][1]:.4g} deg",
         f"model            {args.out} (crank angle at target 1: {math.degrees(res.input_angle[0]):.10g} deg)",
     ]
+    commit_outputs()  # the summary names the files written: they are there first
     print("\n".join(lines))
     return 0
 
@@ -378,5 +380,6 @@ def _motion(args) -> int:
         "input at poses   " + ", ".join(f"{v:.8g}" for v in b["input_deg"]) + " deg",
         f"model            {args.out}",
     ]
+    commit_outputs()  # the summary names the files written: they are there first
     print("\n".join(lines))
     return 0
