@@ -326,7 +326,8 @@ class OutputSet:
     POSIX renames one file atomically, not several: :meth:`commit` renames
     them one after the other with SIGTERM and Ctrl-C held, and if a rename
     fails, the targets already replaced get their old file back (kept as a
-    hard link until the end) and the new ones are removed.
+    hard link until the end, where the file system has hard links) and the
+    new ones are removed.
 
     Examples
     --------
