@@ -129,16 +129,38 @@ def _frames_inputs(mech, frames: int, inputs) -> tuple:
 def page_estimate(model, frames: int) -> dict:
     """The work and the estimated size of a page, before anything is solved.
 
-    The work is ``frames x grid values x moving links`` (link-frames); the
-    size counts the numbers the page stores per frame (6 per moving point,
-    3 per moving link and per slider, 2 per instant centre, 1 flag) at
-    ``_BYTES_PER_VALUE`` bytes each, an upper bound of the data block.
+    Parameters
+    ----------
+    model : gearlever.mechanism.model.MechanismModel
+    frames : int
+        Frames over one turn of the first input.
 
+    Returns
+    -------
+    dict
+        ``links`` (moving links), ``grid`` (values of the second input, 1 for
+        one input), ``work`` (``frames x grid x links``, link-frames, capped
+        by :data:`MAX_VIEW_WORK`), ``bytes`` (estimated data block, capped by
+        :data:`MAX_PAGE_BYTES`), ``bytes_per_frame`` and ``centres`` (whether
+        the page holds instant centres, :data:`MAX_CENTRE_BODIES`).
+
+    Notes
+    -----
+    The size counts the numbers the page stores per frame and value of the
+    second input: 6 per moving point (position, velocity, acceleration), 3
+    per moving link (angle, angular velocity and acceleration) and per
+    slider, 2 per instant centre, 1 assembly flag; at 10 bytes each (6
+    significant digits, sign, point, exponent, comma) an upper bound of the
+    data block (a constant array is stored once, so real pages are smaller).
+
+    Examples
+    --------
     >>> from gearlever.mechanism.model import model_from_dict
     >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]},
     ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
-    >>> page_estimate(m, 360)["work"], page_estimate(m, 360)["centres"]
-    (360, True)
+    >>> est = page_estimate(m, 360)
+    >>> est["work"], est["bytes"], est["centres"]
+    (360, 43200, True)
     """
     from gearlever.mechanism.model import GROUND
 

@@ -297,6 +297,8 @@
     const dots = points.map(([X, Y]) => ({ x: X - 5, y: Y - 5, w: 10, h: 10 }));
     queue.sort((a, b) => a.rank - b.rank);
     queue.forEach((q) => {
+      // an anchor out of the drawing (panned or zoomed away, a far centre): no label pinned to the edge
+      if (!(q.X >= 0 && q.X <= W && q.Y >= 0 && q.Y <= H)) { show(q.t, false); return; }
       show(q.t, true);
       const rel = textBox(q.t);
       const cands = [[q.dx, q.dy]];
