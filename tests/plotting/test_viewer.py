@@ -158,9 +158,10 @@ ODD = {"pivot": "Ø.2", "pin": "A-1.x", "crank": "κρανκ-1", "rocker": "名�
 def hostile_model(title: str) -> dict:
     o, a = ODD["pivot"], ODD["pin"]
     return {
-        "mechanism": {"name": title, "units": "µm"},
+        "mechanism": {"name": title, "units": "µm", "module": 1.0},
         "points": {o: [0, 0], a: [10, 0], "B-2": [28, 20], "O.4": [40, 0]},
         "links": {"ground": [o, "O.4"], ODD["crank"]: [o, a], "cöupler": [a, "B-2"], ODD["rocker"]: ["O.4", "B-2"]},
+        "gears": {"ζ-gear.1": {"link": ODD["crank"], "centre": o, "teeth": 12}},
         "inputs": [{"link": ODD["crank"]}],
     }
 
@@ -174,6 +175,7 @@ def test_hostile_text_is_escaped_in_the_data_block_and_the_title(title):
     assert d["name"] == title and d["units"] == "µm"
     assert {lk["name"] for lk in d["links"]} == {ODD["crank"], "cöupler", ODD["rocker"]}
     assert d["inputs"][0]["label"] == ODD["crank"] and ODD["pivot"] in d["points"]
+    assert d["gears"][0]["name"] == "ζ-gear.1" and d["joints"][0] == ODD["pivot"]
     # the page's own markup is intact: two scripts, no comment opened, the title escaped as text
     assert page.count("<script") == 2 and page.count("</script>") == 2 and "<!--" not in page
     head = page.split('<script id="gl-data"', 1)[0]

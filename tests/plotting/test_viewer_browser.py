@@ -49,13 +49,17 @@ link = "crank"
 
 # Free text that would break the page if embedded raw, and the oddest names a model file accepts.
 HOSTILE = {
-    "mechanism": {"name": '"<!--<script> </script><b>x</b> &amp; \u2028', "units": "µm"},
+    "mechanism": {"name": '"<!--<script> </script><b>x</b> &amp; \u2028', "units": "µm", "module": 1.0},
     "points": {"Ø.2": [0, 0], "A-1.x": [10, 0], "B-2": [28, 20], "O.4": [40, 0]},
     "links": {
         "ground": ["Ø.2", "O.4"],
         "κρανκ-1": ["Ø.2", "A-1.x"],
         "cöupler": ["A-1.x", "B-2"],
         "名前.r": ["O.4", "B-2"],
+    },
+    "gears": {
+        "ζ-gear.1": {"link": "κρανκ-1", "centre": "Ø.2", "teeth": 12},
+        "fixé.0": {"link": "ground", "centre": "O.4", "teeth": 30, "internal": True},
     },
     "inputs": [{"link": "κρανκ-1"}],
 }
@@ -501,8 +505,12 @@ def test_hostile_names_load_and_display_literally(driver, pages):
     assert driver.execute_script("return document.scripts.length") == 2
     assert driver.execute_script("return document.querySelectorAll('b, i, img').length") == 0
     labels = driver.execute_script("return Array.from(document.querySelectorAll('#labels text'), t => t.textContent)")
-    for name in ("κρανκ-1", "名前.r", "Ø.2", "A-1.x"):
+    for name in ("κρανκ-1", "名前.r", "Ø.2", "A-1.x", "ζ-gear.1: z = 12", "fixé.0: z = 30 (internal)"):
         assert name in labels
+    gears = driver.execute_script("return Array.from(document.querySelectorAll('[data-gear]'), e => e.dataset.gear)")
+    assert sorted(gears) == sorted(["ζ-gear.1", "fixé.0"])
+    options = driver.execute_script("return Array.from(document.querySelectorAll('#quantity option'), o => o.text)")
+    assert "angle of 名前.r (deg)" in options and "x of B-2 (µm)" in options
     assert "κρανκ-1: θ = " in driver.find_element("id", "readout").text
     assert "input: κρανκ-1" in driver.find_element("id", "legend").text
     head, _ = _csv(driver)

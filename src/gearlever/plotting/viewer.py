@@ -454,8 +454,23 @@ def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
     two angular velocities are equal (centre at infinity).  ``id="readout"``
     holds ``θ = ...°``; controls ``play``, ``frame``, ``speed``,
     ``show-velocity``, ``show-paths``; ``?frame=k`` (and ``&play=1``) in
-    the URL.  The instant centres are
-    :func:`gearlever.mechanism.centres.instant_centres`.
+    the URL; gears ``data-gear="NAME"`` (ground gears included);
+    ``window.gearlever.fmt`` the number formatter and
+    ``window.gearlever.cycleCsv()`` the CSV of the whole cycle (empty cells
+    where there is no value).  The instant centres are
+    :func:`gearlever.mechanism.centres.instant_centres` (models of at most
+    :data:`MAX_CENTRE_BODIES` bodies).
+
+    The data block is compact strict JSON with ``<``, ``>``, ``&``, U+2028
+    and U+2029 written as ``\\uXXXX`` escapes, so no text of the model can
+    end or bend the ``<script>`` element; the page puts names into the
+    document as text.  Refused before anything is solved
+    (:class:`~gearlever.errors.GearleverError`, naming ``frames``,
+    ``inputs`` or ``mech``): more than :data:`MAX_VIEW_LINKS` moving links,
+    more than :data:`MAX_VIEW_WORK` link-frames, a page estimated over
+    :data:`MAX_PAGE_BYTES` (:func:`page_estimate`; checked again on the
+    page built), a start more than :data:`MAX_START_TURNS` turns from the
+    sketch.
 
     Examples
     --------

@@ -291,40 +291,58 @@
   })();
   function layoutLabels(points) {
     const W = view.clientWidth || 800, H = view.clientHeight || 500;
-    const placed = [];
+    // boxes placed so far (labels weigh 10, point circles 1) in a grid of 48 px cells: a place is
+    // checked against its neighbours only, so that a model with hundreds of names still animates
+    const CELL = 48, cells = new Map();
+    const cellsOf = (b, f) => {
+      const i1 = Math.floor((b.x + b.w) / CELL), j1 = Math.floor((b.y + b.h) / CELL);
+      for (let i = Math.floor(b.x / CELL); i <= i1; i++) for (let j = Math.floor(b.y / CELL); j <= j1; j++) f(i * 65536 + j);
+    };
+    const add = (b) => cellsOf(b, (c) => { const a = cells.get(c); if (a) a.push(b); else cells.set(c, [b]); });
     const overlap = (a, b) => Math.max(0, Math.min(a.x + a.w, b.x + b.w) - Math.max(a.x, b.x)) * Math.max(0, Math.min(a.y + a.h, b.y + b.h) - Math.max(a.y, b.y));
+    const cost = (b, limit) => {  // the weighted overlap with the boxes near b, summed up to limit
+      let c = 0;
+      const i0 = Math.floor(b.x / CELL), i1 = Math.floor((b.x + b.w) / CELL);
+      const j0 = Math.floor(b.y / CELL), j1 = Math.floor((b.y + b.h) / CELL);
+      for (let i = i0; i <= i1; i++) for (let j = j0; j <= j1; j++) {
+        const a = cells.get(i * 65536 + j);
+        if (!a) continue;
+        for (let n = 0; n < a.length; n++) { c += a[n].wt * overlap(b, a[n]); if (c >= limit) return c; }
+      }
+      return c;
+    };
     const inside = (b) => b.x >= 1 && b.y >= 1 && b.x + b.w <= W - 1 && b.y + b.h <= H - 1;
-    const dots = points.map(([X, Y]) => ({ x: X - 5, y: Y - 5, w: 10, h: 10 }));
+    points.forEach(([X, Y]) => { if (X >= -5 && X <= W + 5 && Y >= -5 && Y <= H + 5) add({ x: X - 5, y: Y - 5, w: 10, h: 10, wt: 1 }); });
     queue.sort((a, b) => a.rank - b.rank);
+    // with many names the search stays near the anchor (the first ring), so that playing stays smooth
+    const tries = queue.length > 60 ? 12 : RING.length;
     queue.forEach((q) => {
       // an anchor out of the drawing (panned or zoomed away, a far centre): no label pinned to the edge
       if (!(q.X >= 0 && q.X <= W && q.Y >= 0 && q.Y <= H)) { show(q.t, false); return; }
       show(q.t, true);
       const rel = textBox(q.t);
-      const cands = [[q.dx, q.dy]];
-      RING.forEach(([u, v]) => {
-        // a ring place: the box's nearest corner at (u, v) from the anchor
-        const bx = u >= 0 ? u : u - rel.w, by = v >= 0 ? v : v - rel.h;
-        cands.push([bx - rel.x, by - rel.y]);
-      });
       let best = null, bestCost = Infinity;
-      for (const [dx, dy] of cands) {
-        const b = { x: q.X + dx + rel.x, y: q.Y + dy + rel.y, w: rel.w, h: rel.h };
+      for (let n = -1; n < tries; n++) {
+        let dx = q.dx, dy = q.dy;
+        if (n >= 0) {
+          // a ring place: the box's nearest corner at (u, v) from the anchor
+          const [u, v] = RING[n];
+          dx = (u >= 0 ? u : u - rel.w) - rel.x; dy = (v >= 0 ? v : v - rel.h) - rel.y;
+        }
+        const b = { x: q.X + dx + rel.x, y: q.Y + dy + rel.y, w: rel.w, h: rel.h, wt: 10 };
         if (!inside(b)) continue;
-        let cost = 0;
-        placed.forEach((o) => { cost += 10 * overlap(b, o); });
-        dots.forEach((o) => { cost += overlap(b, o); });
-        if (cost === 0) { best = [dx, dy, b]; break; }
-        if (cost < bestCost) { bestCost = cost; best = [dx, dy, b]; }
+        const c = cost(b, bestCost);
+        if (c < bestCost) { bestCost = c; best = [dx, dy, b]; }
+        if (c === 0) break;
       }
       if (!best) {  // no place inside: clamp the preferred one into the drawing
-        const b = { x: q.X + q.dx + rel.x, y: q.Y + q.dy + rel.y, w: rel.w, h: rel.h };
+        const b = { x: q.X + q.dx + rel.x, y: q.Y + q.dy + rel.y, w: rel.w, h: rel.h, wt: 10 };
         const nx = Math.min(Math.max(b.x, 1), Math.max(1, W - 1 - b.w)), ny = Math.min(Math.max(b.y, 1), Math.max(1, H - 1 - b.h));
-        best = [q.dx + nx - b.x, q.dy + ny - b.y, { x: nx, y: ny, w: b.w, h: b.h }];
+        best = [q.dx + nx - b.x, q.dy + ny - b.y, { x: nx, y: ny, w: b.w, h: b.h, wt: 10 }];
       }
       q.t.setAttribute("x", (q.X + best[0]).toFixed(1));
       q.t.setAttribute("y", (q.Y + best[1]).toFixed(1));
-      placed.push(best[2]);
+      add(best[2]);
     });
     queue = [];
   }
