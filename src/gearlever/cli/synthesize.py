@@ -24,10 +24,12 @@ import time
 import warnings
 
 from gearlever.cli._common import (
+    FIGURE_SUFFIXES,
     capped_float,
     capped_int,
     check_output,
     check_output_folder,
+    commit_outputs,
     emit,
     flagged,
     to_json,
@@ -78,7 +80,7 @@ def register(sub) -> None:
     )
     f.add_argument("--out", required=True, help="model file (TOML) to write")
     f.add_argument("--report", help="JSON report to write")
-    f.add_argument("--figure", help="PNG figure to write")
+    f.add_argument("--figure", help="figure to write (.png, .svg or .pdf)")
     f.set_defaults(func=_function)
 
     m = ss.add_parser("motion", help="a four-bar whose coupler passes through 3, 4 or 5 poses")
@@ -87,9 +89,11 @@ def register(sub) -> None:
     g.add_argument("--fixed-pivots", nargs=4, type=float, metavar=("X2", "Y2", "X4", "Y4"), help="3 poses: O2, O4")
     g.add_argument("--moving-pivots", nargs=4, type=float, metavar=("XA", "YA", "XB", "YB"), help="3 poses: A, B")
     m.add_argument("--out", required=True, help="model file (TOML) of the best four-bar")
-    m.add_argument("--all", metavar="DIR", help="write every ranked solution here (solution_01.toml, ...)")
+    m.add_argument(
+        "--all", metavar="DIR", help="write every ranked solution here (solution_01.toml, ...; created if missing)"
+    )
     m.add_argument("--report", help="JSON report to write")
-    m.add_argument("--figure", help="PNG figure to write")
+    m.add_argument("--figure", help="figure to write (.png, .svg or .pdf)")
     m.set_defaults(func=_motion)
     from gearlever.cli._synthesize_path import register_path
 
@@ -124,13 +128,12 @@ def _read_csv(path: str, flag: str, columns: tuple) -> dict:
 
 
 def _check_outputs(args) -> None:
+    """Every output declared before any work: refused if unwritable, of the wrong suffix, or one file twice."""
     check_output(args.out, "--out")
-    if args.report:
-        check_output(args.report, "--report")
-    if args.figure:
-        check_output(args.figure, "--figure")
+    check_output(args.report, "--report")
+    check_output(args.figure, "--figure", FIGURE_SUFFIXES)
     if getattr(args, "all", None):
-        check_output_folder(args.all, "--all")
+        check_output_folder(args.all, "--all", create=True)
 
 
 def _r(v, digits=10):
@@ -287,7 +290,7 @@ def _function(args) -> int:
         from gearlever.plotting.synthesis import function_figure
 
         figure = function_figure(res)
-    # every output is ready: only now is anything written
+    # every output is ready: only now is anything staged (written all or none by commit_outputs)
     emit(model_toml(res.model, comment), args.out)
     if args.report:
         emit(to_json(rep), args.report, "--report")
@@ -295,6 +298,7 @@ def _function(args) -> int:
         from gearlever.plotting._common import save
 
         save(figure, args.figure)
+    commit_outputs()  # the summary names the files written: they are there first
     if warn:
         print(f"gearlever synthesize function: warning: {warn}", file=sys.stderr)
     print("\n".join(lines))
@@ -367,12 +371,13 @@ def _motion(args) -> int:
         args.out,
     )
     if args.all:
-        from gearlever._io import check_folder, write_text_atomic
+        from pathlib import Path
 
-        folder = check_folder(args.all, create=True)
         for k, s in enumerate(res.solutions, start=1):
-            write_text_atomic(
-                folder / f"solution_{k:02d}.toml", model_toml(s.model, f"rank {k}: {s.defect or 'no defect'}")
+            emit(
+                model_toml(s.model, f"rank {k}: {s.defect or 'no defect'}"),
+                Path(args.all) / f"solution_{k:02d}.toml",
+                "--all",
             )
 
     def sol_rec(k, s):
@@ -429,5 +434,6 @@ def _motion(args) -> int:
         "input at poses   " + ", ".join(f"{v:.8g}" for v in b["input_deg"]) + " deg",
         f"model            {args.out}",
     ]
+    commit_outputs()  # the summary names the files written: they are there first
     print("\n".join(lines))
     return 0

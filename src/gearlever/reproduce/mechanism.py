@@ -29,6 +29,6 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
         save(draw_mechanism(mech, r).figure, target, dpi=80)
         out.append(
             f"mechanism: {path.stem}: n={s.n} P5={s.P5} P4={s.P4} W_formula={s.W_formula} dof={s.dof} "
-            f"redundant={s.redundant}; {int(r.closed.sum())}/{r.closed.size} rows closed -> figures/{target.name}"
+            f"redundant={s.redundant}; {int(r.closed.sum())}/{r.closed.size} rows closed -> {target}"
         )
     return out
