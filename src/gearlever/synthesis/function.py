@@ -6,7 +6,8 @@ four-bar the line from the crank pivot ``O2`` (origin) to the rocker pivot
 slider's travel ``s`` is measured along that line from the foot of the
 perpendicular from ``O2``.  Three targets are met exactly, more by least
 squares on the linear design equation.  Every result is checked by solving
-the synthesized model with the mechanism engine over the whole input range.
+the model as its file holds it with the mechanism engine over the whole input
+range, driven from the sketch along its assembly branch.
 
 Numeric core: numpy, :mod:`gearlever.loops`, :mod:`gearlever.mechanism`.
 """
@@ -548,7 +549,7 @@ def synthesize_function(
         r = _fourbar(phi, out, d, dense, want, name or "synthesized four-bar function generator")
     else:
         r = _slider(phi, out, dense, want, name or "synthesized slider-crank function generator")
-    note = r.proportions()
+    note = "" if r.defect else r.proportions()
     if note:
         warnings.warn(
             f"{note}; the ratios follow from the targets (input and output ranges), not from the scale",
