@@ -214,3 +214,23 @@ def test_pairs_beyond_a_turn_or_the_caps_exit_2_naming_row_and_column(tmp_path, 
     err = capsys.readouterr().err
     assert needle in err and err.count("\n") == 1
     assert not out.exists()
+
+
+def test_slider_crank_that_rocks_with_target_1_past_180_deg(tmp_path, capsys):
+    # before: exit 1 (the engine was asked for the crank a full turn from its sketch at -170 deg, through the
+    # limits of a crank that rocks); crank 2, rod 2.5, offset 1: the crank reaches -48.6 .. 228.6 deg only
+    a, b, e = 2.0, 2.5, 1.0
+    deg = [190.0, 200.0, 210.0, 220.0]
+    phi = np.radians(deg)
+    s = a * np.cos(phi) + np.sqrt(b * b - (e - a * np.sin(phi)) ** 2)
+    pairs = tmp_path / "p.csv"
+    pairs.write_text("input_deg,output\n" + "".join(f"{d!r},{float(v)!r}\n" for d, v in zip(deg, s)))
+    rc, cap, files = _run(capsys, tmp_path, [str(pairs), "--type", "slider-crank"])
+    assert rc == 0, cap.err
+    rep = json.loads(files["report"].read_text())
+    _numbers(rep)
+    assert rep["grashof"] == "crank rocks" and rep["model_angle_offsets_deg"]["crank"] == -360
+    dense = np.linspace(phi.min(), phi.max(), DENSE_POINTS)
+    err_t, sem, _ = recompute(files["out"], phi, s, dense, np.interp(dense, phi, s))
+    assert rep["structural_error_max"] == pytest.approx(float(sem), rel=1e-5, abs=1e-9)
+    assert np.abs(err_t).max() < 1e-8
