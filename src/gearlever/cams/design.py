@@ -42,6 +42,7 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever.cams.followers import FOLLOWERS, FollowerParams
+from gearlever.cams.followers._base import need
 from gearlever.errors import GearleverError
 from gearlever.laws import MotionLaw
 
@@ -304,6 +305,16 @@ def _params(roller_radius, offset, arm, pivot_distance) -> FollowerParams:
     return FollowerParams(rr, num("offset", offset), num("arm", arm, True), num("pivot_distance", pivot_distance, True))
 
 
+_FLAGS = {"roller_radius": "--roller-radius", "arm": "--arm", "pivot_distance": "--pivot-distance"}
+
+
+def _check_needs(kind, p: FollowerParams) -> None:
+    """Refuse missing or non-positive dimensions the kind needs (the offset may be any number)."""
+    for name in kind.needs:
+        if name in _FLAGS:
+            need(p, name, _FLAGS[name], kind.name)
+
+
 def _too_small(kind, p, law, base_radius, theta, s, v, a, stroke) -> str | None:
     """Why ``base_radius`` cannot carry the stroke (None when it can)."""
     if not math.isfinite(base_radius) or base_radius <= 0:
@@ -393,6 +404,7 @@ def size_base_radius(
     """
     p = _params(roller_radius, offset, arm, pivot_distance)
     kind, theta, s, v, a = _prepare(law, follower, p, points)
+    _check_needs(kind, p)
     if max_pressure_angle is None and min_curvature_radius is None:
         raise GearleverError("give max_pressure_angle or min_curvature_radius to size the base radius")
     stroke = float(s.max() - s.min())
@@ -476,6 +488,7 @@ def design_cam(
     """
     p = _params(roller_radius, offset, arm, pivot_distance)
     kind, theta, s, v, a = _prepare(law, follower, p, points)
+    _check_needs(kind, p)
     rb = base_radius
     if isinstance(rb, bool) or not isinstance(rb, int | float | np.floating | np.integer):
         raise GearleverError(f"base_radius must be a positive finite length, got {rb!r}")
