@@ -47,7 +47,14 @@ class FollowerParams:
 
 
 class FollowerKind:
-    """A follower kind: its name, the law output it follows and the flags it needs."""
+    """A follower kind: its name, the law output it follows and the flags it needs.
+
+    Examples
+    --------
+    >>> from gearlever.cams import FOLLOWERS
+    >>> FOLLOWERS["oscillating-roller"].law_output
+    'angle'
+    """
 
     #: Registry name (the CLI's ``--follower``).
     name: str = ""
@@ -69,7 +76,14 @@ class FollowerKind:
 
 
 class RollerFollower(FollowerKind):
-    """A roller follower: the kind gives the roller centre's path q(s) in the fixed frame."""
+    """A roller follower: the kind gives the roller centre's path q(s) in the fixed frame.
+
+    Examples
+    --------
+    >>> from gearlever.cams import FOLLOWERS
+    >>> [k for k, v in FOLLOWERS.items() if isinstance(v, RollerFollower)]
+    ['translating-roller', 'oscillating-roller']
+    """
 
     contact = "roller"
 
@@ -82,6 +96,12 @@ class FlatFollower(FollowerKind):
     """A flat-faced follower: the kind gives its face line n_f(s) . x = h(s) in the fixed frame.
 
     n_f = (cos beta, sin beta) is the face normal pointing away from the cam.
+
+    Examples
+    --------
+    >>> from gearlever.cams import FOLLOWERS
+    >>> [k for k, v in FOLLOWERS.items() if isinstance(v, FlatFollower)]
+    ['translating-flat', 'oscillating-flat']
     """
 
     contact = "flat"
