@@ -315,25 +315,26 @@ def _check_needs(kind, p: FollowerParams) -> None:
             need(p, name, _FLAGS[name], kind.name)
 
 
-def _too_small(kind, p, law, base_radius, theta, s, v, a, stroke) -> str | None:
-    """Why ``base_radius`` cannot carry the stroke (None when it can)."""
+def _assess(kind, p, base_radius, theta, s, v, a, stroke):
+    """(why, arrays): why ``base_radius`` cannot carry the stroke (None when it can), and the design arrays."""
     if not math.isfinite(base_radius) or base_radius <= 0:
-        return f"base radius must be a positive finite length, got {base_radius!r}"
+        return f"base radius must be a positive finite length, got {base_radius!r}", None
     try:
         kind.check(p, base_radius, stroke)
     except GearleverError as exc:
-        return str(exc)
-    r = _core(kind, p, base_radius, theta, s, v, a)
+        return str(exc), None
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = _core(kind, p, base_radius, theta, s, v, a)
     if np.any(r["folded"]):
         k = int(np.argmax(r["folded"]))
-        return f"the cam profile folds back on itself at {math.degrees(theta[k]):.4g} deg"
-    return None
+        return f"the cam profile folds back on itself at {math.degrees(theta[k]):.4g} deg", r
+    return None, r
 
 
 def _search(pred, lo: float, hi: float, what: str) -> float:
     """Smallest x in (lo, hi) where pred(x) holds, assuming it holds on [x*, hi): grid scan then bisection."""
     span = hi - lo
-    grid = lo + span * np.geomspace(1e-9, 1.0, 241)
+    grid = lo + span * np.geomspace(1e-9, 1.0, 91)
     prev = lo
     for x in grid:
         if pred(float(x)):
@@ -414,9 +415,9 @@ def size_base_radius(
         raise GearleverError(f"min_curvature_radius must be a non-negative length, got {min_curvature_radius!r}")
 
     def ok(rb):
-        if _too_small(kind, p, law, rb, theta, s, v, a, stroke):
+        why, r = _assess(kind, p, rb, theta, s, v, a, stroke)
+        if why is not None:
             return False
-        r = _core(kind, p, rb, theta, s, v, a)
         if max_pressure_angle is not None and np.max(np.abs(r["phi"])) > max_pressure_angle:
             return False
         if min_curvature_radius is not None:
@@ -494,7 +495,7 @@ def design_cam(
         raise GearleverError(f"base_radius must be a positive finite length, got {rb!r}")
     rb = float(rb)
     stroke = float(s.max() - s.min())
-    why = _too_small(kind, p, law, rb, theta, s, v, a, stroke)
+    why, r = _assess(kind, p, rb, theta, s, v, a, stroke)
     if why is not None:
         if rb > 0 and math.isfinite(rb):
             try:
@@ -512,7 +513,6 @@ def design_cam(
             except GearleverError:
                 pass
         raise GearleverError(f"base radius {rb:g} too small for the stroke {stroke:g}: {why}")
-    r = _core(kind, p, rb, theta, s, v, a)
     rho = r["rho"]
     undercut = bool(np.any(r["undercut"]))
     if undercut and not allow_undercut:
