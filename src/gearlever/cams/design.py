@@ -256,6 +256,7 @@ def _core(kind, p: FollowerParams, base_radius: float, theta, s, v, a):
         hh1, hh2 = h1 * v, h2 * v * v + h1 * a
         al1 = be1 - 1.0
         nf = np.stack([np.cos(beta), np.sin(beta)], axis=-1)
+        nf[np.abs(nf) < 1e-15] = 0.0  # cos(pi/2) is 6e-17, not 0: keep a square face's pressure angle exactly 0
         with np.errstate(divide="ignore", invalid="ignore"):
             dh = hh1 / al1
             rho = h + (hh2 * al1 - hh1 * be2) / al1**3

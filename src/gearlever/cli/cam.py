@@ -287,16 +287,17 @@ def _design(args) -> int:
         from gearlever.plotting.cam import cam_design_figure
 
         save(cam_design_figure(cam, vals), args.figure)
+    u = "" if cam.units == "length" else f" {cam.units}"
     lines = [
         f"follower          {cam.follower}",
-        f"base radius       {cam.base_radius:.6g} {cam.units}" + (" (sized)" if args.base_radius is None else ""),
+        f"base radius       {cam.base_radius:.6g}{u}" + (" (sized)" if args.base_radius is None else ""),
         f"pressure angle    max {report['pressure_angle_max_deg']:.4g} deg "
         f"at {report['pressure_angle_max_at_deg']:.4g} deg",
-        f"curvature radius  min {cam.curvature_radius_min:.4g} {cam.units} (convex surface)",
+        f"curvature radius  min {cam.curvature_radius_min:.4g}{u} (convex surface)",
         f"undercut          {'yes' if cam.undercut else 'no'}",
     ]
     if kind.contact == "flat":
-        lines.append(f"face width        {cam.face_width:.4g} {cam.units}")
+        lines.append(f"face width        {cam.face_width:.4g}{u}")
     if not cont.ok:
         lines.append(f"law               not continuous: {cont.problems()[0]}")
     lines.append(f"cam               {args.out}")
