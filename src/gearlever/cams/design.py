@@ -14,9 +14,9 @@ point x of the fixed frame at input theta is R(-theta) x in the cam's frame.
 Roller followers (the centre's path q(s) given by the kind): the pitch curve
 P(theta) = R(-theta) q(s(theta)) has, in the fixed frame, tangent w = q' - J q
 and second derivative -J w + q'' - J q' (J the quarter turn, ' = d/dtheta);
-its outward normal n = J w / |w|, the cam surface is P - Rr n, the pressure
+its outward normal n = J w / norm(w), the cam surface is P - Rr n, the pressure
 angle is the angle between n and the roller centre's direction of travel, and
-the pitch curve's radius of curvature is rho_p = -|w|**3 / (w x P'') (the
+the pitch curve's radius of curvature is rho_p = -norm(w)**3 / (w x P'') (the
 curve runs clockwise); the cam surface's is rho_p - Rr, undercut where a
 convex rho_p < Rr.  For the translating roller these are R. L. Norton,
 *Design of Machinery*, eq. for the pressure angle phi = arctan((v - e) / (s +
@@ -98,7 +98,7 @@ class CamDesign(Result):
     stroke : float
         Follower's total travel.
     pressure_angle_max : float
-        max |pressure_angle| (rad).
+        The largest absolute pressure angle (rad).
     curvature_radius_min : float
         Smallest radius of curvature of the convex cam surface (negative when undercut).
     undercut : bool
@@ -378,7 +378,7 @@ def size_base_radius(
     roller_radius, offset, arm, pivot_distance : float
         Follower dimensions (see :class:`~gearlever.cams.followers.FollowerParams`).
     max_pressure_angle : float, optional
-        Bound on |pressure angle| (rad).
+        Bound on the absolute pressure angle (rad).
     min_curvature_radius : float, optional
         Bound on the convex cam surface's radius of curvature (0 asks only for no undercut).
 
