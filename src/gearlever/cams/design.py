@@ -52,6 +52,8 @@ __all__ = ["CamDesign", "design_cam", "size_base_radius"]
 MAX_POINTS = 2_000_000
 #: Points used by the base-radius search.
 SEARCH_POINTS = 3600
+#: Most points of the search that suggests the smallest workable base radius in a refusal.
+SUGGEST_POINTS = 36_000
 
 
 def _J(x: np.ndarray) -> np.ndarray:
@@ -508,7 +510,7 @@ def design_cam(
                     arm=p.arm,
                     pivot_distance=p.pivot_distance,
                     min_curvature_radius=0.0,
-                    points=int(points),
+                    points=min(int(points), SUGGEST_POINTS),
                 )
                 why += f"; the smallest base radius without it is {least:.6g}"
             except GearleverError:
@@ -526,7 +528,7 @@ def design_cam(
             arm=p.arm,
             pivot_distance=p.pivot_distance,
             min_curvature_radius=0.0,
-            points=int(points),
+            points=min(int(points), SUGGEST_POINTS),
         )
         if kind.contact == "roller":
             detail = (

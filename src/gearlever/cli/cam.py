@@ -10,7 +10,9 @@
 Without ``--base-radius`` the base circle is sized: the smallest meeting
 ``--max-pressure-angle`` and/or ``--min-curvature-radius``.  With both, the
 design at ``--base-radius`` is checked against the bounds and refused when it
-breaks one (the line gives the smallest base radius meeting it).  Every file
+breaks one (the line gives the smallest base radius meeting it).  The search
+samples at most :data:`SIZING_POINTS` cam angles, so a design at a finer
+``--points`` may show the bound passed by its sampling (1e-6 deg on the lift law).  Every file
 is written atomically; every refusal is one line naming the file, segment or flag.
 """
 
@@ -34,6 +36,8 @@ from gearlever.errors import GearleverError
 
 #: Most profile points.
 MAX_POINTS = 1_000_000
+#: Most points the base-circle search evaluates per candidate radius (it tries about 130 radii).
+SIZING_POINTS = 36_000
 #: Profile file kinds by suffix.
 PROFILE_SUFFIXES = (".csv", ".svg", ".dxf")
 
@@ -219,7 +223,7 @@ def _design(args) -> int:
             **dims,
             max_pressure_angle=bound_phi,
             min_curvature_radius=args.min_curvature_radius,
-            points=args.points,
+            points=min(args.points, SIZING_POINTS),
         )
     if args.base_radius is None and sized is None:
         raise GearleverError(

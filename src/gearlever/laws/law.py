@@ -59,8 +59,9 @@ TWO_PI = 2 * math.pi
 ANGLE_UNITS = {"deg": math.pi / 180, "rad": 1.0}
 #: Units of displacement outputs (kept as given: the law is in these units).
 LENGTH_UNITS = ("mm", "cm", "m", "in", "ft", "um")
-#: Most segments or samples a law may have.
+#: Most segments a law may have.
 MAX_SEGMENTS = 10_000
+#: Most samples (rows of the samples CSV) a law may have.
 MAX_SAMPLES = 1_000_000
 
 
