@@ -167,3 +167,12 @@ def test_unwritable_outputs_are_refused_before_any_file_is_written(tmp_path, law
     err = _err(capsys)
     assert flag in err and repr(target) in err
     assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+@pytest.mark.parametrize("extra", [["--base-radius", "40"], ["--min-curvature-radius", "4"]])
+def test_a_rise_too_narrow_for_the_profile_names_the_points_flag(tmp_path, capsys, extra):
+    p = tmp_path / "n.toml"
+    p.write_text(LAW.replace("to = 60", "to = 149.8"))
+    argv = ["cam", "design", str(p), "--follower", "translating-flat", "--out", str(tmp_path / "c.toml"), *extra]
+    assert main(argv) == 2
+    assert "segment 2 spans 0.2 deg, less than 4 profile steps of 0.1 deg: give more --points than" in _err(capsys)

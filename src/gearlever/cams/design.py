@@ -289,6 +289,14 @@ def _prepare(law, follower, p, points):
     if isinstance(points, bool) or not isinstance(points, int | np.integer) or not 8 <= points <= MAX_POINTS:
         raise GearleverError(f"points must be an integer in 8 .. {MAX_POINTS:,}, got {points!r}")
     theta = np.linspace(0.0, 2 * math.pi, int(points), endpoint=False)
+    step = 2 * math.pi / int(points)
+    widths = np.diff(law.breaks)
+    for k, name in enumerate(law.motions):
+        if name != "dwell" and law.rises[k] != 0 and widths[k] < 4 * step:
+            raise GearleverError(
+                f"{law.source}: segment {k + 1} spans {math.degrees(widths[k]):.6g} deg, less than 4 profile steps "
+                f"of {math.degrees(step):.6g} deg: give more points (or widen the segment)"
+            )
     vals = law.evaluate(theta)
     s = vals.s - _law_min(law)
     return kind, theta, s, vals.v, vals.a

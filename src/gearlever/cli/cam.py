@@ -217,14 +217,17 @@ def _design(args) -> int:
     bound_phi = None if args.max_pressure_angle is None else math.radians(args.max_pressure_angle)
     sized = None
     if sizing:
-        sized = size_base_radius(
-            law,
-            kind.name,
-            **dims,
-            max_pressure_angle=bound_phi,
-            min_curvature_radius=args.min_curvature_radius,
-            points=min(args.points, SIZING_POINTS),
-        )
+        try:
+            sized = size_base_radius(
+                law,
+                kind.name,
+                **dims,
+                max_pressure_angle=bound_phi,
+                min_curvature_radius=args.min_curvature_radius,
+                points=min(args.points, SIZING_POINTS),
+            )
+        except GearleverError as exc:
+            raise GearleverError(_points_flag(str(exc), min(args.points, SIZING_POINTS))) from None
     if args.base_radius is None and sized is None:
         raise GearleverError(
             "--base-radius is required (or give --max-pressure-angle or --min-curvature-radius to size it)"
@@ -233,12 +236,12 @@ def _design(args) -> int:
     try:
         cam = design_cam(law, kind.name, base_radius=rb, **dims, points=args.points)
     except GearleverError as exc:
-        text = str(exc)
+        text = _points_flag(str(exc), args.points)
         if text.startswith(("undercut", "base radius")):
             who = "--base-radius" if args.base_radius is not None else "the sized base radius"
             roller = f" with --roller-radius {args.roller_radius:g}" if args.roller_radius else ""
             raise GearleverError(f"{who} {rb:.6g}{roller}: {text}") from None
-        raise
+        raise GearleverError(text) from None
     if args.base_radius is not None and sizing:
         if bound_phi is not None and cam.pressure_angle_max > bound_phi * (1 + 1e-12):
             raise GearleverError(
@@ -307,6 +310,11 @@ def _design(args) -> int:
     lines.append(f"cam               {args.out}")
     emit("\n".join(lines))
     return 0
+
+
+def _points_flag(text: str, points: int) -> str:
+    """The library's "give more points" as the flag that gives them."""
+    return text.replace("give more points", f"give more --points than {points}")
 
 
 def _samples_name(law_path: str) -> str:
