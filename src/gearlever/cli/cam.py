@@ -293,7 +293,7 @@ def _design(args) -> int:
         from gearlever.plotting._common import save
         from gearlever.plotting.cam import cam_design_figure
 
-        save(cam_design_figure(cam, vals), args.figure)
+        save(cam_design_figure(cam, vals if args.rpm is None else vals.per_second(args.rpm)), args.figure)
     u = "" if cam.units == "length" else f" {cam.units}"
     lines = [
         f"follower          {cam.follower}",

@@ -211,7 +211,7 @@ class ContinuityReport(Result):
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class MotionLaw:
     """An output law over one input turn.
 
