@@ -403,7 +403,7 @@ def size_base_radius(
     Larger base circles lower the pressure angle and raise the radius of
     curvature (R. L. Norton, *Design of Machinery*, sec. 8.6 "Sizing the
     cam"); the search returns the first radius of the scan meeting the bounds
-    and also free of folding.  Evaluated at ``points`` equally spaced angles.
+    and also free of folding and of undercut.  Evaluated at ``points`` equally spaced angles.
 
     Examples
     --------
@@ -429,11 +429,13 @@ def size_base_radius(
         why, r = _assess(kind, p, rb, theta, s, v, a, stroke)
         if why is not None:
             return False
+        if np.any(r["undercut"]):  # a radius meeting the bounds but undercut cannot be made
+            return False
         if max_pressure_angle is not None and np.max(np.abs(r["phi"])) > max_pressure_angle:
             return False
         if min_curvature_radius is not None:
             rho = r["rho"]
-            if np.any(r["undercut"]) or np.any((rho > 0) & (rho < min_curvature_radius)):
+            if np.any((rho > 0) & (rho < min_curvature_radius)):
                 return False
         return True
 
