@@ -37,6 +37,8 @@ def _kind(name: str, text: str) -> str:
     first = next((ln.strip() for ln in text.splitlines() if ln.strip() and not ln.startswith("#")), "")
     if name.endswith(".csv") and first.replace(" ", "") in TARGET_HEADERS:
         return TARGET_HEADERS[first.replace(" ", "")]
+    if name.endswith(".toml") and any(ln.strip() == "[law]" for ln in text.splitlines()):
+        return "motion law (cam design)"
     return KINDS.get(Path(name).suffix, "")
 
 
