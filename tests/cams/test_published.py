@@ -24,6 +24,19 @@ def test_base_circle_sizing_reproduces_the_printed_answer(case):
     assert cam.face_width == pytest.approx(case["face_width"], abs=case["face_width_tolerance"]), case["source"]
 
 
+@pytest.mark.parametrize("case", DATA["peaks"], ids=lambda c: c["name"])
+def test_peak_velocity_and_acceleration_reproduce_the_printed_answer(case):
+    law = law_from_segments("displacement", case["units"], case["segments"])
+    ends = np.radians([0.0] + [s["to"] for s in case["segments"]])
+    for p in case["printed"]:
+        k = p["segment"] - 1
+        theta = np.linspace(ends[k], ends[k + 1], 20001)
+        vals = law.evaluate(theta).per_second(case["rpm"])
+        where = f"{case['source']} (segment {p['segment']})"
+        assert np.max(np.abs(vals.v)) == pytest.approx(p["v_max"], abs=p["v_tolerance"]), where
+        assert np.max(np.abs(vals.a)) == pytest.approx(p["a_max"], abs=p["a_tolerance"]), where
+
+
 @pytest.mark.parametrize("case", DATA["coefficients"], ids=lambda c: c["name"])
 def test_printed_motion_coefficients_match_the_motion(case):
     u = np.linspace(case["lo"], case["hi"], 201)[:-1]
@@ -33,6 +46,6 @@ def test_printed_motion_coefficients_match_the_motion(case):
 
 
 def test_every_entry_names_its_source():
-    for table in ("sizing", "coefficients"):
+    for table in ("sizing", "peaks", "coefficients"):
         assert all(len(c["source"]) > 20 for c in DATA[table])
     assert math.isfinite(DATA["sizing"][0]["base_radius"])
