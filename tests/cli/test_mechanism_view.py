@@ -74,6 +74,18 @@ def test_analyze_centres_adds_the_instant_centre_columns(tmp_path):
     assert rows[0]["ic_coupler/rocker_x_mm"] is None  # equal angular velocities at the sketch: at infinity
 
 
+def test_analyze_centres_csv_leaves_a_centre_at_infinity_empty_as_the_viewer_guide_says(tmp_path):
+    import csv
+
+    out = tmp_path / "a.csv"
+    args = ["mechanism", "analyze", str(EXAMPLES / "slider_crank.toml"), "--points", "3", "--centres"]
+    assert main(args + ["--out", str(out)]) == 0
+    rows = list(csv.DictReader(out.open()))
+    assert "nan" not in out.read_text()
+    assert rows[0]["ic_ground/piston_x_mm"] == "" and rows[0]["ic_ground/piston_y_mm"] == ""  # a slider's centre
+    assert float(rows[0]["ic_crank/rod_x_mm"]) == pytest.approx(10.0)  # the pin A
+
+
 def _chain_toml(path: Path, dyads: int) -> Path:
     """A crank driving ``dyads`` RR dyads, each on its own ground pivot (2 dyads + 1 moving links)."""
     lines = ['[mechanism]\nunits = "mm"\n[points]\nO = [0.0, 0.0]\nA = [10.0, 0.0]']

@@ -352,7 +352,8 @@ def _analyze(args) -> int:
     if args.centres:
         from gearlever.mechanism.centres import centre_columns
 
-        cols.update(centre_columns(r))
+        # a centre at infinity (or of a pose that does not close) is empty in CSV, null in JSON
+        cols.update({k: [None if math.isnan(x) else x for x in v.tolist()] for k, v in centre_columns(r).items()})
     if args.format == "csv":
         cols["closed"] = r.closed
         cols["reason"] = [s.split(":")[0] for s in r.reason]

@@ -229,7 +229,8 @@ def centre_columns(result) -> dict:
     """Command-line columns of the instant centres of ``result``: ``ic_ground/coupler_x_mm`` ...
 
     Lengths carry the model's ``units`` label (``len`` when none); a centre
-    at infinity is NaN (``nan`` in CSV, null in JSON).
+    at infinity is NaN (``gearlever mechanism analyze --centres`` writes it
+    empty in CSV and null in JSON).
 
     Examples
     --------
