@@ -899,7 +899,7 @@ def _targets(targets) -> np.ndarray:
         i, j = (int(v) for v in np.argwhere(bad)[0])
         raise GearleverError(
             f"targets[{i}] must be finite and at most {MAX_TARGET_COORDINATE:g} in size "
-            f"(the model's coordinates are capped), got {'xy'[j]} = {T[i, j]!r}"
+            f"(the model's coordinates are capped), got {'xy'[j]} = {float(T[i, j])!r}"
         )
     return T
 
