@@ -160,7 +160,7 @@ def test_hostile_number_is_refused_in_one_line_naming_the_input(box, monkeypatch
     import gearlever.mechanism.dynamics as dyn
     import gearlever.synthesis._dask as dk
 
-    monkeypatch.setattr(dk, "CONNECT_TIMEOUT", 0.5)  # the unreachable scheduler: a short wait
+    monkeypatch.setattr(dk, "CONNECT_TIMEOUT", 0.3)  # the unreachable scheduler: a short wait
     monkeypatch.setattr(dyn, "PROBE_EVALS", 100)  # the work estimate after 100 evaluations (a fast case)
     before = sorted(p.name for p in box.iterdir())
     status, out, err = run(argv)
@@ -476,7 +476,7 @@ def test_no_helper_process_or_thread_is_left_by_a_failed_scheduler(box, monkeypa
 
     import gearlever.synthesis._dask as dk
 
-    monkeypatch.setattr(dk, "CONNECT_TIMEOUT", 0.5)
+    monkeypatch.setattr(dk, "CONNECT_TIMEOUT", 0.3)
     before = threading.active_count()
     status, _, err = run([*SYN, "path.csv", "--out", "m.toml", "--budget", "1000", "--scheduler", "127.0.0.1:9"])
     assert status == 2 and "Traceback" not in err
