@@ -614,6 +614,10 @@ MAX_INPUT_BYTES = 64 * 2**20
 def read_text_capped(path, what: str, cap: int = MAX_INPUT_BYTES) -> str:
     """The UTF-8 text of the input file ``path``: the one reader of user files.
 
+    A leading UTF-8 byte-order mark (spreadsheets write one before CSV, some
+    editors before TOML) is dropped, so every CSV and TOML reader of
+    gearlever, all fed by this one, takes such a file as written.
+
     Refused with a :class:`~gearlever.errors.GearleverError` whose message
     starts with ``what`` (the user's flag or the file's role) and the path: a
     missing or unreadable file, anything but a regular file (a device such as
@@ -640,6 +644,6 @@ def read_text_capped(path, what: str, cap: int = MAX_INPUT_BYTES) -> str:
     if len(data) > cap:
         raise GearleverError(f"{what} {str(path)!r}: larger than the cap of {cap:,} bytes")
     try:
-        return data.decode("utf-8")
+        return data.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError:
         raise GearleverError(f"{what} {str(path)!r}: not UTF-8 text") from None

@@ -100,7 +100,7 @@ def test_same_seed_same_bytes_with_one_or_two_workers(tmp_path, run):
         (["--length-range", "3", "1"], POINTS, "--length-range"),
         (["--timing", "absolute"], POINTS, "input_deg"),
         ([], "x,y,input_deg\n0,0,0\n1,1,50\n2,0,20\n", "input_deg"),
-        ([], "x,y\n0,0\n1,abc\n", "row 3"),
+        ([], "x,y\n0,0\n1,abc\n", "line 3"),
         ([], "x,y\n0,0\n", "at least 2"),
         (["--budget", "1e9"], POINTS, "--budget"),
         (["--workers", "0"], POINTS, "--workers"),

@@ -219,7 +219,7 @@ def test_unreachable_scheduler_is_refused_naming_the_scheduler():
     [
         ({"timing": "relative"}, "angles must be given"),
         ({"angles": [0.0, 0.5, 0.2]}, "angles must increase"),
-        ({"angles": [0.0, 3.0, 6.5]}, "angles must increase"),
+        ({"angles": [0.0, 3.0, 6.5]}, "angles must span less than one turn"),
         ({"length_range": (2.0, 1.0)}, "length_range"),
         ({"coord_range": (1.0, 1.0)}, "coord_range"),
         ({"pivot": (10.0, 0.0), "coord_range": (-5, 5)}, "pivot"),

@@ -93,12 +93,41 @@ def _cap_text(cap) -> str:
     return f"{cap:g}" if isinstance(cap, float) else str(cap)
 
 
+def _integer_text(text: str) -> int:
+    """The integer written in ``text``: digits (``100000``) or a whole number in ``e`` notation (``1e5``).
+
+    The help prints large caps as ``1e+07``; a user who types a size the same
+    way means that integer.  ``1.5``, ``1e-3`` and ``nan`` raise ValueError.
+
+    >>> _integer_text("1e5"), _integer_text("2.5E3"), _integer_text(" 42 ")
+    (100000, 2500, 42)
+    """
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    t = str(text).strip()
+    if "e" not in t.lower() or len(t) > 40:
+        raise ValueError(text)
+    from decimal import Decimal, InvalidOperation
+
+    try:
+        d = Decimal(t)
+    except InvalidOperation:
+        raise ValueError(text) from None
+    if not d.is_finite() or d != d.to_integral_value() or abs(d) > 10**18:
+        raise ValueError(text)
+    return int(d)
+
+
 def capped_int(cap: int, low: int = 1):
     """argparse type factory: an integer ``low <= n <= cap`` (the cap is named in the refusal).
 
+    A whole number in ``e`` notation is that integer (``1e5`` is 100000).
+
     >>> t = capped_int(10**6)
-    >>> t("20")
-    20
+    >>> t("20"), t("1e5")
+    (20, 100000)
     >>> t("2000000")
     Traceback (most recent call last):
     ...
@@ -107,7 +136,7 @@ def capped_int(cap: int, low: int = 1):
 
     def parse(text: str) -> int:
         try:
-            value = int(text)
+            value = _integer_text(text)
         except ValueError:
             what = "a positive integer" if low == 1 else f"an integer >= {low}"
             raise argparse.ArgumentTypeError(f"must be {what}, got {text!r}") from None

@@ -211,7 +211,10 @@ def _forces(args) -> int:
     q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
     eff = _efficiency(args)
     with progress("mechanism forces"):
-        d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q), efficiency=eff)
+        try:
+            d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q), efficiency=eff)
+        except GearleverError as exc:
+            raise _model_element(exc, args.model) from None
     L, F, T, P, _ = _units(mech)
     meta = {
         "mechanism": mech.model.name,
@@ -229,6 +232,39 @@ def _forces(args) -> int:
     return 0
 
 
+def _work_message(exc, args) -> str:
+    """The one line for a simulation refused for its work (estimated or capped), naming --time and the cause."""
+    from gearlever.mechanism.dynamics import MAX_EVALS
+
+    cause = "at these --rpm" + (" and --torque" if args.torque else "") + " with the model's masses and loads"
+    if exc.need == math.inf and exc.count < exc.cap:  # the integrator gave up: steps below the float spacing
+        return (
+            f"--time {args.time:g}: {cause} the motion cannot be integrated past t = {exc.reached:.3g} s "
+            "(its accelerations are out of scale for floating-point time steps): give smaller torques, "
+            "loads or speeds"
+        )
+    if exc.need == math.inf:
+        return (
+            f"--time {args.time:g}: the motion needs more than {MAX_EVALS} evaluations of its equations "
+            f"(the cap on the work of one run; it reached t = {exc.reached:.3g} s): simulate a shorter --time"
+        )
+    return (
+        f"--time {args.time:g}: {cause} the motion needs about {exc.need:.2g} evaluations of its equations, "
+        f"more than the cap on the work of one run ({MAX_EVALS}; it reached t = {exc.reached:.3g} s in "
+        f"{exc.count}): simulate a shorter --time"
+    )
+
+
+#: Model-file elements that the library's messages start with (the CLI names the file in front).
+_ELEMENTS = ("masses.", "loads[", "mechanism.", "gravity")
+
+
+def _model_element(exc, model: str) -> GearleverError:
+    """``exc`` with the model file named in front when it names one of the file's elements."""
+    text = str(exc)
+    return GearleverError(f"{model}: {text}") if text.startswith(_ELEMENTS) else exc
+
+
 def _simulate(args) -> int:
     from gearlever.cli.mechanism import _load
 
@@ -243,18 +279,15 @@ def _simulate(args) -> int:
     torque = {labels[[n for n, _ in names].index(k)]: v for k, v in given.items()}
     t = np.linspace(0.0, args.time, max(args.points, 2))
     eff = _efficiency(args)
+    from gearlever.mechanism.dynamics import WorkCapError
+
     with progress("mechanism simulate"):
         try:
             s = mech.simulate(t, mech.sketch_inputs, w, torque=torque, efficiency=eff)
+        except WorkCapError as exc:
+            raise GearleverError(_work_message(exc, args)) from None
         except GearleverError as exc:
-            if "max_evals" not in str(exc):
-                raise
-            from gearlever.mechanism.dynamics import MAX_EVALS
-
-            raise GearleverError(
-                f"--time: the motion needs more than {MAX_EVALS} evaluations of its equations "
-                f"(the cap on the work of one run): simulate a shorter --time"
-            ) from None
+            raise _model_element(exc, args.model) from None
     L, F, T, P, E = _units(mech)
     cols = {"t_s": s.t}
     for i, (name, rot) in enumerate(names):

@@ -52,7 +52,7 @@ MAX_WORKERS = 256
 
 def register_path(ss) -> None:
     """Add the ``path`` sub-command to the ``synthesize`` sub-parsers ``ss``."""
-    from gearlever.synthesis.path import DEFAULT_BUDGET, MAX_BUDGET
+    from gearlever.synthesis.path import DEFAULT_BUDGET, MAX_BUDGET, min_budget
 
     p = ss.add_parser(
         "path",
@@ -73,7 +73,13 @@ def register_path(ss) -> None:
     )
     p.add_argument("--pivot", nargs=2, type=finite_float, metavar=("X", "Y"), help="fixed crank pivot O2")
     p.add_argument("--ground-angle", type=finite_float, metavar="DEG", help="fixed ground line angle O2->O4")
-    p.add_argument("--length-range", nargs=2, type=finite_float, metavar=("LO", "HI"), help="bounds of link lengths")
+    p.add_argument(
+        "--length-range",
+        nargs=2,
+        type=finite_float,
+        metavar=("LO", "HI"),
+        help="bounds of link lengths (LO 0: any positive length)",
+    )
     p.add_argument(
         "--coord-range",
         nargs=2,
@@ -91,9 +97,10 @@ def register_path(ss) -> None:
     p.add_argument("--seed", type=nonnegative_int, default=0, help="fixes the result (default 0)")
     p.add_argument(
         "--budget",
-        type=capped_int(MAX_BUDGET, low=100),
+        type=capped_int(MAX_BUDGET),
         default=DEFAULT_BUDGET,
-        help=f"candidate evaluations (default {DEFAULT_BUDGET}, at most {MAX_BUDGET:.0e})",
+        help=f"candidate evaluations of the search, a cap (default {DEFAULT_BUDGET}, at least "
+        f"{min_budget(10)} for a four-bar, at most {MAX_BUDGET:.0e})",
     )
     g = p.add_mutually_exclusive_group()
     g.add_argument("--workers", type=capped_int(MAX_WORKERS), default=None, help="local dask threads")
@@ -104,15 +111,30 @@ def register_path(ss) -> None:
 
 
 def read_targets(path: str):
-    """Targets (N, 2) and input angles in degrees (N,) or None from a CSV file (the CLI's reader)."""
+    """Targets (N, 2) and input angles in degrees (N,) or None from a CSV file (the CLI's reader).
+
+    Every refusal names the file and its line: a value that is not a finite
+    number or is beyond :data:`gearlever.synthesis.path.MAX_TARGET_COORDINATE`,
+    a row with more values than the columns (a header of ``x,y`` and a row
+    ``0,0,7`` would silently lose the 7), input angles that do not increase,
+    and, without input angles, a target equal to the one before it (the
+    closing repeat of the first target as the last is the closed-path form).
+    """
     import numpy as np
 
     from gearlever._io import read_text_capped
+    from gearlever.synthesis.path import MAX_TARGET_COORDINATE
 
     text = read_text_capped(path, "POINTS")
-    rows = [r for r in csv.reader(io.StringIO(text)) if any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
+    reader = csv.reader(io.StringIO(text))
+    rows, lines = [], []
+    for r in reader:
+        if any(c.strip() for c in r) and not r[0].lstrip().startswith("#"):
+            rows.append(r)
+            lines.append(reader.line_num)
+    where = f"POINTS {path!r}"
     if not rows:
-        raise GearleverError(f"POINTS {path!r}: no target rows")
+        raise GearleverError(f"{where}: no target rows")
     names = ["x", "y", "input_deg"]
     first = rows[0]
     try:
@@ -124,37 +146,59 @@ def read_targets(path: str):
         header = [c.strip() for c in first]
         for need in ("x", "y"):
             if need not in header:
-                raise GearleverError(f"POINTS {path!r}: the header must name columns x and y, got {header}")
+                raise GearleverError(f"{where}: the header must name columns x and y, got {header}")
         cols = [header.index(n) if n in header else None for n in names]
-        rows = rows[1:]
-        start = 2
+        width = len(header)
+        rows, lines = rows[1:], lines[1:]
     else:
-        ncol = len(first)
-        cols = [0, 1, 2 if ncol >= 3 else None]
-        start = 1
+        width = min(len(first), 3)
+        cols = [0, 1, 2 if width >= 3 else None]
+        header = names[:width]
     if len(rows) > MAX_TARGETS:
-        raise GearleverError(f"POINTS {path!r}: at most {MAX_TARGETS} target rows, got {len(rows)}")
+        raise GearleverError(f"{where}: at most {MAX_TARGETS} target rows, got {len(rows)}")
     xy, ang = [], []
-    for i, r in enumerate(rows):
-        line = i + start
+    for r, line in zip(rows, lines):
+        at = f"{where} line {line}"
+        while len(r) > width and not r[-1].strip():  # trailing empty cells (a spreadsheet's extra commas)
+            r = r[:-1]
+        if len(r) > width:
+            raise GearleverError(
+                f"{at}: {len(r)} values, but the columns are {', '.join(header)} ({width}); "
+                "give one value per column (x,y or x,y,input_deg)"
+            )
         vals = []
         for name, c in zip(names, cols):
             if c is None:
                 vals.append(None)
                 continue
             if c >= len(r) or not r[c].strip():
-                raise GearleverError(f"POINTS {path!r} row {line}: column {name} is missing")
+                raise GearleverError(f"{at}: column {name} is missing")
             try:
                 v = float(r[c])
             except ValueError:
-                raise GearleverError(f"POINTS {path!r} row {line}: {name} must be a number, got {r[c]!r}") from None
+                raise GearleverError(f"{at}: {name} must be a number, got {r[c]!r}") from None
             if not math.isfinite(v):
-                raise GearleverError(f"POINTS {path!r} row {line}: {name} must be finite, got {r[c]!r}")
+                raise GearleverError(f"{at}: {name} must be finite, got {r[c]!r}")
+            if name != "input_deg" and abs(v) > MAX_TARGET_COORDINATE:
+                raise GearleverError(
+                    f"{at}: {name} must be at most {MAX_TARGET_COORDINATE:g} in size (the model's coordinates "
+                    f"stay within 1e+12), got {r[c]!r}"
+                )
             vals.append(v)
+        if ang and vals[2] is not None and not vals[2] > ang[-1]:
+            raise GearleverError(
+                f"{at}: input_deg {vals[2]:g} must be greater than {ang[-1]:g} on the line before "
+                "(the crank turns counter-clockwise through the targets in order)"
+            )
+        if xy and vals[2] is None and vals[:2] == xy[-1]:
+            raise GearleverError(
+                f"{at}: the target ({vals[0]:g}, {vals[1]:g}) repeats the one before it; without input_deg "
+                "two targets in a row at one place are one target (give input_deg to pass a point twice)"
+            )
         xy.append(vals[:2])
         ang.append(vals[2])
     if len(xy) < 2:
-        raise GearleverError(f"POINTS {path!r}: at least 2 target rows are needed, got {len(xy)}")
+        raise GearleverError(f"{where}: at least 2 target rows are needed, got {len(xy)}")
     angles = None if cols[2] is None else np.array(ang, dtype=float)
     return np.array(xy, dtype=float), angles
 
@@ -171,9 +215,9 @@ def _run(args) -> int:
     timing = args.timing or ("relative" if angles is not None else "none")
     if timing != "none" and angles is None:
         raise GearleverError(f"--timing {timing}: POINTS {args.points!r} has no input_deg column")
-    if args.length_range is not None and not 0 < args.length_range[0] < args.length_range[1]:
+    if args.length_range is not None and not 0 <= args.length_range[0] < args.length_range[1]:
         lo, hi = args.length_range
-        raise GearleverError(f"--length-range must be 0 < LO < HI, got {lo:g} {hi:g}")
+        raise GearleverError(f"--length-range must be 0 <= LO < HI (LO 0: any positive length), got {lo:g} {hi:g}")
     if args.coord_range is not None and not args.coord_range[0] < args.coord_range[1]:
         raise GearleverError(f"--coord-range must be LO < HI, got {args.coord_range[0]:g} {args.coord_range[1]:g}")
     if args.min_transmission is not None and not 0 <= args.min_transmission < 90:

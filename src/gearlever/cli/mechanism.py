@@ -401,9 +401,35 @@ def _draw(args) -> int:
     from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import draw_mechanism
 
-    ax = draw_mechanism(mech, r, figsize=size)
+    ax = draw_mechanism(mech, r, figsize=size, note=None if args.input else held_note(mech))
     save(ax.figure, args.out, dpi=dpi)
     return 0
+
+
+def held_note(mech) -> str | None:
+    """What the default sweep of a model with several inputs does, for the drawing: ``None`` with one input.
+
+    The first input turns a full turn and the others stay at their sketch
+    values (:func:`sweep`); a drawing says so, since the paths then show the
+    motion of the first input alone.
+
+    >>> from gearlever.mechanism import Mechanism
+    >>> from gearlever.data import example_path
+    >>> held_note(Mechanism.load(example_path("fivebar_two_inputs.toml")))
+    'paths: left turns, right held at 90 deg (sketch)'
+    """
+    m = mech.model
+    if len(m.inputs) < 2:
+        return None
+    names = input_labels(mech)
+    held = []
+    for name, spec, v in zip(names[1:], m.inputs[1:], mech.sketch_inputs[1:]):
+        if spec.kind == "slider":
+            value = f"{float(v):.6g}" + (f" {m.units}" if m.units else "")
+        else:
+            value = f"{math.degrees(float(v)):.6g} deg"
+        held.append(f"{name} held at {value}")
+    return f"paths: {names[0]} turns, {', '.join(held)} (sketch)"
 
 
 def _animate(args) -> int:

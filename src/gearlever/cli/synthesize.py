@@ -31,6 +31,7 @@ from gearlever.cli._common import (
     check_output_folder,
     commit_outputs,
     emit,
+    finite_float,
     flagged,
     to_json,
 )
@@ -63,12 +64,14 @@ def register(sub) -> None:
     f = ss.add_parser("function", help="a four-bar or slider-crank whose output follows a function of its input")
     f.add_argument("pairs", nargs="?", help="CSV of targets: input_deg,output_deg (slider-crank: input_deg,output)")
     f.add_argument("--expr", help='formula y = f(x), e.g. "log10(x)" (numbers, x, + - * / **, sin cos exp log ...)')
-    f.add_argument("--x-range", nargs=2, type=float, metavar=("A", "B"), help="x from, to")
-    f.add_argument("--input-range", nargs=2, type=float, metavar=("DEG", "DEG"), help="crank angle at x from, to")
+    f.add_argument("--x-range", nargs=2, type=finite_float, metavar=("A", "B"), help="x from, to")
+    f.add_argument(
+        "--input-range", nargs=2, type=finite_float, metavar=("DEG", "DEG"), help="crank angle at x from, to"
+    )
     f.add_argument(
         "--output-range",
         nargs=2,
-        type=float,
+        type=finite_float,
         metavar=("OUT", "OUT"),
         help="output at f(x from), f(x to): rocker angle (deg) or slider travel (length)",
     )
@@ -86,8 +89,12 @@ def register(sub) -> None:
     m = ss.add_parser("motion", help="a four-bar whose coupler passes through 3, 4 or 5 poses")
     m.add_argument("poses", help="CSV of poses: x,y,angle_deg (coupler point and coupler angle)")
     g = m.add_mutually_exclusive_group()
-    g.add_argument("--fixed-pivots", nargs=4, type=float, metavar=("X2", "Y2", "X4", "Y4"), help="3 poses: O2, O4")
-    g.add_argument("--moving-pivots", nargs=4, type=float, metavar=("XA", "YA", "XB", "YB"), help="3 poses: A, B")
+    g.add_argument(
+        "--fixed-pivots", nargs=4, type=finite_float, metavar=("X2", "Y2", "X4", "Y4"), help="3 poses: O2, O4"
+    )
+    g.add_argument(
+        "--moving-pivots", nargs=4, type=finite_float, metavar=("XA", "YA", "XB", "YB"), help="3 poses: A, B"
+    )
     m.add_argument("--out", required=True, help="model file (TOML) of the best four-bar")
     m.add_argument(
         "--all", metavar="DIR", help="write every ranked solution here (solution_01.toml, ...; created if missing)"

@@ -446,8 +446,51 @@ def network_torques(
     )
 
 
-def _num(x):
-    return None if x is None else float(x)
+def _num(x, what: str = "a result"):
+    return None if x is None else _float(x, what)
+
+
+#: Largest finite float: an exact result beyond it cannot be reported as a number.
+_FLOAT_MAX = 1.7976931348623157e308
+
+
+def _magnitude(x: Fraction) -> str:
+    """``x`` written as ``3.5e+308`` even beyond the float range (from the exact fraction)."""
+    if x == 0:
+        return "0"
+    e = len(str(abs(x.numerator))) - len(str(x.denominator))
+    m = abs(x) / Fraction(10) ** e
+    while m >= 10:
+        m, e = m / 10, e + 1
+    while m < 1:
+        m, e = m * 10, e - 1
+    return f"{'-' if x < 0 else ''}{float(m):.3g}e{e:+d}"
+
+
+def _float(x, what: str, cause: str = "applied", whom: str | None = None) -> float:
+    """``float(x)`` of an exact result, refusing one beyond the float range and naming it (``what``).
+
+    The message starts with ``cause``, the parameter to make smaller
+    (``applied``: the torques; ``speeds``), which the command line turns
+    into its flag; ``whom`` says what must be smaller.
+
+    >>> try:
+    ...     _float(Fraction(10) ** 309, "the torque on sun")
+    ... except GearleverError as exc:
+    ...     print(str(exc)[:50])
+    applied: the torque on sun comes to 1e+309, beyond
+    """
+    try:
+        v = float(x)
+    except OverflowError:
+        v = math.inf
+    if not math.isfinite(v):
+        whom = whom or {"applied": "the applied torques", "speeds": "the speeds"}.get(cause, cause)
+        raise GearleverError(
+            f"{cause}: {what} comes to {_magnitude(Fraction(x))}, beyond the largest number that can be "
+            f"reported ({_FLOAT_MAX:.4g}): {whom} must be smaller"
+        )
+    return v
 
 
 def _solve_as(network: Network, names: list, param: str):
@@ -481,14 +524,21 @@ def torque_report(
     """
     r = network_torques(network, applied, loads, speeds=speeds, efficiency=efficiency)
     out = {
-        "torques": {k: float(v) for k, v in r.torques.items()},
-        "frame_reactions": {k: _num(v) for k, v in r.frame_reactions.items()},
-        "power": None if r.power is None else {k: float(v) for k, v in r.power.items()},
-        "speeds": None if r.speeds is None else {k: float(v) for k, v in r.speeds.items()},
-        "losses": {k: float(v) for k, v in r.losses.items()},
-        "throughput": {k: _num(v) for k, v in r.throughput.items()},
-        "input_power": _num(r.input_power),
-        "total_loss": float(r.total_loss),
+        "torques": {k: _float(v, f"the torque on {k}") for k, v in r.torques.items()},
+        "frame_reactions": {k: _num(v, f"the frame reaction ({k})") for k, v in r.frame_reactions.items()},
+        "power": None
+        if r.power is None
+        else {
+            k: _float(v, f"the power of {k} (torque x speed)", "applied", "the applied torques or the speeds")
+            for k, v in r.power.items()
+        },
+        "speeds": None
+        if r.speeds is None
+        else {k: _float(v, f"the speed of {k}", "speeds") for k, v in r.speeds.items()},
+        "losses": {k: _float(v, f"the loss of {k}") for k, v in r.losses.items()},
+        "throughput": {k: _num(v, f"the throughput of {k}") for k, v in r.throughput.items()},
+        "input_power": _num(r.input_power, "the input power"),
+        "total_loss": _float(r.total_loss, "the total loss"),
         "circulating": list(r.circulating),
         "efficiency": float(r.efficiency),
         "indeterminate": [k for k, v in r.multipliers.items() if v is None],

@@ -28,7 +28,7 @@ virtual work.  Imports numpy (scipy lazily, in :func:`simulate`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -69,6 +69,10 @@ SIM_GRID = 1440
 #: 2-core machine: the cap bounds a run to about 10-20 s, never a hang; a longer simulation passes
 #: ``max_evals`` explicitly).
 MAX_EVALS = 40_000
+#: :func:`simulate` checks its progress after this many evaluations (and after each doubling): when the
+#: time reached so far projects more than ``max_evals`` evaluations for the whole run, it refuses at
+#: once (in seconds) rather than at the cap (a minute or more).
+PROBE_EVALS = 500
 
 
 def _cross(r, f):
@@ -373,7 +377,21 @@ def inverse_dynamics(
     dissipates ``(1 - eta)`` times the power it passes relative to its
     carrier (:attr:`InverseDynamics.mesh_loss`).  The driven side depends on
     the solution: it is found by fixed-point passes, as in the train code.
+
+    Forces beyond the float range (a huge mass, load or speed) are refused,
+    naming the element (``masses.crank.mass``, ``loads[0].force``), never
+    returned as ``inf`` or ``nan``.
     """
+    # overflow is not warned about here: the final check refuses it, naming the input
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _inverse_dynamics(
+            mech, q, qdot, qddot, loads, masses, gravity, pressure_angle, efficiency, _driven=_driven
+        )
+
+
+def _inverse_dynamics(
+    mech, q, qdot, qddot, loads, masses, gravity, pressure_angle, efficiency, _driven=None
+) -> InverseDynamics:
     qa, qd_, qdd_ = _rows_of(mech, q, qdot, qddot)
     r = mech.solve(qa, qd_, qdd_)
     m = mech.model
@@ -559,6 +577,9 @@ def inverse_dynamics(
     gm += mo
     gf[~ok] = np.nan
     gm[~ok] = np.nan
+    kin = r.closed & np.all(np.isfinite(r.xddot), axis=1)
+    _refuse_overflow(asm, r, masses_, loads_, g, kin, [Q])
+    _refuse_overflow(asm, r, masses_, loads_, g, ok, [y_any, gf, gm, *mesh_loss.values()])
     return InverseDynamics(
         q=r.q,
         qdot=r.qdot,
@@ -580,6 +601,64 @@ def inverse_dynamics(
         labels=tuple(labels),
         multipliers=y,
         kinematics=r,
+    )
+
+
+def _contributions(asm, r, masses, loads, g):
+    """Each element's share of the generalized applied force: ``[(element, value, (N, 3n))]`` (failure path only)."""
+    from gearlever.mechanism.loads import metres_per_unit
+
+    k = metres_per_unit(asm.m)
+    out = []
+    for i, ld in enumerate(loads):
+        for what, arr in (("force", ld.force), ("torque", ld.torque)):
+            if arr is None:
+                continue
+            G = np.zeros((asm.N, asm.n3))
+            if what == "force":
+                asm.add_force(G, ld.link, asm.world(ld.link, ld.point), arr)
+            else:
+                asm.add_torque(G, ld.link, arr)
+            out.append((f"loads[{i}].{what}", float(np.max(np.abs(arr))), G))
+    for ms in masses.values():
+        Gm = _applied(asm, r, {ms.link: replace(ms, inertia=0.0)}, [], g, inertia=True)
+        Gi = _applied(asm, r, {ms.link: replace(ms, mass=0.0)}, [], np.zeros(2), inertia=True)
+        out.append((f"masses.{ms.link}.mass", ms.mass / k, Gm))
+        out.append((f"masses.{ms.link}.inertia", ms.inertia / k, Gi))
+    return out
+
+
+def _refuse_overflow(asm, r, masses, loads, g, ok, arrays) -> None:
+    """Refuse results that overflow floating point at closed rows, naming the input element that causes it.
+
+    A mass, load or speed so large that the forces exceed the float range
+    would otherwise come out as ``inf`` and ``nan`` (every force ``nan``)
+    and be passed off as a result.  The element named is the one whose own
+    forces overflow, else the one with the largest forces.
+    """
+    bad = np.zeros(asm.N, dtype=bool)
+    for a in arrays:
+        a = np.asarray(a, dtype=float).reshape(asm.N, -1)
+        bad |= ~np.all(np.isfinite(a), axis=1)
+    bad &= ok
+    if not bad.any():
+        return
+    i = int(np.argmax(bad))
+    parts = _contributions(asm, r, masses, loads, g)
+    with np.errstate(all="ignore"):
+        size = [
+            (not np.all(np.isfinite(G[i])), float(np.max(np.abs(np.nan_to_num(G[i], nan=np.inf))))) for *_, G in parts
+        ]
+    speeds = ", ".join(f"{v:.6g}" for v in r.qdot[i])
+    if parts:
+        j = max(range(len(parts)), key=lambda j: size[j])
+        where, value, _ = parts[j]
+        raise GearleverError(
+            f"{where} = {value:g}: the forces it gives overflow floating point (beyond {np.finfo(float).max:.4g}) "
+            f"at input row {i} (speeds {speeds}); it must be smaller (or the speeds lower)"
+        )
+    raise GearleverError(  # pragma: no cover - no load and no mass: every force is zero
+        f"qdot: the forces overflow floating point at input row {i} (speeds {speeds}); the speeds must be lower"
     )
 
 
@@ -858,7 +937,7 @@ def _torque_function(torque, m):
         for k, v in torque.items():
             if k not in labels:
                 raise GearleverError(f"torque: unknown input {k!r} (inputs: {', '.join(labels)})")
-            parts.append((labels.index(k), v if callable(v) else V.finite(f"torque[{k!r}]", v)))
+            parts.append((labels.index(k), v if callable(v) else _capped_torque(f"torque[{k!r}]", v)))
 
         def fd(t, q, qd):
             out = np.zeros(W)
@@ -875,7 +954,19 @@ def _torque_function(torque, m):
             f"torque must be a finite number (one input), {W} numbers, {{input: number or f(t, q, qdot)}} "
             f"or f(t, q, qdot), got {torque!r}"
         )
+    for i, v in enumerate(a):
+        _capped_torque(f"torque[{labels[i]!r}]", v)
     return lambda t, q, qd: a
+
+
+def _capped_torque(where: str, v) -> float:
+    """A constant driving torque: finite and at most :data:`~gearlever.mechanism.loads.MAX_LOAD` in size."""
+    from gearlever.mechanism.loads import MAX_LOAD
+
+    x = V.finite(where, v)
+    if abs(x) > MAX_LOAD:
+        raise GearleverError(f"{where} must be at most {MAX_LOAD:g} in size (the motion would overflow), got {x:g}")
+    return x
 
 
 def simulate(
@@ -984,7 +1075,15 @@ def simulate(
     _constant_only(lds)
     g = gravity_of(m, gravity)
     tau = _torque_function(torque, m)
-    if W == 1 and m.inputs[0].kind == "link" and not lossy:
+    # overflow is not warned about: every evaluation is checked and a non-finite one refused
+    with np.errstate(over="ignore", invalid="ignore"):
+        raw = dict(masses=masses, loads=loads, gravity=g, efficiency=effs) if lossy else None
+        return _simulate_any(mech, m, W, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, grid, max_evals, raw)
+
+
+def _simulate_any(mech, m, W, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, grid, max_evals, raw):
+    """:func:`simulate` after its checks: the periodic tables for one rotary input, else the general equations."""
+    if W == 1 and m.inputs[0].kind == "link" and raw is None:
         period = _periods(mech, q0a, ms, lds, g)[0]
         if np.isfinite(period):
             turns = round(period / (2 * np.pi))
@@ -993,7 +1092,6 @@ def simulate(
             )
             if out is not None:
                 return out
-    raw = dict(masses=masses, loads=loads, gravity=g, efficiency=effs) if lossy else None
     return _simulate_general(mech, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, max_evals, raw)
 
 
@@ -1067,6 +1165,79 @@ def _lossy_acceleration(mech, time, q, qd, tq, qdd, raw):
     )
 
 
+class WorkCapError(GearleverError):
+    """A simulation refused for its work: ``need`` evaluations (estimated; ``inf`` if unknown) over the ``cap``.
+
+    ``reached`` is the time the integration got to in ``count`` evaluations
+    and ``reach`` about the end time that the cap allows.
+    """
+
+    def __init__(self, message, *, need, cap, count, reached, reach):
+        super().__init__(message)
+        self.need, self.cap, self.count, self.reached, self.reach = need, cap, count, reached, reach
+
+
+def _check_work(count: int, reached: float, t0: float, t1: float, cap: int, what: str) -> None:
+    """Refuse a run past ``cap`` evaluations, or one whose progress so far projects more than ``cap``.
+
+    ``count`` evaluations have brought the integration from ``t0`` to
+    ``reached`` (of ``t1``).  At :data:`PROBE_EVALS` evaluations and at each
+    doubling after, the work of the whole run is estimated as ``count (t1 -
+    t0) / (reached - t0)``; a motion that speeds up needs more (the cap then
+    stops it), one that slows down less, so the estimate is only acted on
+    when it is over the cap.
+    """
+    if count > cap:
+        raise WorkCapError(
+            f"simulate: more than {what} = {cap} evaluations of the equations of motion; "
+            "simulate a shorter time or loosen rtol",
+            need=math.inf,
+            cap=cap,
+            count=count,
+            reached=reached,
+            reach=reached,
+        )
+    k, rest = divmod(count, PROBE_EVALS)
+    if k >= 1 and rest == 0 and (k & (k - 1)) == 0:  # at PROBE_EVALS x 1, 2, 4, 8, ...
+        done = reached - t0
+        need = math.inf if done <= 0 else count * (t1 - t0) / done
+        if need > cap:
+            reach = t0 + (t1 - t0) * cap / need if math.isfinite(need) else t0
+            raise WorkCapError(
+                f"simulate: the motion needs about {need:.3g} evaluations of the equations of motion to reach "
+                f"t = {t1:.6g} s (it reached t = {reached:.6g} s in {count}), more than {what} = {cap}; "
+                f"simulate a shorter time (about {reach:.3g} s) or loosen rtol",
+                need=need,
+                cap=cap,
+                count=count,
+                reached=reached,
+                reach=reach,
+            )
+
+
+def _integration_failed(sol, count: int):
+    """Refuse a run the integrator gave up on (its steps fell below the float spacing: accelerations out of scale)."""
+    t = float(sol.t[-1]) if len(sol.t) else math.nan
+    raise WorkCapError(
+        f"simulate: the motion cannot be integrated past t = {t:.6g} s ({sol.message.rstrip('.')}): "
+        "the accelerations are out of scale; the torques, loads or speeds must be smaller",
+        need=math.inf,
+        cap=count,
+        count=count,
+        reached=t,
+        reach=t,
+    )
+
+
+def _finite_state(time, values, what: str) -> None:
+    """Refuse an evaluation of the equations of motion that overflowed (inf or NaN), naming ``what``."""
+    if not np.all(np.isfinite(values)):
+        raise GearleverError(
+            f"simulate: at t = {time:.6g} s the {what} overflow floating point: the torques, loads or speeds "
+            "must be smaller, or the masses larger"
+        )
+
+
 def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals, raw=None):
     from scipy.integrate import solve_ivp
 
@@ -1100,21 +1271,22 @@ def _simulate_general(mech, tt, q0, qd0, tau, ms, lds, g, rtol, atol, max_evals,
             qdd, loss = _lossy_acceleration(mech, time, qe, qd, tq, qdd, raw)
         return qdd, tq, PL[0], Mq, loss
 
+    reached = [float(tt[0])]
+
     def rhs(time, y):
         count[0] += 1
-        if count[0] > max_evals:
-            raise GearleverError(
-                f"simulate: more than max_evals = {max_evals} evaluations of the equations of motion; "
-                "simulate a shorter time or loosen rtol"
-            )
+        reached[0] = max(reached[0], float(time))
+        _check_work(count[0], reached[0], float(tt[0]), float(tt[-1]), max_evals, "max_evals")
         q, qd = y[:W], y[W : 2 * W]
         qdd, tq, PL, _, loss = accel(time, q, qd)
-        return np.concatenate([qd, qdd, [tq @ qd, PL, loss]])
+        out = np.concatenate([qd, qdd, [tq @ qd, PL, loss]])
+        _finite_state(time, out, "accelerations")
+        return out
 
     y0 = np.concatenate([q0, qd0, [0.0, 0.0, 0.0]])
     sol = solve_ivp(rhs, (tt[0], tt[-1]), y0, t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
-    if not sol.success:  # pragma: no cover - DOP853 on a smooth ODE
-        raise GearleverError(f"simulate: the integration failed: {sol.message}")
+    if not sol.success:
+        _integration_failed(sol, count[0])
     q, qd = sol.y[:W].T, sol.y[W : 2 * W].T
     n = len(sol.t)
     qdd, tq, Ms = np.zeros((n, W)), np.zeros((n, W)), np.zeros((n, W, W))
@@ -1169,26 +1341,27 @@ def _simulate_periodic(mech, tt, q0, qdot0, tau, ms, lds, g, rtol, atol, grid, t
         return float(tau(time, np.array([q]), np.array([qd]))[0])
 
     count = [0]
+    reached = [float(tt[0])]
 
     def rhs(time, state):
         count[0] += 1
-        if count[0] > SPLINE_EVALS_FACTOR * max_evals:
-            raise GearleverError(
-                f"simulate: more than {SPLINE_EVALS_FACTOR} x max_evals = {SPLINE_EVALS_FACTOR * max_evals} "
-                "evaluations of the equation of motion; simulate a shorter time or loosen rtol"
-            )
+        reached[0] = max(reached[0], float(time))
+        what = f"{SPLINE_EVALS_FACTOR} x max_evals"
+        _check_work(count[0], reached[0], float(tt[0]), float(tt[-1]), SPLINE_EVALS_FACTOR * max_evals, what)
         q, u = state[0], state[1]
         qq = wrap(q)
         sJ = np.sqrt(Js(qq))
         qd = u / sJ
         tq = torque1(time, q, qd)
         ql = Qs(qq)
-        return [qd, (tq + ql) / sJ, tq * qd, ql * qd]
+        out = [qd, (tq + ql) / sJ, tq * qd, ql * qd]
+        _finite_state(time, out, "accelerations")
+        return out
 
     u0 = math.sqrt(Js(wrap(q0))) * qdot0
     sol = solve_ivp(rhs, (tt[0], tt[-1]), [q0, u0, 0.0, 0.0], t_eval=tt, method="DOP853", rtol=rtol, atol=atol)
-    if not sol.success:  # pragma: no cover - DOP853 on a smooth ODE
-        raise GearleverError(f"simulate: the integration failed: {sol.message}")
+    if not sol.success:
+        _integration_failed(sol, count[0])
     q, u = sol.y[0], sol.y[1]
     qq = wrap(q)
     Jq = Js(qq)

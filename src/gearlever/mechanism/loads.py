@@ -60,6 +60,12 @@ __all__ = [
 
 #: Default pressure angle of the gear pairs (rad): 20 degrees.
 DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
+#: Largest mass, moment of inertia, force, torque or gravity component accepted (in the model's units).
+#: Forces are products of these with lengths (at most 1e12) and speeds squared; a value beyond this
+#: cap is far past any machine and would overflow floating point (inf, then NaN forces passed off as
+#: results).  Products of values within the caps that still overflow are refused by the final check
+#: of :func:`gearlever.mechanism.dynamics.inverse_dynamics`.
+MAX_LOAD = 1e100
 
 
 @dataclass(frozen=True)
@@ -83,11 +89,13 @@ class LoadSpec:
     torque: np.ndarray | None
 
 
-def _num(where, v, nonneg=False) -> float:
+def _num(where, v, nonneg=False, cap=None) -> float:
     if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(float(v)):
         raise GearleverError(f"{where} must be a finite number, got {v!r}")
     if nonneg and float(v) < 0:
         raise GearleverError(f"{where} must be >= 0, got {v!r}")
+    if cap is not None and abs(float(v)) > cap:
+        raise GearleverError(f"{where} must be at most {cap:g} in size (the forces would overflow), got {float(v):g}")
     return float(v)
 
 
@@ -143,8 +151,8 @@ def parse_masses(model: MechanismModel, masses=None) -> dict:
         for k in t:
             if k not in ("mass", "centre", "inertia"):
                 raise GearleverError(f"{where}: unknown key {k!r} (allowed: mass, centre, inertia)")
-        mass = _num(f"{where}.mass", t.get("mass", 0.0), nonneg=True)
-        inertia = _num(f"{where}.inertia", t.get("inertia", 0.0), nonneg=True)
+        mass = _num(f"{where}.mass", t.get("mass", 0.0), nonneg=True, cap=MAX_LOAD)
+        inertia = _num(f"{where}.inertia", t.get("inertia", 0.0), nonneg=True, cap=MAX_LOAD)
         if "centre" in t:
             centre = _local(model, link, f"{where}.centre", t["centre"])
         elif mass == 0.0:
@@ -163,6 +171,9 @@ def _array(where, v, N, shape):
         raise GearleverError(f"{where} must be numbers, got {v!r}") from None
     if not np.all(np.isfinite(a)):
         raise GearleverError(f"{where} must be finite numbers")
+    if a.size and float(np.max(np.abs(a))) > MAX_LOAD:
+        worst = float(a.flat[int(np.argmax(np.abs(a)))])
+        raise GearleverError(f"{where} must be at most {MAX_LOAD:g} in size (the forces would overflow), got {worst:g}")
     full = (N,) + shape
     if a.shape == shape:
         return np.broadcast_to(a, full).copy()
@@ -210,7 +221,7 @@ def gravity_of(model: MechanismModel, gravity=None) -> np.ndarray:
     g = model.extra.get("gravity", (0.0, 0.0)) if gravity is None else gravity
     if not isinstance(g, (list, tuple, np.ndarray)) or len(g) != 2:
         raise GearleverError(f"gravity must be a pair of numbers [gx, gy], got {g!r}")
-    return np.array([_num("gravity[0]", g[0]), _num("gravity[1]", g[1])])
+    return np.array([_num("gravity[0]", g[0], cap=MAX_LOAD), _num("gravity[1]", g[1], cap=MAX_LOAD)])
 
 
 def pressure_angle_of(model: MechanismModel, pressure_angle=None) -> float:
@@ -325,8 +336,8 @@ def validate_extra(model: MechanismModel) -> None:
         g = model.extra["gravity"]
         if not isinstance(g, (list, tuple)) or len(g) != 2:
             raise GearleverError(f"mechanism.gravity must be a pair of numbers [gx, gy], got {g!r}")
-        _num("mechanism.gravity[0]", g[0])
-        _num("mechanism.gravity[1]", g[1])
+        _num("mechanism.gravity[0]", g[0], cap=MAX_LOAD)
+        _num("mechanism.gravity[1]", g[1], cap=MAX_LOAD)
     pressure_angle_of(model)
 
 

@@ -668,7 +668,9 @@ def _check_figsize(figsize):
 
 
 # --------------------------------------------------------------------------- public
-def draw_mechanism(mech, result=None, row=None, ax=None, *, figsize=DRAWING_SIZE, legend: bool = True):
+def draw_mechanism(
+    mech, result=None, row=None, ax=None, *, figsize=DRAWING_SIZE, legend: bool = True, note: str | None = None
+):
     """Draw a mechanism at the sketch (or at ``row`` of ``result``) with the point paths of ``result``.
 
     Parameters
@@ -684,6 +686,9 @@ def draw_mechanism(mech, result=None, row=None, ax=None, *, figsize=DRAWING_SIZE
         Width and height (inches) of the new figure.
     legend : bool
         Draw the legend (links, symbols, loads, gravity) right of the axes.
+    note : str, optional
+        A line under the title (how the paths were swept, e.g. which inputs
+        were held).
 
     Returns
     -------
@@ -727,6 +732,8 @@ def draw_mechanism(mech, result=None, row=None, ax=None, *, figsize=DRAWING_SIZE
     title = _label(mech.model.name)
     if row is not None:
         title += f"\n{_inputs_text(scene, row)}"
+    if note:
+        title += f"\n{_label(note)}"
     ax.set_title(title, fontsize=10)
     if legend:
         _legend(ax, scene, paths=result is not None)

@@ -11,10 +11,11 @@ scheduler.
 from __future__ import annotations
 
 import math
+import re
 
 from gearlever.errors import GearleverError
 
-__all__ = ["run_starts", "CHUNK", "CONNECT_TIMEOUT"]
+__all__ = ["run_starts", "check_address", "CHUNK", "CONNECT_TIMEOUT", "SCHEMES"]
 
 #: Starts per dask task.
 CHUNK = 2
@@ -30,18 +31,83 @@ def _order(results):
     return sorted(results, key=lambda r: (r[0] if math.isfinite(r[0]) else math.inf, r[1]))
 
 
+#: Address schemes of a dask.distributed scheduler that can be reached from here.
+SCHEMES = ("tcp", "tls", "ws", "wss")
+_ADDRESS = re.compile(
+    r"(?:(?P<scheme>[A-Za-z][A-Za-z0-9+.-]*)://)?(?P<host>\[[0-9A-Fa-f:.]+\]|[^\s:/\[\]]+):(?P<port>\d{1,5})"
+)
+
+
+def check_address(address) -> tuple:
+    """``(scheme, host, port)`` of a scheduler address ``[SCHEME://]HOST:PORT``, or a refusal naming ``scheduler``.
+
+    >>> check_address("tcp://127.0.0.1:8786")
+    ('tcp', '127.0.0.1', 8786)
+    >>> try:
+    ...     check_address("nonsense")
+    ... except GearleverError as exc:
+    ...     print(str(exc)[:72])
+    scheduler 'nonsense' must be an address [SCHEME://]HOST:PORT (scheme tcp
+    """
+    form = "must be an address [SCHEME://]HOST:PORT (scheme tcp, tls, ws or wss; e.g. tcp://127.0.0.1:8786)"
+    if isinstance(address, str) and address.startswith("inproc://") and len(address) > len("inproc://"):
+        return "inproc", address[len("inproc://") :], 0  # a scheduler in this process (LocalCluster(processes=False))
+    m = _ADDRESS.fullmatch(address) if isinstance(address, str) else None
+    if m is None:
+        raise GearleverError(f"scheduler {address!r} {form}")
+    scheme = (m.group("scheme") or "tcp").lower()
+    if scheme not in SCHEMES:
+        raise GearleverError(f"scheduler {address!r}: unknown scheme {scheme!r}; {form}")
+    port = int(m.group("port"))
+    if not 1 <= port <= 65535:
+        raise GearleverError(f"scheduler {address!r}: the port must be 1..65535, got {port}")
+    return scheme, m.group("host").strip("[]"), port
+
+
 def _connect(address: str):
+    """A client of the scheduler at ``address``, or one line naming it: bad form, nothing there, not dask.
+
+    The address is checked first; then a client is made with a short
+    timeout (:data:`CONNECT_TIMEOUT`).  A client that fails to connect is
+    shut down here, quickly and quietly (left to the garbage collector, it
+    would wait twice the timeout and print a traceback at exit).
+    """
+    check_address(address)
     try:
         from distributed import Client
     except ImportError:  # pragma: no cover - distributed is a dependency
         raise GearleverError("scheduler: dask.distributed is not installed") from None
+
+    class _Client(Client):
+        def __del__(self):  # a client that never connected has nothing to close gracefully
+            if getattr(self, "status", None) == "running":
+                super().__del__()
+            else:
+                _quiet_stop(self)
+
     try:
-        return Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)
-    except (OSError, TimeoutError, ValueError, TypeError) as exc:
-        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return _Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)
+    except KeyboardInterrupt:
+        raise
+    except Exception as exc:  # noqa: BLE001 - whatever answered (or did not), it is not a usable scheduler
+        if isinstance(exc, MemoryError):  # a peer that is not dask: its first bytes read as a frame length
+            reason = "something answered that does not speak dask's protocol"
+        else:
+            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise GearleverError(
-            f"scheduler {address!r}: cannot connect to a dask scheduler within {CONNECT_TIMEOUT} s ({reason})"
+            f"scheduler {address!r}: no dask scheduler answered within {CONNECT_TIMEOUT:g} s ({reason})"
         ) from None
+
+
+def _quiet_stop(client) -> None:
+    """Stop a client that failed to connect: its event-loop thread ends, no close handshake, nothing printed."""
+    try:
+        client.status = "closed"
+        runner = getattr(client, "_loop_runner", None)
+        if runner is not None:
+            runner.stop()
+    except Exception:  # noqa: BLE001 - best effort at garbage collection
+        pass
 
 
 def run_starts(spec, seed, n_starts, evals, method="de", *, workers=None, scheduler=None, progress=None, fn=None):

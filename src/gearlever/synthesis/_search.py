@@ -20,16 +20,21 @@ __all__ = ["differential_evolution", "cma_es", "feasible_population", "STOP"]
 STOP = threading.Event()
 
 
-def feasible_population(sample, f, n: int, rng, max_rounds: int = 50):
+def feasible_population(sample, f, n: int, rng, max_rounds: int = 50, budget: int | None = None):
     """``n`` candidates drawn by ``sample(rng, m)`` whose objective is finite, and their values.
 
     Infeasible draws (``f = inf``) are rejected and drawn again (at most
-    ``max_rounds`` rounds); the evaluations spent are returned too.
+    ``max_rounds`` rounds, and at most ``budget`` evaluations in all: the
+    population is then smaller); the evaluations spent are returned too.
     """
     keep_z, keep_f, evals = [], [], 0
     have = 0
     for _ in range(max_rounds):
         m = max(2 * (n - have), 8)
+        if budget is not None:
+            m = min(m, budget - evals)
+            if m <= 0:
+                break
         Z = sample(rng, m)
         F = f(Z)
         evals += m
@@ -39,6 +44,8 @@ def feasible_population(sample, f, n: int, rng, max_rounds: int = 50):
         have += int(ok.sum())
         if have >= n:
             break
+    if not keep_z:
+        return np.zeros((0, 0)), np.zeros(0), evals
     Z = np.concatenate(keep_z)[:n]
     F = np.concatenate(keep_f)[:n]
     return Z, F, evals
@@ -55,7 +62,8 @@ def differential_evolution(f, lo, hi, rng, *, budget: int, pop: int, init=None, 
         Box bounds.
     rng : numpy.random.Generator
     budget : int
-        Candidate evaluations at most (the initial population included).
+        Candidate evaluations at most, the initial population included (a
+        cap: the search never evaluates more).
     pop : int
         Population size.
     init : callable, optional
@@ -88,7 +96,7 @@ def differential_evolution(f, lo, hi, rng, *, budget: int, pop: int, init=None, 
     def uniform(r, m):
         return lo + r.random((m, d)) * span
 
-    X, F, evals = feasible_population(init or uniform, f, pop, rng)
+    X, F, evals = feasible_population(init or uniform, f, pop, rng, budget=budget)
     n = X.shape[0]
     if n < 4:
         i = int(np.argmin(F)) if n else 0
@@ -153,7 +161,9 @@ def cma_es(f, lo, hi, rng, *, budget: int, pop: int, init=None):
         return lo + np.clip(U, 0.0, 1.0) * span
 
     if init is not None:
-        X0, F0, evals = feasible_population(init, f, lam, rng)
+        X0, F0, evals = feasible_population(init, f, lam, rng, budget=budget)
+        if X0.shape[0] == 0:
+            return None, np.inf, evals
         m = (X0[np.argmin(F0)] - lo) / span
         best_z, best_f = X0[np.argmin(F0)].copy(), float(F0.min())
     else:

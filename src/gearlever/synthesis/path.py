@@ -88,7 +88,16 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 
-__all__ = ["FourBarPathProblem", "PathSynthesis", "synthesize_path", "n_starts", "DEFAULT_BUDGET", "MAX_BUDGET"]
+__all__ = [
+    "FourBarPathProblem",
+    "PathSynthesis",
+    "synthesize_path",
+    "n_starts",
+    "population",
+    "min_budget",
+    "DEFAULT_BUDGET",
+    "MAX_BUDGET",
+]
 
 #: Relative room kept below Grashof's limit ``s + l = p + q`` (a change point).
 GRASHOF_MARGIN = 1e-6
@@ -110,6 +119,14 @@ MAX_STARTS = 32
 START_EVALS_PER_VAR = 625
 #: Most target points.
 MAX_TARGETS = 1000
+#: Largest target coordinate (and range bound) in size: the written model's coordinates stay within
+#: the model file's cap (:data:`gearlever.mechanism.model.MAX_COORDINATE`, 1e12) with room for the
+#: default ranges (3 times the targets' extent around them).
+MAX_TARGET_COORDINATE = 1e11
+#: A lower length bound of 0 (``length_range=(0, hi)``: any positive length) is this fraction of the
+#: problem's size (the larger of ``hi`` and the coordinate span): ten times above the shortest link a
+#: model file accepts (1e-6 of the model's size, :data:`gearlever.mechanism.model.MAX_SCALE_RATIO`).
+ZERO_LENGTH_FRACTION = 1e-5
 
 TIMINGS = ("none", "relative", "absolute")
 #: Linkage types of :func:`synthesize_path`.
@@ -245,7 +262,10 @@ class FourBarPathProblem:
     ground_angle : float, optional
         Fixed ground line angle ``theta0`` (radians).
     length_range, coord_range : pair of float
-        Bounds of every link length, and of ``x0, y0, cx, cy``.
+        Bounds of every link length, and of ``x0, y0, cx, cy``.  A lower
+        length bound of 0 (published constraint sets write it) means any
+        positive length: it becomes :data:`ZERO_LENGTH_FRACTION` of the
+        problem's size, the shortest link a model file can hold with margin.
     weights : array_like (N,), optional
         Positive weight of each target's squared distance in the objective
         (default 1 each); a closed path's first target, met again one crank
@@ -284,13 +304,7 @@ class FourBarPathProblem:
         weights=None,
         min_transmission=None,
     ):
-        T = np.asarray(targets, dtype=float)
-        if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 2:
-            raise GearleverError(f"targets must be an (N, 2) array of N >= 2 points, got shape {T.shape}")
-        if T.shape[0] > MAX_TARGETS:
-            raise GearleverError(f"targets must be at most {MAX_TARGETS} points, got {T.shape[0]}")
-        if not np.all(np.isfinite(T)):
-            raise GearleverError("targets must be finite")
+        T = _targets(targets)
         if timing not in TIMINGS:
             raise GearleverError(f"timing must be one of {', '.join(TIMINGS)}, got {timing!r}")
         self.targets = T
@@ -314,17 +328,34 @@ class FourBarPathProblem:
             a = np.asarray(angles, dtype=float).reshape(-1)
             if a.size != self.N or not np.all(np.isfinite(a)):
                 raise GearleverError(f"angles must be {self.N} finite crank angles, one per target")
-            if np.any(np.diff(a) <= 0) or a[-1] - a[0] >= 2 * math.pi:
+            if np.any(np.diff(a) <= 0):
+                i = int(np.argmax(np.diff(a) <= 0)) + 1
                 raise GearleverError(
-                    "angles must increase strictly (counter-clockwise crank) and span less than one turn (360 deg)"
+                    f"angles must increase strictly (counter-clockwise crank): angle {i + 1} "
+                    f"({math.degrees(a[i]):.6g} deg) is not greater than angle {i} ({math.degrees(a[i - 1]):.6g} deg)"
+                )
+            if a[-1] - a[0] >= 2 * math.pi:
+                raise GearleverError(
+                    "angles must span less than one turn (360 deg) from the first target to the last, "
+                    f"got {math.degrees(a[-1] - a[0]):.6g} deg"
                 )
             self.angles = a
         lo, hi = (float(v) for v in length_range)
-        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
-            raise GearleverError(f"length_range must be 0 < LO < HI, got {length_range!r}")
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo < hi):
+            raise GearleverError(f"length_range must be 0 <= LO < HI, got {length_range!r}")
         clo, chi = (float(v) for v in coord_range)
         if not (math.isfinite(clo) and math.isfinite(chi) and clo < chi):
             raise GearleverError(f"coord_range must be LO < HI, got {coord_range!r}")
+        for name, v in (("length_range", hi), ("coord_range", max(abs(clo), abs(chi)))):
+            if v > 10 * MAX_TARGET_COORDINATE:
+                raise GearleverError(
+                    f"{name} must stay within {10 * MAX_TARGET_COORDINATE:g} in size (the model file's cap on "
+                    f"coordinates), got {v:g}"
+                )
+        if lo == 0.0:  # no lower bound: any positive length the model file can hold
+            lo = ZERO_LENGTH_FRACTION * max(hi, chi - clo)
+            if not lo < hi:  # pragma: no cover - hi is then below 1e-5 of the coordinate span
+                raise GearleverError(f"length_range: HI {hi:g} is too small for the coordinate range {coord_range!r}")
         self.length_range = (lo, hi)
         self.coord_range = (clo, chi)
         self.pivot = None
@@ -649,26 +680,28 @@ class FourBarPathProblem:
 def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> tuple:
     """One start: a seeded global search (``default_rng([seed, k])``) and its polish.
 
-    Returns ``(objective, k, w, sigma, evaluations)``; the same for the same
-    arguments on any machine, thread or process.
+    Returns ``(objective, k, w, sigma, evaluations)`` (the candidate
+    evaluations of the global search, at most ``evals``; the polish's are not
+    counted); the same for the same arguments on any machine, thread or process.
     """
     from gearlever.synthesis import _search
 
     pb = make_problem(spec)
     rng = np.random.default_rng([seed, k])
-    pop = max(24, 6 * pb.d)
+    pop = population(pb.d)
     if method == "de":
         z, _, _ = _search.differential_evolution(pb.objective, pb.lo, pb.hi, rng, budget=evals, pop=pop, init=pb.sample)
     elif method == "cma":
         z, _, _ = _search.cma_es(pb.objective, pb.lo, pb.hi, rng, budget=evals, pop=pop, init=pb.sample)
     else:
         raise GearleverError(f"method must be 'de' or 'cma', got {method!r}")
+    searched = pb.evaluations  # the global search's candidate evaluations (at most ``evals``); the polish is apart
     if z is None:
-        return (math.inf, k, None, 1.0, pb.evaluations)
+        return (math.inf, k, None, 1.0, searched)
     sigma = float(pb.mode_of(z[None, :])[0])
     w = pb.to_w(z)
     w, fw = pb.polish(w, sigma)
-    return (fw, k, w, sigma, pb.evaluations)
+    return (fw, k, w, sigma, searched)
 
 
 def make_problem(spec: dict):
@@ -851,6 +884,43 @@ def _result(pb: FourBarPathProblem, w, sigma, evals, seed, starts, seconds) -> P
     )
 
 
+def _targets(targets) -> np.ndarray:
+    """The targets as an (N, 2) float array, refused naming the first bad one."""
+    try:
+        T = np.asarray(targets, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise GearleverError("targets must be an (N, 2) array of numbers") from None
+    if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 2:
+        raise GearleverError(f"targets must be an (N, 2) array of N >= 2 points, got shape {T.shape}")
+    if T.shape[0] > MAX_TARGETS:
+        raise GearleverError(f"targets must be at most {MAX_TARGETS} points, got {T.shape[0]}")
+    bad = ~np.isfinite(T) | (np.abs(np.nan_to_num(T, nan=0.0, posinf=np.inf)) > MAX_TARGET_COORDINATE)
+    if bad.any():
+        i, j = (int(v) for v in np.argwhere(bad)[0])
+        raise GearleverError(
+            f"targets[{i}] must be finite and at most {MAX_TARGET_COORDINATE:g} in size "
+            f"(the model's coordinates are capped), got {'xy'[j]} = {float(T[i, j])!r}"
+        )
+    return T
+
+
+def population(d: int) -> int:
+    """Population of one start's search over ``d`` variables: ``max(24, 6 d)``."""
+    return max(24, 6 * int(d))
+
+
+def min_budget(d: int) -> int:
+    """Fewest evaluations a search over ``d`` variables accepts: :data:`STARTS` starts of one population each.
+
+    A smaller budget could not even evaluate every start's first population,
+    so it is refused naming this number rather than overrun.
+
+    >>> min_budget(10)
+    480
+    """
+    return STARTS * population(d)
+
+
 def n_starts(budget: int, d: int) -> int:
     """Independent starts of a search of ``budget`` evaluations over ``d`` variables.
 
@@ -920,9 +990,13 @@ def synthesize_path(
     seed : int
         Fixes the result (each start ``k`` draws from ``default_rng([seed, k])``).
     budget : int
-        Candidate evaluations of the global search, all starts together; it
-        is split into :func:`n_starts` starts (8 to 32, set by the budget and
-        the number of variables, never by the workers).
+        Candidate evaluations of the global search, all starts together (a
+        cap: ``evaluations`` of the result never exceeds it, per linkage type
+        tried; the least-squares polish of each start is not counted); it is
+        split into :func:`n_starts` starts (8 to 32, set by the budget and the
+        number of variables, never by the workers).  At least
+        :func:`min_budget` (480 for a four-bar without timing), at most
+        :data:`MAX_BUDGET`.
     workers : int, optional
         Local dask threads (default: dask's default).
     scheduler : str, optional
@@ -957,9 +1031,10 @@ def synthesize_path(
         raise GearleverError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
     if timing is None:
         timing = "none" if angles is None else "relative"
+    targets = _targets(targets)
     dl, dc = default_ranges(targets)
     base = {
-        "targets": np.asarray(targets, dtype=float).tolist(),
+        "targets": targets.tolist(),
         "timing": timing,
         "angles": None if angles is None or timing == "none" else np.asarray(angles, dtype=float).tolist(),
         "pivot": None if pivot is None else [float(v) for v in pivot],
@@ -975,9 +1050,13 @@ def synthesize_path(
         base["min_transmission"] = min_transmission
     pb = FourBarPathProblem(**base)  # checks the input before any work
     budget = int(budget)
-    if not 1 <= budget <= MAX_BUDGET:
-        raise GearleverError(f"budget must be 1..{MAX_BUDGET}, got {budget}")
     kinds = ["fourbar", "geared-fivebar", "sixbar"] if kind == "auto" else [kind]
+    least = max(min_budget(make_problem({"kind": kd, **base}).d) for kd in kinds)
+    if not least <= budget <= MAX_BUDGET:
+        raise GearleverError(
+            f"budget must be {least}..{MAX_BUDGET} for this problem (at least {STARTS} starts of one "
+            f"population each), got {budget}"
+        )
     S2 = float(np.sum(np.ptp(pb.targets, axis=0) ** 2))
     # A closed path whose last target repeats the first (a full crank turn): the crank of a
     # crank-rocker is back at the same pose after 2 pi, so the last target is met exactly as
