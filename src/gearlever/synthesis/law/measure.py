@@ -1,0 +1,211 @@
+"""The law a mechanism produces (the inverse use), its segments, and the report of a law synthesis.
+
+:func:`mechanism_law` solves a model with the mechanism engine over one
+turn of its (single, link) input, counter-clockwise from the sketch, and
+returns the output link's rotation (or the output slider's travel) and its
+velocity and acceleration analogues; :func:`fit_segments` splits it into
+dwells (speed below a threshold), rises and returns; :func:`law_report`
+measures a :class:`~gearlever.synthesis.law.driver.LawSynthesis` against
+its law.
+
+Numeric core: numpy and :mod:`gearlever.mechanism`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearlever._result import Result
+from gearlever.errors import GearleverError
+
+__all__ = ["MechanismLaw", "mechanism_law", "fit_segments", "law_report", "DWELL_THRESHOLD"]
+
+#: A dwell: the output's speed analogue below this fraction of its peak.
+DWELL_THRESHOLD = 0.01
+
+
+@dataclass(frozen=True)
+class MechanismLaw(Result):
+    """The output of a mechanism over one input turn.
+
+    Attributes
+    ----------
+    theta : ndarray (N,)
+        Input rotation from the sketch, radians.
+    s, v, a : ndarray (N,)
+        Output rotation (radians) or travel from the sketch, and its
+        velocity and acceleration analogues (per radian of input).
+    output : str
+        The output link (or slider) name.
+    kind : {"angle", "displacement"}
+    closed : ndarray (N,) of bool
+    """
+
+    theta: np.ndarray
+    s: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    output: str
+    kind: str
+    closed: np.ndarray
+
+
+def mechanism_law(mech, output: str, samples: int = 3600) -> MechanismLaw:
+    """Solve ``mech`` (a :class:`~gearlever.mechanism.Mechanism`) over one ccw turn of its input; read ``output``.
+
+    ``output`` names a link (its rotation) or a slider (its travel).  The
+    mechanism must have one input, a link.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({
+    ...     "points": {"O2": [0, 0], "O4": [4, 0], "A": [1, 0], "B": [4.5, 2.8]},
+    ...     "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"], "output": ["O4", "B"]},
+    ...     "inputs": [{"link": "crank"}]})
+    >>> r = mechanism_law(m, "output", 360)
+    >>> bool(r.closed.all()), round(float(np.degrees(np.ptp(r.s))), 3)
+    (True, 38.081)
+    """
+    model = mech.model
+    if len(model.inputs) != 1 or model.inputs[0].kind != "link":
+        raise GearleverError("the mechanism must have one input, a link, to be turned through one cycle")
+    samples = int(samples)
+    if not 8 <= samples <= 100_000:
+        raise GearleverError(f"samples must be 8..100000, got {samples}")
+    spec = model.inputs[0]
+    sliders = {s.name: s for s in model.sliders}
+    if output in sliders:
+        kind = "displacement"
+    elif output in model.links and output != "ground":
+        kind = "angle"
+    else:
+        names = sorted([k for k in model.links if k != "ground"] + list(sliders))
+        raise GearleverError(f"output {output!r} is not a moving link or slider of the model ({', '.join(names)})")
+    q0 = model.links[spec.name].angle0
+    if spec.relative_to is not None:
+        q0 -= model.links[spec.relative_to].angle0
+    theta = np.linspace(0.0, 2 * math.pi, samples, endpoint=False)
+    res = mech.solve((q0 + theta)[:, None])
+    if kind == "angle":
+        s = res.angle[output] - model.links[output].angle0
+        v, a = res.omega[output], res.alpha[output]
+    else:
+        s, v, a = res.displacement[output], res.slider_velocity[output], res.slider_acceleration[output]
+    return MechanismLaw(theta, s, v, a, output, kind, res.closed)
+
+
+def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD) -> list:
+    """Dwells, rises and returns of a periodic output over one turn.
+
+    A sample dwells when ``|v|`` is below ``threshold`` times the peak
+    ``|v|``; runs of samples of one class (dwell, rise ``v > 0``, return
+    ``v < 0``) are the segments, joined across the end of the turn.
+
+    Returns
+    -------
+    list of dict
+        ``motion, from_deg, to_deg, rise, peak_v, peak_a`` per segment (``rise`` in output units).
+
+    Examples
+    --------
+    >>> th = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+    >>> s = np.where(th < np.pi, 0.0, 1 - np.cos(2 * th))
+    >>> [g["motion"] for g in fit_segments(th, s, np.gradient(s, th))]
+    ['dwell', 'rise', 'return']
+    """
+    theta, s, v = (np.asarray(x, dtype=float) for x in (theta, s, v))
+    vmax = float(np.max(np.abs(v))) if v.size else 0.0
+    cls = np.where(np.abs(v) <= threshold * vmax, 0, np.where(v > 0, 1, -1)) if vmax > 0 else np.zeros(v.size, int)
+    n = cls.size
+    # start at a change of class so that no run wraps
+    change = np.flatnonzero(cls != np.roll(cls, 1))
+    if change.size == 0:
+        return [{"motion": "dwell" if cls[0] == 0 else "rise", "from_deg": 0.0, "to_deg": 360.0, "rise": 0.0}]
+    start = int(change[0])
+    order = (np.arange(n) + start) % n
+    out = []
+    i = 0
+    names = {0: "dwell", 1: "rise", -1: "return"}
+    step = 2 * math.pi / n
+    while i < n:
+        j = i
+        while j + 1 < n and cls[order[j + 1]] == cls[order[i]]:
+            j += 1
+        idx = order[i : j + 1]
+        end = order[(j + 1) % n]
+        rise = float(s[end] - s[idx[0]])
+        out.append(
+            {
+                "motion": names[int(cls[idx[0]])],
+                "from_deg": math.degrees(theta[idx[0]]),
+                "to_deg": math.degrees(theta[idx[-1]] + step) % 360.0 or 360.0,
+                "rise": rise,
+                "excursion": float(np.ptp(s[idx])),
+            }
+        )
+        i = j + 1
+    return sorted(out, key=lambda g: g["from_deg"])
+
+
+def law_report(res, *, degrees: bool = True) -> dict:
+    """Strict-JSON-ready measures of a :class:`~gearlever.synthesis.law.driver.LawSynthesis` against its law.
+
+    Error (max, RMS, per segment), dwell excursion per dwell segment (the
+    achieved output's range over the segment), peak velocity and
+    acceleration analogues achieved against wanted, transmission angle
+    range, the design's details.
+    """
+    t = res.target
+    ang = t.output == "angle"
+    conv = math.degrees if ang else float
+    unit = "_deg" if ang else ""
+    th, err, ach, want = res.theta, res.error, res.achieved, res.wanted
+    n = th.size
+    h = 2 * math.pi / n
+    drift = ach - t.net * th / (2 * math.pi)
+    va = (np.roll(drift, -1) - np.roll(drift, 1)) / (2 * h) + t.net / (2 * math.pi)
+    aa = (np.roll(drift, -1) - 2 * drift + np.roll(drift, 1)) / (h * h)
+    seg = np.clip(np.searchsorted(t.breaks, th, side="right") - 1, 0, len(t.motions) - 1)
+    wv = np.interp(th, t.theta, t.v, period=2 * math.pi)
+    wa = np.interp(th, t.theta, t.a, period=2 * math.pi)
+    segments = []
+    for k, motion in enumerate(t.motions):
+        m = seg == k
+        if not m.any():
+            continue
+        rec = {
+            "segment": k + 1,
+            "motion": motion,
+            "from_deg": math.degrees(t.breaks[k]),
+            "to_deg": math.degrees(t.breaks[k + 1]),
+            f"error_max{unit}": conv(float(np.max(np.abs(err[m])))),
+        }
+        if motion == "dwell":
+            rec[f"dwell_excursion{unit}"] = conv(float(np.ptp(ach[m])))
+        segments.append(rec)
+    mn, mx = res.transmission_range
+    return {
+        "kind": res.kind,
+        "feasible": res.feasible,
+        f"error_max{unit}": conv(float(np.max(np.abs(err)))),
+        f"error_rms{unit}": conv(float(np.sqrt(np.mean(err**2)))),
+        "objective_weighted_max" + unit: conv(res.objective),
+        "segments": segments,
+        f"peak_velocity{unit}_per_rad": {"achieved": conv(float(np.max(np.abs(va)))), "wanted": conv(float(np.max(np.abs(wv))))},
+        f"peak_acceleration{unit}_per_rad2": {
+            "achieved": conv(float(np.max(np.abs(aa)))),
+            "wanted": conv(float(np.max(np.abs(wa)))),
+        },
+        "transmission_deg": [math.degrees(mn), math.degrees(mx)],
+        "design": res.details,
+        "output_offset" + unit: conv(res.offset),
+        "evaluations": res.evaluations,
+        "seed": res.seed,
+        "starts": res.starts,
+        "types_tried": {k: (None if v is None else conv(v)) for k, v in res.tried.items()},
+        "samples": int(n),
+    }
