@@ -20,7 +20,7 @@ Numeric core: may import numpy, scipy, :mod:`gearlever.synthesis`,
 never pandas or matplotlib.
 """
 
-from gearlever.synthesis.law import fourbar, geared_fourbar, slider_crank  # noqa: F401  (registers the kinds)
+from gearlever.synthesis.law import fourbar, geared_fourbar, sixbar_dwell, slider_crank  # noqa: F401 (the kinds)
 from gearlever.synthesis.law._core import KINDS, LawKind, LawProblem, LawTarget, law_target
 from gearlever.synthesis.law.driver import LawSynthesis, synthesize_law
 

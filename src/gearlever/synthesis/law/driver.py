@@ -15,7 +15,15 @@ from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.synthesis.law._core import KINDS, SAMPLES, LawProblem, LawTarget, law_target
 
-__all__ = ["LawSynthesis", "synthesize_law", "run_chunk", "DEFAULT_BUDGET", "MAX_BUDGET", "REPORT_SAMPLES"]
+__all__ = [
+    "LawSynthesis",
+    "synthesize_law",
+    "target_of_law",
+    "run_chunk",
+    "DEFAULT_BUDGET",
+    "MAX_BUDGET",
+    "REPORT_SAMPLES",
+]
 
 #: Candidate evaluations of the global search per kind (all starts together).
 DEFAULT_BUDGET = 60_000
@@ -23,6 +31,36 @@ DEFAULT_BUDGET = 60_000
 MAX_BUDGET = 10**7
 #: Law inputs at which the result is measured (a tenth of a degree apart).
 REPORT_SAMPLES = 3600
+
+
+def target_of_law(law, samples: int = SAMPLES, dwell_weight: float | None = None) -> LawTarget:
+    """The :class:`LawTarget` of a :class:`gearlever.laws.MotionLaw`: ``samples`` inputs evenly over the turn.
+
+    Examples
+    --------
+    >>> from gearlever.laws import law_from_segments
+    >>> law = law_from_segments("angle", "deg", [{"to": 120, "motion": "dwell"},
+    ...     {"to": 240, "motion": "cycloidal", "rise": 45}, {"to": 360, "motion": "345", "rise": -45}])
+    >>> t = target_of_law(law)
+    >>> t.theta.size, t.motions, round(math.degrees(t.scale), 6)
+    (360, ('dwell', 'cycloidal', '345'), 45.0)
+    """
+    from gearlever.synthesis.law._core import DWELL_WEIGHT
+
+    th = np.linspace(0.0, 2 * math.pi, int(samples), endpoint=False)
+    val = law.evaluate(th)
+    return law_target(
+        th,
+        val.s,
+        val.v,
+        val.a,
+        output=law.output,
+        units=law.units,
+        breaks=law.breaks,
+        motions=law.motions,
+        net=law.net_change(),
+        dwell_weight=DWELL_WEIGHT if dwell_weight is None else dwell_weight,
+    )
 
 
 def _target_spec(t: LawTarget) -> dict:
@@ -166,8 +204,9 @@ def synthesize_law(
 
     Parameters
     ----------
-    target : LawTarget
-        The law sampled over a turn (:func:`~gearlever.synthesis.law.law_target`).
+    target : LawTarget or gearlever.laws.MotionLaw
+        The law sampled over a turn (:func:`~gearlever.synthesis.law.law_target`), or the law itself
+        (sampled by :func:`target_of_law`; the error is then measured against it).
     kind : str
         A kind of :data:`~gearlever.synthesis.law.KINDS` or ``"auto"`` (all, the best kept).
     seed, budget : int
@@ -195,6 +234,12 @@ def synthesize_law(
     """
     from gearlever.synthesis._dask import run_starts
     from gearlever.synthesis.path import n_starts
+
+    if not isinstance(target, LawTarget):  # a MotionLaw
+        motion_law = target
+        target = target_of_law(motion_law)
+        if law is None:
+            law = lambda th: motion_law.evaluate(th).s  # noqa: E731
 
     if kind != "auto" and kind not in KINDS:
         raise GearleverError(f"kind must be one of {', '.join(KINDS)}, auto; got {kind!r}")

@@ -43,7 +43,7 @@ def crank_rocker(b, c, u2):
     >>> round(float(crank_rocker(np.array(2.0), np.array(2.0), np.array(0.5))), 6)
     0.505
     """
-    br, cr, ur = np.real(b), np.real(c), np.real(u2)
+    br, cr = np.real(b), np.real(c)
     room = np.minimum(np.minimum(1.0, np.minimum(br, cr)), 1.0 + br + cr - 2.0 * np.maximum(1.0, np.maximum(br, cr)))
     top = room * (1.0 - MARGIN)
     ok = top > CRANK_MIN

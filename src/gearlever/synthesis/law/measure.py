@@ -163,7 +163,7 @@ def law_report(res, *, degrees: bool = True) -> dict:
     ang = t.output == "angle"
     conv = math.degrees if ang else float
     unit = "_deg" if ang else ""
-    th, err, ach, want = res.theta, res.error, res.achieved, res.wanted
+    th, err, ach = res.theta, res.error, res.achieved
     n = th.size
     h = 2 * math.pi / n
     drift = ach - t.net * th / (2 * math.pi)
@@ -195,7 +195,10 @@ def law_report(res, *, degrees: bool = True) -> dict:
         f"error_rms{unit}": conv(float(np.sqrt(np.mean(err**2)))),
         "objective_weighted_max" + unit: conv(res.objective),
         "segments": segments,
-        f"peak_velocity{unit}_per_rad": {"achieved": conv(float(np.max(np.abs(va)))), "wanted": conv(float(np.max(np.abs(wv))))},
+        f"peak_velocity{unit}_per_rad": {
+            "achieved": conv(float(np.max(np.abs(va)))),
+            "wanted": conv(float(np.max(np.abs(wv)))),
+        },
         f"peak_acceleration{unit}_per_rad2": {
             "achieved": conv(float(np.max(np.abs(aa)))),
             "wanted": conv(float(np.max(np.abs(wa)))),

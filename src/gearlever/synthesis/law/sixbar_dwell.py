@@ -1,0 +1,194 @@
+"""Six-bar dwell linkage for a law: a dyad driven by a coupler point, the rocker pivoted near an arc centre dwells.
+
+Stephenson III: the crank-rocker of :mod:`~gearlever.synthesis.law.fourbar`
+(ground 1) carries the coupler point ``C = A + cx e3 + cy n3`` (``e3`` along
+A->B, ``n3`` its normal); the dyad ``C - D - O6`` (lengths ``l5 = |CD|``,
+``l6 = |O6 D|``, branch ``branch2``) drives the output rocker ``O6 D``.
+Where the coupler curve follows a circular arc of radius ``l5`` about ``D``,
+``D`` stands still and the output dwells (the arc-dwell six-bar; Norton,
+*Design of Machinery*, dwell mechanisms; Kota, Erdman and Riley, "Development
+of knowledge base for designing linkage-type dwell mechanisms", J. Mech.
+Trans. Automation 109 (1987) 308-315).
+
+The initial population is seeded that way: each draw of a four-bar and a
+coupler point fits a circle (Kasa's algebraic fit) to the coupler points over
+the law's dwell samples and puts ``D`` at its centre, ``l5`` its radius and
+``O6`` at a random distance ``l6`` from ``D``.
+
+Constraints, exact: the four-bar's as in the four-bar kind; the dyad closes
+at every sample with no dead point and its transmission angle (at ``D``)
+stays within the bound over the turn (sampled), the output does not turn
+through a full revolution (a rocker).
+
+Pure numpy.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearlever.synthesis._model import _mechanism_table, _xy
+from gearlever.synthesis.law._core import LawKind, atan2c, register
+from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, crank_rocker, fourbar_angles, transmission_range
+
+__all__ = ["SixBarDwellLaw"]
+
+#: Bounds of the coupler point (coupler frame) and of the dyad's pivot, in ground lengths.
+COUPLER = (-3.0, 3.0)
+PIVOT = (-4.0, 5.0)
+DYAD = (0.1, 6.0)
+
+
+@register
+class SixBarDwellLaw(LawKind):
+    """Stephenson III arc-dwell six-bar, output the rocker O6-D (see the module docstring)."""
+
+    name = "sixbar-dwell"
+    outputs = ("angle",)
+    names = ("b", "c", "u2", "alpha", "cx", "cy", "x6", "y6", "l5", "l6", "branch", "branch2")
+    fixed = ("branch", "branch2")
+
+    def __init__(self, target, teeth=(17, 120)):
+        super().__init__(target, teeth)
+        L, C, P, D = LENGTHS, COUPLER, PIVOT, DYAD
+        self.lo = np.array([L[0], L[0], 0.0, -math.pi, C[0], C[0], P[0], P[0], D[0], D[0], -1.0, -1.0])
+        self.hi = np.array([L[1], L[1], 1.0, math.pi, C[1], C[1], P[1], P[1], D[1], D[1], 1.0, 1.0])
+
+    def _coupler_point(self, Z, theta):
+        b, c, u2 = Z[:, 0:1], Z[:, 1:2], Z[:, 2:3]
+        a = crank_rocker(b, c, u2)
+        sig = np.where(np.real(Z[:, 10:11]) >= 0, 1.0, -1.0)
+        phi = Z[:, 3:4] + theta
+        _, th3 = fourbar_angles(a, b, c, phi, sig)
+        Ax, Ay = a * np.cos(phi), a * np.sin(phi)
+        e, n = (np.cos(th3), np.sin(th3)), (-np.sin(th3), np.cos(th3))
+        cx, cy = Z[:, 4:5], Z[:, 5:6]
+        return Ax + cx * e[0] + cy * n[0], Ay + cx * e[1] + cy * n[1], a
+
+    def _dyad(self, Z, theta):
+        Cx, Cy, a = self._coupler_point(Z, theta)
+        x6, y6, l5, l6 = Z[:, 6:7], Z[:, 7:8], Z[:, 8:9], Z[:, 9:10]
+        Fx, Fy = Cx - x6, Cy - y6
+        f2 = Fx * Fx + Fy * Fy
+        f = np.sqrt(f2)
+        cg = (l6 * l6 + f2 - l5 * l5) / (2.0 * l6 * f)
+        cm = (l5 * l5 + l6 * l6 - f2) / (2.0 * l5 * l6)
+        return Fx, Fy, f, cg, cm, a
+
+    def generate(self, Z, theta):
+        Fx, Fy, f, cg, cm, a = self._dyad(Z, theta)
+        sig2 = np.where(np.real(Z[:, 11:12]) >= 0, 1.0, -1.0)
+        ang = atan2c(Fy, Fx)
+        ar = np.real(ang)
+        un = np.unwrap(ar, axis=1)
+        ang = ang + (un - ar)
+        # winding of C about O6 over the turn (the closing step included): a rocker needs 0
+        close = np.mod(ar[:, 0] - un[:, -1] + math.pi, 2 * math.pi) - math.pi
+        winding = np.round((un[:, -1] + close - un[:, 0]) / (2 * math.pi))
+        cgr = np.real(cg)
+        with np.errstate(invalid="ignore"):
+            ok = np.isfinite(np.real(a[:, 0])) & (winding == 0) & np.all(np.abs(cgr) < 1.0 - 1e-9, axis=1)
+            gam = np.arccos(np.where(np.abs(cgr) < 1.0, cg, 0.0))
+        return ang + sig2 * gam, ok
+
+    def transmission(self, Z):
+        a = np.real(crank_rocker(Z[:, 0], Z[:, 1], Z[:, 2]))
+        m1, M1 = transmission_range(a, np.real(Z[:, 0]), np.real(Z[:, 1]))
+        theta = self.target.theta
+        _, _, _, _, cm, _ = self._dyad(np.real(Z), theta)
+        with np.errstate(invalid="ignore"):
+            mu = np.arccos(np.clip(cm, -1.0, 1.0))
+        return np.minimum(m1, mu.min(axis=1)), np.maximum(M1, mu.max(axis=1))
+
+    def sample(self, rng, m):
+        """Uniform four-bars and coupler points, the dyad put at a circle fitted over the dwell samples."""
+        Z = super().sample(rng, m)
+        dw = self.target.dwell
+        if not dw.any():
+            return Z
+        th = self.target.theta[dw]
+        Cx, Cy, a = self._coupler_point(Z, th)
+        # Kasa's fit: x^2 + y^2 = 2 p x + 2 q y + r, least squares, batched normal equations
+        M = np.stack([2 * Cx, 2 * Cy, np.ones_like(Cx)], axis=-1)
+        rhs = Cx * Cx + Cy * Cy
+        with np.errstate(invalid="ignore"):
+            A = np.einsum("nki,nkj->nij", M, M) + 1e-12 * np.eye(3)
+            bvec = np.einsum("nki,nk->ni", M, rhs)
+            ok = np.all(np.isfinite(A), axis=(1, 2)) & np.all(np.isfinite(bvec), axis=1)
+            sol = np.zeros((m, 3))
+            sol[ok] = np.linalg.solve(A[ok], bvec[ok][..., None])[..., 0]
+            p, q, r = sol[:, 0], sol[:, 1], sol[:, 2]
+            R = np.sqrt(np.maximum(r + p * p + q * q, 0.0))
+        l6 = Z[:, 9]
+        beta = rng.random(m) * 2 * math.pi
+        x6, y6 = p + l6 * np.cos(beta), q + l6 * np.sin(beta)
+        inside = (
+            ok
+            & (R >= DYAD[0])
+            & (R <= DYAD[1])
+            & (x6 >= PIVOT[0])
+            & (x6 <= PIVOT[1])
+            & (y6 >= PIVOT[0])
+            & (y6 <= PIVOT[1])
+        )
+        Z[inside, 6], Z[inside, 7], Z[inside, 8] = x6[inside], y6[inside], R[inside]
+        # the branch that puts D at the centre: D is on the side of O6->C given by the sign of the cross product
+        cross = (p - x6) * (Cy[:, 0] - y6) - (q - y6) * (Cx[:, 0] - x6)
+        Z[inside, 11] = np.where(cross[inside] < 0, 0.5, -0.5)
+        return Z
+
+    def details(self, z):
+        z = np.asarray(z, dtype=float)
+        a = float(crank_rocker(z[0], z[1], z[2]))
+        S = SIZE
+        return {
+            "lengths": {
+                "ground": S,
+                "crank": a * S,
+                "coupler": z[0] * S,
+                "rocker": z[1] * S,
+                "coupler_point": [z[4] * S, z[5] * S],
+                "O6": [z[6] * S, z[7] * S],
+                "link5": z[8] * S,
+                "output": z[9] * S,
+            },
+            "branch": "+" if z[10] >= 0 else "-",
+            "branch2": "+" if z[11] >= 0 else "-",
+            "crank_deg_at_input_0": math.degrees(z[3]),
+        }
+
+    def model(self, z, k):
+        z = np.asarray(z, dtype=float)
+        th = np.zeros(1)
+        Cx, Cy, a = self._coupler_point(z[None, :], th)
+        a = float(a[0, 0])
+        psi6 = float(self.generate(z[None, :], th)[0][0, 0])
+        b, c, al = float(z[0]), float(z[1]), float(z[3])
+        sig = 1.0 if z[10] >= 0 else -1.0
+        psi, _ = fourbar_angles(np.array([[a]]), np.array([[b]]), np.array([[c]]), np.array([[al]]), sig)
+        psi = float(psi[0, 0])
+        S = SIZE
+        pts = {
+            "O2": (0.0, 0.0),
+            "O4": (S, 0.0),
+            "O6": (S * z[6], S * z[7]),
+            "A": (S * a * math.cos(al), S * a * math.sin(al)),
+            "B": (S + S * c * math.cos(psi), S * c * math.sin(psi)),
+            "C": (S * float(Cx[0, 0]), S * float(Cy[0, 0])),
+            "D": (S * (z[6] + z[9] * math.cos(psi6)), S * (z[7] + z[9] * math.sin(psi6))),
+        }
+        return {
+            "mechanism": _mechanism_table("law six-bar dwell (Stephenson III)", ""),
+            "points": {n: _xy(n, p) for n, p in pts.items()},
+            "links": {
+                "ground": ["O2", "O4", "O6"],
+                "crank": ["O2", "A"],
+                "coupler": ["A", "B", "C"],
+                "rocker": ["O4", "B"],
+                "link5": ["C", "D"],
+                "output": ["O6", "D"],
+            },
+            "inputs": [{"link": "crank"}],
+        }
