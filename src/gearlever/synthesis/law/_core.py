@@ -238,6 +238,12 @@ class LawKind:
         """Smallest and largest transmission angle over the turn ``(n,), (n,)`` (radians)."""
         raise NotImplementedError
 
+    def evaluate(self, Z, theta):
+        """:meth:`generate` and :meth:`transmission` at once (a kind may share the work): ``G, ok, mn, mx``."""
+        G, ok = self.generate(Z, theta)
+        mn, mx = self.transmission(Z)
+        return G, ok, mn, mx
+
     def model(self, z, k: float) -> dict:
         """Model dict sketched at law input 0 (``k``: the output zero of the fit)."""
         raise NotImplementedError
@@ -277,9 +283,10 @@ class LawProblem:
     def hi(self):
         return self.kind.hi
 
-    def feasible(self, Z) -> np.ndarray:
+    def feasible(self, Z, mn=None, mx=None) -> np.ndarray:
         Z = np.atleast_2d(Z)
-        mn, mx = self.kind.transmission(Z)
+        if mn is None:
+            mn, mx = self.kind.transmission(Z)
         b = self.min_transmission
         with np.errstate(invalid="ignore"):
             return np.isfinite(mn) & (mn >= b - 1e-12) & (mx <= math.pi - b + 1e-12)
@@ -296,10 +303,14 @@ class LawProblem:
     def objective(self, Z) -> np.ndarray:
         Z = np.atleast_2d(Z)
         self.evaluations += Z.shape[0]
-        R, _, ok = self.residuals(Z)
+        t = self.target
+        G, ok, mn, mx = self.kind.evaluate(Z, t.theta)
+        w2 = t.weight**2
         with np.errstate(invalid="ignore"):
-            F = np.sqrt(np.mean((R * self.target.weight) ** 2, axis=1))
-        ok = ok & self.feasible(Z) & np.isfinite(F)
+            R = G - t.s
+            R = R - (R @ w2)[:, None] / w2.sum()
+            F = np.sqrt((R * R) @ w2 / t.theta.size)
+        ok = ok & self.feasible(Z, mn, mx) & np.isfinite(F)
         return np.where(ok, F, np.inf)
 
     def sample(self, rng, m):

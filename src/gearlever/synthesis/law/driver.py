@@ -27,6 +27,8 @@ __all__ = [
 
 #: Candidate evaluations of the global search per kind (all starts together).
 DEFAULT_BUDGET = 60_000
+#: Default bound of the transmission angle, degrees (a linkage near a toggle is no design).
+MIN_TRANSMISSION_DEG = 20.0
 #: Largest budget accepted.
 MAX_BUDGET = 10**7
 #: Law inputs at which the result is measured (a tenth of a degree apart).
@@ -194,7 +196,7 @@ def synthesize_law(
     budget: int = DEFAULT_BUDGET,
     workers: int | None = None,
     scheduler: str | None = None,
-    min_transmission: float = 0.0,
+    min_transmission: float = math.radians(MIN_TRANSMISSION_DEG),
     teeth=(17, 120),
     method: str = "de",
     progress=None,
@@ -214,7 +216,8 @@ def synthesize_law(
     workers, scheduler
         Local dask threads or a dask.distributed scheduler address (the result does not depend on them).
     min_transmission : float
-        Smallest transmission angle over the turn, radians, ``0 <= . < pi/2``.
+        Smallest transmission angle over the turn, radians, ``0 <= . < pi/2`` (default
+        :data:`MIN_TRANSMISSION_DEG` degrees).
     teeth : (int, int)
         Bounds of gear teeth.
     law : callable, optional

@@ -25,6 +25,8 @@ __all__ = ["MechanismLaw", "mechanism_law", "fit_segments", "law_report", "DWELL
 
 #: A dwell: the output's speed analogue below this fraction of its peak.
 DWELL_THRESHOLD = 0.01
+#: Shortest dwell reported (degrees of input).
+MIN_DWELL_DEG = 10.0
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,8 @@ class MechanismLaw(Result):
         The output link (or slider) name.
     kind : {"angle", "displacement"}
     closed : ndarray (N,) of bool
+    net : float
+        Output change over the whole turn (0 when it returns).
     """
 
     theta: np.ndarray
@@ -51,6 +55,7 @@ class MechanismLaw(Result):
     output: str
     kind: str
     closed: np.ndarray
+    net: float = 0.0
 
 
 def mechanism_law(mech, output: str, samples: int = 3600) -> MechanismLaw:
@@ -89,26 +94,31 @@ def mechanism_law(mech, output: str, samples: int = 3600) -> MechanismLaw:
     if spec.relative_to is not None:
         q0 -= model.links[spec.relative_to].angle0
     theta = np.linspace(0.0, 2 * math.pi, samples, endpoint=False)
-    res = mech.solve((q0 + theta)[:, None])
+    res = mech.solve((q0 + np.append(theta, 2 * math.pi))[:, None])
     if kind == "angle":
         s = res.angle[output] - model.links[output].angle0
         v, a = res.omega[output], res.alpha[output]
     else:
         s, v, a = res.displacement[output], res.slider_velocity[output], res.slider_acceleration[output]
-    return MechanismLaw(theta, s, v, a, output, kind, res.closed)
+    net = float(s[-1] - s[0])
+    net = 0.0 if abs(net) <= 1e-9 * max(1.0, float(np.ptp(s))) else net
+    return MechanismLaw(theta, s[:-1], v[:-1], a[:-1], output, kind, res.closed[:-1] & res.closed[-1], net)
 
 
-def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD) -> list:
+def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD, min_dwell_deg: float = MIN_DWELL_DEG) -> list:
     """Dwells, rises and returns of a periodic output over one turn.
 
     A sample dwells when ``|v|`` is below ``threshold`` times the peak
     ``|v|``; runs of samples of one class (dwell, rise ``v > 0``, return
-    ``v < 0``) are the segments, joined across the end of the turn.
+    ``v < 0``) are the segments, joined across the end of the turn; a
+    dwell shorter than ``min_dwell_deg`` (a reversal's stationary point) is
+    counted with the motion around it.
 
     Returns
     -------
     list of dict
-        ``motion, from_deg, to_deg, rise, peak_v, peak_a`` per segment (``rise`` in output units).
+        ``motion, from_deg, to_deg, rise, excursion`` per segment (output units), the one holding input 0
+        first (``from_deg > to_deg`` when it wraps).
 
     Examples
     --------
@@ -121,6 +131,12 @@ def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD) -> list:
     vmax = float(np.max(np.abs(v))) if v.size else 0.0
     cls = np.where(np.abs(v) <= threshold * vmax, 0, np.where(v > 0, 1, -1)) if vmax > 0 else np.zeros(v.size, int)
     n = cls.size
+    width = max(1, int(math.ceil(math.radians(min_dwell_deg) / (2 * math.pi / max(n, 1)))))
+    runs = _runs(cls)
+    for st, ln in runs:
+        if cls[st] == 0 and ln < width and ln < n:
+            idx = (st + np.arange(ln)) % n
+            cls[idx] = np.where(v[idx] >= 0, 1, -1)
     # start at a change of class so that no run wraps
     change = np.flatnonzero(cls != np.roll(cls, 1))
     if change.size == 0:
@@ -141,14 +157,25 @@ def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD) -> list:
         out.append(
             {
                 "motion": names[int(cls[idx[0]])],
-                "from_deg": math.degrees(theta[idx[0]]),
-                "to_deg": math.degrees(theta[idx[-1]] + step) % 360.0 or 360.0,
+                "from_deg": round(math.degrees(theta[idx[0]]), 9),
+                "to_deg": round(math.degrees(theta[idx[-1]] + step), 9) % 360.0 or 360.0,
                 "rise": rise,
                 "excursion": float(np.ptp(s[idx])),
             }
         )
         i = j + 1
-    return sorted(out, key=lambda g: g["from_deg"])
+    # the segment holding input 0 first (it may start before 360 and wrap)
+    return sorted(out, key=lambda g: -1.0 if g["from_deg"] > g["to_deg"] else g["from_deg"])
+
+
+def _runs(cls) -> list:
+    """(start, length) of the runs of equal values of a periodic class array."""
+    n = cls.size
+    change = np.flatnonzero(cls != np.roll(cls, 1))
+    if change.size == 0:
+        return [(0, n)]
+    ends = np.append(change[1:], change[0] + n)
+    return [(int(a), int(b - a)) for a, b in zip(change, ends)]
 
 
 def law_report(res, *, degrees: bool = True) -> dict:

@@ -78,6 +78,18 @@ class SixBarDwellLaw(LawKind):
         return Fx, Fy, f, cg, cm, a
 
     def generate(self, Z, theta):
+        return self._generate(Z, theta)[:2]
+
+    def evaluate(self, Z, theta):
+        G, ok, cm = self._generate(Z, theta)
+        a = np.real(crank_rocker(Z[:, 0], Z[:, 1], Z[:, 2]))
+        m1, M1 = transmission_range(a, np.real(Z[:, 0]), np.real(Z[:, 1]))
+        with np.errstate(invalid="ignore"):
+            cr = np.real(cm)
+            mu_lo, mu_hi = np.arccos(np.clip(cr.max(axis=1), -1, 1)), np.arccos(np.clip(cr.min(axis=1), -1, 1))
+        return G, ok, np.minimum(m1, mu_lo), np.maximum(M1, mu_hi)
+
+    def _generate(self, Z, theta):
         Fx, Fy, f, cg, cm, a = self._dyad(Z, theta)
         sig2 = np.where(np.real(Z[:, 11:12]) >= 0, 1.0, -1.0)
         ang = atan2c(Fy, Fx)
@@ -91,16 +103,11 @@ class SixBarDwellLaw(LawKind):
         with np.errstate(invalid="ignore"):
             ok = np.isfinite(np.real(a[:, 0])) & (winding == 0) & np.all(np.abs(cgr) < 1.0 - 1e-9, axis=1)
             gam = np.arccos(np.where(np.abs(cgr) < 1.0, cg, 0.0))
-        return ang + sig2 * gam, ok
+        return ang + sig2 * gam, ok, cm
 
     def transmission(self, Z):
-        a = np.real(crank_rocker(Z[:, 0], Z[:, 1], Z[:, 2]))
-        m1, M1 = transmission_range(a, np.real(Z[:, 0]), np.real(Z[:, 1]))
-        theta = self.target.theta
-        _, _, _, _, cm, _ = self._dyad(np.real(Z), theta)
-        with np.errstate(invalid="ignore"):
-            mu = np.arccos(np.clip(cm, -1.0, 1.0))
-        return np.minimum(m1, mu.min(axis=1)), np.maximum(M1, mu.max(axis=1))
+        _, _, mn, mx = self.evaluate(np.real(np.atleast_2d(Z)), self.target.theta)
+        return mn, mx
 
     def sample(self, rng, m):
         """Uniform four-bars and coupler points, the dyad put at a circle fitted over the dwell samples."""
