@@ -255,7 +255,7 @@ def _mechanism_law(args) -> int:
         {
             "output": ml.output,
             "kind": ml.kind,
-            "net_change" + ("_deg" if ang else ""): float(conv(ml.s[-1] + (ml.s[-1] - ml.s[-2]) - ml.s[0])),
+            "net_change" + ("_deg" if ang else ""): float(conv(ml.net)),
             "range" + ("_deg" if ang else ""): float(conv(np.ptp(ml.s))),
             "peak_velocity_per_rad" + ("_deg" if ang else ""): float(conv(np.max(np.abs(ml.v)))),
             "peak_acceleration_per_rad2" + ("_deg" if ang else ""): float(conv(np.max(np.abs(ml.a)))),

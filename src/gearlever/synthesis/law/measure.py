@@ -233,6 +233,7 @@ def law_report(res, *, degrees: bool = True) -> dict:
         "transmission_deg": [math.degrees(mn), math.degrees(mx)],
         "design": res.details,
         "output_offset" + unit: conv(res.offset),
+        "output_at_input_0" + unit: conv(float(ach[0])),
         "evaluations": res.evaluations,
         "seed": res.seed,
         "starts": res.starts,
