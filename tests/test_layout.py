@@ -14,7 +14,7 @@ from gearlever._aliases import ALIASES
 SRC = pathlib.Path(gearlever.__file__).parent
 
 #: Subpackages of the numeric core: arrays in, arrays out, never pandas or pyplot.
-CORE = ["gears", "trains", "zrdpm", "loops", "mechanism", "dynamics", "synthesis"]
+CORE = ["gears", "trains", "zrdpm", "loops", "mechanism", "dynamics", "synthesis", "laws", "cams"]
 #: Every subpackage of gearlever.
 SUBPACKAGES = sorted(p.parent.name for p in SRC.glob("*/__init__.py"))
 

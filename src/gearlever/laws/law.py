@@ -261,6 +261,35 @@ class MotionLaw:
         vals = self.evaluate(np.linspace(0.0, TWO_PI, 3601)).s
         return float(vals.max() - vals.min())
 
+    def to_dict(self) -> dict:
+        """The ``[law]`` table of LAW.toml for this law (segments, in the file's units).
+
+        A sampled law gives ``samples`` as the source it was read from, or
+        ``None`` when it was built in memory.
+
+        Examples
+        --------
+        >>> law = law_from_segments("angle", "deg", [{"to": 120, "motion": "dwell"},
+        ...     {"to": 360, "motion": "cycloidal", "rise": 0}])
+        >>> law.to_dict()["segment"][1]
+        {'to': 360.0, 'motion': 'cycloidal', 'rise': 0.0}
+        """
+        factor = ANGLE_UNITS.get(self.units, 1.0) if self.output == "angle" else 1.0
+        out = {"output": self.output, "units": self.units}
+        if self.knots is not None:
+            out["samples"] = None
+            return out
+        if self.start != 0.0:
+            out["start"] = float(f"{self.start / factor:.12g}")
+        segs = []
+        for k, name in enumerate(self.motions):
+            seg = {"to": float(f"{math.degrees(self.breaks[k + 1]):.12g}"), "motion": name}
+            if MOTIONS[name].rises:
+                seg["rise"] = float(f"{self.rises[k] / factor:.12g}")
+            segs.append(seg)
+        out["segment"] = segs
+        return out
+
     def net_change(self) -> float:
         """Output change over one turn (0 for a law that returns to its start)."""
         total = float(np.sum(self.rises))

@@ -1,0 +1,312 @@
+"""``gearlever cam design``: the disc cam that gives a motion law.
+
+::
+
+    gearlever cam design LAW.toml --follower translating-roller|translating-flat|oscillating-roller|oscillating-flat
+        [--base-radius R] [--roller-radius r] [--offset e] [--arm L --pivot-distance D]
+        [--max-pressure-angle DEG] [--min-curvature-radius RHO] [--rpm N] [--points N]
+        --out CAM.toml [--profile P.csv|P.svg|P.dxf] [--report R.json] [--figure F.png]
+
+Without ``--base-radius`` the base circle is sized: the smallest meeting
+``--max-pressure-angle`` and/or ``--min-curvature-radius``.  With both, the
+design at ``--base-radius`` is checked against the bounds and refused when it
+breaks one (the line gives the smallest base radius meeting it).  Every file
+is written atomically; every refusal is one line naming the file, segment or flag.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+
+from gearlever.cli._common import (
+    capped_int,
+    check_output,
+    emit,
+    finite_float,
+    format_number,
+    positive_float,
+    to_json,
+)
+from gearlever.errors import GearleverError
+
+#: Most profile points.
+MAX_POINTS = 1_000_000
+#: Profile file kinds by suffix.
+PROFILE_SUFFIXES = (".csv", ".svg", ".dxf")
+
+
+def register(sub) -> None:
+    from gearlever.cams.followers import FOLLOWERS
+
+    p = sub.add_parser("cam", help="disc cams for a motion law (LAW.toml)")
+    ss = p.add_subparsers(dest="cam_command", metavar="SUBCOMMAND")
+    ss.required = True
+    d = ss.add_parser(
+        "design",
+        help="profile, pressure angle, curvature and undercut of the disc cam giving a law",
+        description="Design the disc cam that gives LAW.toml's output to a follower; the cam turns "
+        "counterclockwise, the follower touches the base circle at the law's lowest output.",
+    )
+    d.add_argument("law", metavar="LAW.toml", help="the motion law (segments or samples)")
+    d.add_argument("--follower", required=True, choices=list(FOLLOWERS), help="follower kind")
+    d.add_argument("--base-radius", type=positive_float, default=None, help="base circle radius (length)")
+    d.add_argument("--roller-radius", type=positive_float, default=None, help="roller radius (roller followers)")
+    d.add_argument(
+        "--offset",
+        type=finite_float,
+        default=0.0,
+        help="translating: follower axis offset from the cam centre; oscillating flat: face offset from the pivot",
+    )
+    d.add_argument("--arm", type=positive_float, default=None, help="oscillating roller: pivot to roller centre")
+    d.add_argument("--pivot-distance", type=positive_float, default=None, help="oscillating: cam centre to pivot")
+    d.add_argument("--max-pressure-angle", type=positive_float, default=None, metavar="DEG", help="bound, degrees")
+    d.add_argument(
+        "--min-curvature-radius", type=finite_float, default=None, metavar="RHO", help="bound on the convex surface"
+    )
+    d.add_argument("--rpm", type=positive_float, default=None, help="cam speed: adds per-second peaks to the report")
+    d.add_argument(
+        "--points",
+        type=capped_int(MAX_POINTS, 8),
+        default=3600,
+        help=f"profile points (default 3600, at most {MAX_POINTS:,})",
+    )
+    d.add_argument("--out", required=True, metavar="CAM.toml", help="cam data file to write")
+    d.add_argument("--profile", default=None, metavar="P.csv|P.svg|P.dxf", help="cam surface in the cam's frame")
+    d.add_argument("--report", default=None, metavar="R.json", help="JSON report")
+    d.add_argument("--figure", default=None, metavar="F.png", help="SVAJ diagrams and the profile")
+    d.set_defaults(func=_design)
+
+
+def _rounded(obj, digits: int = 12):
+    if isinstance(obj, dict):
+        return {k: _rounded(v, digits) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_rounded(v, digits) for v in obj]
+    if isinstance(obj, float) and math.isfinite(obj):
+        return float(f"{obj:.{digits}g}")
+    return obj
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if math.isnan(v):
+            return "nan"
+        return format_number(v) if "e" not in format_number(v) and "." in format_number(v) else repr(float(v))
+    return json.dumps(str(v))
+
+
+def _table(name: str, d: dict) -> list[str]:
+    return [f"[{name}]"] + [f"{k} = {_toml_value(v)}" for k, v in d.items() if v is not None]
+
+
+def cam_toml(design, law_table: dict, report: dict, comment: str) -> str:
+    """Text of CAM.toml: ``[cam]`` dimensions, the ``[law]`` (so the file reads as a LAW.toml too), ``[report]``."""
+    cam = {
+        "follower": design.follower,
+        "units": design.units,
+        "base_radius": design.base_radius,
+        "roller_radius": design.roller_radius,
+        "offset": design.offset,
+        "arm": design.arm,
+        "pivot_distance": design.pivot_distance,
+        "points": int(design.theta.size),
+    }
+    cam = {k: v for k, v in _rounded(cam).items() if not (isinstance(v, float) and math.isnan(v))}
+    lines = [f"# {c}" for c in comment.splitlines()] + [""] + _table("cam", cam) + [""]
+    segs = law_table.get("segment")
+    lines += _table("law", {k: v for k, v in law_table.items() if k != "segment"})
+    for seg in segs or []:
+        lines += ["", "[[law.segment]]"] + [f"{k} = {_toml_value(v)}" for k, v in seg.items()]
+    rep = {k: v for k, v in report.items() if isinstance(v, bool | int | float | str) and k not in cam}
+    rep = {k: v for k, v in rep.items() if not (isinstance(v, float) and not math.isfinite(v))}
+    lines += ["", *_table("report", rep)]
+    return "\n".join(lines) + "\n"
+
+
+def _profile_csv(design) -> str:
+    rows = ["x,y"] + [f"{format_number(x)},{format_number(y)}" for x, y in design.surface]
+    return "\n".join(rows) + "\n"
+
+
+def _profile_svg(design) -> str:
+    pts = design.surface
+    r = float(max(abs(pts).max(), design.base_radius)) * 1.05
+    path = " ".join(f"{format_number(x, 9)},{format_number(-y, 9)}" for x, y in pts)
+    w = format_number(2 * r, 9)
+    return (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{format_number(-r, 9)} {format_number(-r, 9)} {w} {w}" '
+        f'width="{w}{_svg_unit(design.units)}" height="{w}{_svg_unit(design.units)}">\n'
+        f"  <title>{design.follower} cam, base radius {format_number(design.base_radius, 9)} {design.units}</title>\n"
+        f'  <polygon points="{path}" fill="none" stroke="black" stroke-width="{format_number(r / 500, 6)}"/>\n'
+        f'  <circle cx="0" cy="0" r="{format_number(r / 100, 6)}" fill="black"/>\n'
+        "</svg>\n"
+    )
+
+
+def _svg_unit(units: str) -> str:
+    return units if units in ("mm", "cm", "in") else ""
+
+
+def _write_dxf(design, path: str) -> None:
+    import ezdxf
+
+    from gearlever._io import atomic_path
+
+    units = {"mm": 4, "cm": 5, "m": 6, "in": 1, "ft": 2, "um": 13}.get(design.units, 0)
+    # ezdxf's own switch for fixed dates and GUIDs: the same bytes on every run
+    fixed = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True
+    try:
+        doc = ezdxf.new("R2010", units=units)
+        msp = doc.modelspace()
+        pts = [(float(x), float(y)) for x, y in design.surface]
+        msp.add_lwpolyline(pts, close=True, dxfattribs={"layer": "CAM"})
+        msp.add_circle((0.0, 0.0), design.base_radius / 50, dxfattribs={"layer": "CENTRE"})
+        with atomic_path(path) as tmp:
+            doc.saveas(tmp)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = fixed
+
+
+def _design(args) -> int:
+    import numpy as np
+
+    from gearlever.cams import FOLLOWERS, design_cam, size_base_radius
+    from gearlever.laws import load_law
+
+    kind = FOLLOWERS[args.follower]
+    for flag, path in (("--profile", args.profile), ("--report", args.report), ("--figure", args.figure)):
+        check_output(path, flag)
+    if args.profile is not None and not args.profile.lower().endswith(PROFILE_SUFFIXES):
+        raise GearleverError(f"--profile must end with .csv, .svg or .dxf, got {args.profile!r}")
+    if args.figure is not None and not args.figure.lower().endswith(".png"):
+        raise GearleverError(f"--figure must end with .png, got {args.figure!r}")
+    if args.max_pressure_angle is not None and not args.max_pressure_angle < 90:
+        raise GearleverError(f"--max-pressure-angle must be below 90 deg, got {args.max_pressure_angle:g}")
+    if args.min_curvature_radius is not None and args.min_curvature_radius < 0:
+        raise GearleverError(f"--min-curvature-radius must be >= 0, got {args.min_curvature_radius:g}")
+    given = {"roller_radius": args.roller_radius, "arm": args.arm, "pivot_distance": args.pivot_distance}
+    flags = {"roller_radius": "--roller-radius", "arm": "--arm", "pivot_distance": "--pivot-distance"}
+    for name, value in given.items():
+        if name in kind.needs and value is None:
+            raise GearleverError(f"{flags[name]} is required for a {kind.name} follower")
+        if name not in kind.needs and value is not None:
+            raise GearleverError(f"{flags[name]} does not apply to a {kind.name} follower")
+    if args.offset != 0 and "offset" not in kind.needs:
+        raise GearleverError(f"--offset does not apply to a {kind.name} follower")
+    dims = {
+        "roller_radius": args.roller_radius or 0.0,
+        "offset": args.offset,
+        "arm": args.arm,
+        "pivot_distance": args.pivot_distance,
+    }
+    law = load_law(args.law)
+    sizing = args.max_pressure_angle is not None or args.min_curvature_radius is not None
+    bound_phi = None if args.max_pressure_angle is None else math.radians(args.max_pressure_angle)
+    sized = None
+    if sizing:
+        sized = size_base_radius(
+            law,
+            kind.name,
+            **dims,
+            max_pressure_angle=bound_phi,
+            min_curvature_radius=args.min_curvature_radius,
+            points=args.points,
+        )
+    if args.base_radius is None and sized is None:
+        raise GearleverError(
+            "--base-radius is required (or give --max-pressure-angle or --min-curvature-radius to size it)"
+        )
+    rb = args.base_radius if args.base_radius is not None else sized
+    try:
+        cam = design_cam(law, kind.name, base_radius=rb, **dims, points=args.points)
+    except GearleverError as exc:
+        text = str(exc)
+        if text.startswith(("undercut", "base radius")):
+            who = "--base-radius" if args.base_radius is not None else "the sized base radius"
+            roller = f" with --roller-radius {args.roller_radius:g}" if args.roller_radius else ""
+            raise GearleverError(f"{who} {rb:.6g}{roller}: {text}") from None
+        raise
+    if args.base_radius is not None and sizing:
+        if bound_phi is not None and cam.pressure_angle_max > bound_phi * (1 + 1e-12):
+            raise GearleverError(
+                f"--max-pressure-angle {args.max_pressure_angle:g}: the pressure angle reaches "
+                f"{math.degrees(cam.pressure_angle_max):.4g} deg with --base-radius {rb:g}; "
+                f"the smallest base radius meeting the bounds is {sized:.6g}"
+            )
+        if args.min_curvature_radius is not None and cam.curvature_radius_min < args.min_curvature_radius:
+            raise GearleverError(
+                f"--min-curvature-radius {args.min_curvature_radius:g}: the convex surface's radius of curvature "
+                f"falls to {cam.curvature_radius_min:.6g} with --base-radius {rb:g}; "
+                f"the smallest base radius meeting the bounds is {sized:.6g}"
+            )
+    report = cam.report()
+    report["law"] = args.law
+    report["base_radius_from"] = "--base-radius" if args.base_radius is not None else "sized"
+    report["base_radius_sized"] = sized
+    cont = law.continuity()
+    report["law_continuous"] = cont.ok
+    report["law_discontinuities"] = cont.problems()
+    vals = law.evaluate(cam.theta)
+    scale = 180 / math.pi if law.output == "angle" else 1.0
+    unit = "deg" if law.output == "angle" else law.units
+    for field in ("v", "a", "j"):
+        report[f"{field}_max_{unit}_per_rad" + ("" if field == "v" else ("2" if field == "a" else "3"))] = (
+            float(np.max(np.abs(getattr(vals, field)))) * scale
+        )
+    if args.rpm is not None:
+        ps = vals.per_second(args.rpm)
+        report["rpm"] = args.rpm
+        report[f"v_max_{unit}_per_s"] = float(np.max(np.abs(ps.v))) * scale
+        report[f"a_max_{unit}_per_s2"] = float(np.max(np.abs(ps.a))) * scale
+        report[f"j_max_{unit}_per_s3"] = float(np.max(np.abs(ps.j))) * scale
+    report = _rounded(report)
+    law_table = law.to_dict()
+    if law_table.get("samples", 1) is None:
+        src = Path(args.law).parent / _samples_name(args.law)
+        law_table["samples"] = os.path.relpath(src, Path(args.out).resolve().parent)
+    emit(cam_toml(cam, law_table, report, f"Written by gearlever cam design from {Path(args.law).name}"), args.out)
+    if args.profile is not None:
+        suffix = args.profile.lower().rsplit(".", 1)[1]
+        if suffix == "dxf":
+            _write_dxf(cam, args.profile)
+        else:
+            emit(_profile_csv(cam) if suffix == "csv" else _profile_svg(cam), args.profile, "--profile")
+    if args.report is not None:
+        emit(to_json(report), args.report, "--report")
+    if args.figure is not None:
+        from gearlever.plotting._common import save
+        from gearlever.plotting.cam import cam_design_figure
+
+        save(cam_design_figure(cam, vals), args.figure)
+    lines = [
+        f"follower          {cam.follower}",
+        f"base radius       {cam.base_radius:.6g} {cam.units}" + (" (sized)" if args.base_radius is None else ""),
+        f"pressure angle    max {report['pressure_angle_max_deg']:.4g} deg "
+        f"at {report['pressure_angle_max_at_deg']:.4g} deg",
+        f"curvature radius  min {cam.curvature_radius_min:.4g} {cam.units} (convex surface)",
+        f"undercut          {'yes' if cam.undercut else 'no'}",
+    ]
+    if kind.contact == "flat":
+        lines.append(f"face width        {cam.face_width:.4g} {cam.units}")
+    if not cont.ok:
+        lines.append(f"law               not continuous: {cont.problems()[0]}")
+    lines.append(f"cam               {args.out}")
+    emit("\n".join(lines))
+    return 0
+
+
+def _samples_name(law_path: str) -> str:
+    import tomllib
+
+    from gearlever._io import read_text_capped
+
+    return tomllib.loads(read_text_capped(law_path, "LAW"))["law"]["samples"]

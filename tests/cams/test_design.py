@@ -1,0 +1,255 @@
+"""Disc cam design checked by independent contact computations on the profile polygon,
+finite differences of the profile, and Norton's closed forms (Design of Machinery, sec. 8.6)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gearlever.cams import FOLLOWERS, design_cam, size_base_radius
+from gearlever.errors import GearleverError
+from gearlever.laws import law_from_segments
+
+SEGS = [
+    {"to": 60, "motion": "dwell"},
+    {"to": 150, "motion": "cycloidal", "rise": 1},
+    {"to": 200, "motion": "dwell"},
+    {"to": 320, "motion": "345", "rise": -1},
+    {"to": 360, "motion": "dwell"},
+]
+
+
+def law(output="displacement", stroke=20.0):
+    segs = [dict(s, rise=s["rise"] * stroke) if "rise" in s else s for s in SEGS]
+    return law_from_segments(output, "mm" if output == "displacement" else "deg", segs)
+
+
+def law_s(lw, theta):
+    """The law's follower displacement from its lowest value (independent of the cam code)."""
+    return lw.evaluate(theta).s - np.min(lw.evaluate(np.linspace(0, 2 * math.pi, 36001)).s)
+
+
+def rotate(pts, ang):
+    c, s = math.cos(ang), math.sin(ang)
+    return pts @ np.array([[c, s], [-s, c]])
+
+
+def dist_to_polygon(pts, centre, window=None):
+    """Distance from ``centre`` to the closed polygon ``pts`` (segments, not only vertices).
+
+    With ``window``, only the segments starting within that distance of ``centre`` count.
+    """
+    idx = np.arange(len(pts))
+    if window is not None:
+        idx = idx[np.linalg.norm(pts - centre, axis=1) < window]
+    a, b = pts[idx], pts[(idx + 1) % len(pts)]
+    ab = b - a
+    t = np.clip(np.sum((centre - a) * ab, axis=1) / np.sum(ab * ab, axis=1), 0, 1)
+    return float(np.min(np.linalg.norm(a + t[:, None] * ab - centre, axis=1)))
+
+
+TEST_ANGLES = np.radians(np.arange(0.5, 360, 3.0)) + 1e-3  # off the design grid
+
+
+@pytest.mark.parametrize("offset", [0.0, 6.0, -4.0])
+def test_translating_roller_surface_stays_one_roller_radius_from_the_roller_centre(offset):
+    lw = law()
+    rb, rr = 40.0, 8.0
+    cam = design_cam(lw, "translating-roller", base_radius=rb, roller_radius=rr, offset=offset, points=40000)
+    d = math.sqrt((rb + rr) ** 2 - offset**2)
+    s = law_s(lw, TEST_ANGLES)
+    err = [
+        dist_to_polygon(rotate(cam.surface, th), np.array([offset, d + si])) - rr
+        for th, si in zip(TEST_ANGLES, s, strict=True)
+    ]
+    assert np.max(np.abs(err)) < 1e-6 * 20.0
+
+
+def test_translating_roller_displacement_recovered_by_a_contact_computation():
+    """Rotate the profile, lift the roller along its axis until it touches: the law comes back."""
+    lw = law()
+    rb, rr, e = 40.0, 8.0, 5.0
+    cam = design_cam(lw, "translating-roller", base_radius=rb, roller_radius=rr, offset=e, points=40000)
+    d = math.sqrt((rb + rr) ** 2 - e**2)
+    rec = []
+    for th in TEST_ANGLES:
+        pts = rotate(cam.surface, th)
+        near = np.abs(pts[:, 0] - e) <= rr
+        rec.append(np.max(pts[near, 1] + np.sqrt(rr**2 - (pts[near, 0] - e) ** 2)) - d)
+    np.testing.assert_allclose(rec, law_s(lw, TEST_ANGLES), atol=1e-6 * 20.0)
+
+
+def test_translating_flat_displacement_recovered_by_a_contact_computation():
+    lw = law()
+    rb = 45.0
+    cam = design_cam(lw, "translating-flat", base_radius=rb, points=40000)
+    rec = [np.max(rotate(cam.surface, th)[:, 1]) - rb for th in TEST_ANGLES]
+    np.testing.assert_allclose(rec, law_s(lw, TEST_ANGLES), atol=1e-6 * 20.0)
+    # the contact lies at x = v (Norton: flat-faced follower), within the face span reported
+    np.testing.assert_allclose(cam.contact[:, 0], cam.v, atol=1e-12)
+    assert cam.face_width == pytest.approx(np.max(cam.v) - np.min(cam.v))
+
+
+def _bisect(f, lo, hi, n=60):
+    """Vectorised bisection for f(x) = 0 with f(lo) < 0 < f(hi)."""
+    for _ in range(n):
+        mid = 0.5 * (lo + hi)
+        neg = f(mid) < 0
+        lo, hi = np.where(neg, mid, lo), np.where(neg, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+def test_oscillating_roller_arm_angle_recovered_by_a_contact_computation():
+    lw = law("angle", stroke=20.0)
+    rb, rr, L, D = 30.0, 6.0, 50.0, 70.0
+    cam = design_cam(lw, "oscillating-roller", base_radius=rb, roller_radius=rr, arm=L, pivot_distance=D, points=40000)
+    g0 = math.acos((D**2 + L**2 - (rb + rr) ** 2) / (2 * D * L))
+    angles = TEST_ANGLES[::3]
+    polys = [rotate(cam.surface, th) for th in angles]
+
+    def gap(g):
+        return np.array(
+            [
+                dist_to_polygon(p, np.array([D - L * math.cos(gi), L * math.sin(gi)]), window=3 * rr) - rr
+                for p, gi in zip(polys, g, strict=True)
+            ]
+        )
+
+    want = g0 + law_s(lw, angles)
+    got = _bisect(gap, want - 0.02, want + 0.02, n=32)
+    np.testing.assert_allclose(got - g0, law_s(lw, angles), atol=1e-6 * math.radians(20))
+
+
+def test_oscillating_flat_face_angle_recovered_by_a_contact_computation():
+    lw = law("angle", stroke=15.0)
+    rb, D, e = 25.0, 80.0, 3.0
+    cam = design_cam(lw, "oscillating-flat", base_radius=rb, pivot_distance=D, offset=e, points=40000)
+    g0 = math.asin((rb + e) / D)
+    angles = TEST_ANGLES[::3]
+    polys = [rotate(cam.surface, th) for th in angles]
+
+    def reach(g):  # how far the cam pokes through the face line turned to g (0 at contact)
+        return np.array(
+            [
+                np.max(p @ np.array([math.sin(gi), math.cos(gi)])) - (D * math.sin(gi) - e)
+                for p, gi in zip(polys, g, strict=True)
+            ]
+        )
+
+    want = g0 + law_s(lw, angles)
+    got = _bisect(lambda g: -reach(g), want - 0.02, want + 0.02, n=40)
+    np.testing.assert_allclose(got - g0, law_s(lw, angles), atol=1e-6 * math.radians(15))
+
+
+def _fd_radius(pts, h):
+    x, y = pts[:, 0], pts[:, 1]
+    x1, y1 = (np.roll(x, -1) - np.roll(x, 1)) / (2 * h), (np.roll(y, -1) - np.roll(y, 1)) / (2 * h)
+    x2 = (np.roll(x, -1) - 2 * x + np.roll(x, 1)) / h**2
+    y2 = (np.roll(y, -1) - 2 * y + np.roll(y, 1)) / h**2
+    return -((x1**2 + y1**2) ** 1.5) / (x1 * y2 - y1 * x2)  # the profile runs clockwise
+
+
+@pytest.mark.parametrize(
+    ("follower", "kw", "output"),
+    [
+        ("translating-roller", {"roller_radius": 8.0, "offset": 5.0}, "displacement"),
+        ("translating-flat", {}, "displacement"),
+        ("oscillating-roller", {"roller_radius": 6.0, "arm": 50.0, "pivot_distance": 70.0}, "angle"),
+        ("oscillating-flat", {"pivot_distance": 80.0, "offset": 3.0}, "angle"),
+    ],
+)
+def test_radius_of_curvature_matches_finite_differences_of_the_profile(follower, kw, output):
+    cam = design_cam(law(output, 15.0), follower, base_radius=35.0, points=36000, **kw)
+    fd = _fd_radius(cam.surface, 2 * math.pi / 36000)
+    breaks = np.radians([0, 60, 150, 200, 320, 360])  # jerk jumps there: FD second differences are O(h) off
+    ok = (np.abs(cam.curvature_radius) < 1e3) & (np.min(np.abs(cam.theta[:, None] - breaks), axis=1) > 1e-3)
+    np.testing.assert_allclose(fd[ok], cam.curvature_radius[ok], rtol=1e-4, atol=1e-6)
+
+
+def test_translating_roller_pressure_angle_and_flat_radius_match_nortons_closed_forms():
+    lw = law()
+    rb, rr, e = 30.0, 5.0, 4.0
+    cam = design_cam(lw, "translating-roller", base_radius=rb, roller_radius=rr, offset=e)
+    want = np.arctan((cam.v - e) / (cam.s + math.sqrt((rb + rr) ** 2 - e**2)))
+    np.testing.assert_allclose(cam.pressure_angle, want, atol=1e-13)
+    flat = design_cam(lw, "translating-flat", base_radius=rb + 10)
+    np.testing.assert_allclose(flat.curvature_radius, rb + 10 + flat.s + flat.a, rtol=1e-12)
+    np.testing.assert_allclose(flat.pressure_angle, 0.0, atol=1e-15)
+
+
+def test_profile_starts_on_the_base_circle_during_the_first_dwell():
+    cam = design_cam(law(), "translating-roller", base_radius=30.0, roller_radius=5.0)
+    dwell = cam.theta < math.radians(60)
+    np.testing.assert_allclose(np.hypot(*cam.surface[dwell].T), 30.0, atol=1e-12)
+    np.testing.assert_allclose(np.hypot(*cam.pitch[dwell].T), 35.0, atol=1e-12)
+
+
+def test_size_base_radius_for_a_pressure_angle_is_the_smallest_meeting_it():
+    lw = law()
+    bound = math.radians(30)
+    rb = size_base_radius(lw, "translating-roller", roller_radius=5.0, offset=2.0, max_pressure_angle=bound)
+    at = design_cam(lw, "translating-roller", base_radius=rb, roller_radius=5.0, offset=2.0, points=3600)
+    below = design_cam(lw, "translating-roller", base_radius=rb * (1 - 1e-6), roller_radius=5.0, offset=2.0)
+    assert at.pressure_angle_max <= bound < below.pressure_angle_max
+
+
+def test_size_base_radius_for_a_curvature_radius_flat_follower_is_closed_form():
+    lw = law()
+    rb = size_base_radius(lw, "translating-flat", min_curvature_radius=10.0)
+    cam = design_cam(lw, "translating-flat", base_radius=50.0)
+    assert rb == pytest.approx(10.0 - np.min(cam.s + cam.a), rel=1e-9)  # Norton: rho = Rb + s + s''
+
+
+def test_undercut_roller_is_refused_with_the_smallest_base_radius_that_avoids_it():
+    lw = law_from_segments(
+        "displacement", "mm", [{"to": 60, "motion": "345", "rise": 30}, {"to": 360, "motion": "cycloidal", "rise": -30}]
+    )
+    with pytest.raises(
+        GearleverError, match="undercut: roller radius 20 exceeds .* smallest base radius that avoids it is ([0-9.]+)"
+    ) as exc:
+        design_cam(lw, "translating-roller", base_radius=5.0, roller_radius=20.0)
+    least = float(str(exc.value).rsplit(" ", 1)[1])
+    ok = design_cam(lw, "translating-roller", base_radius=least * 1.001, roller_radius=20.0)
+    assert not ok.undercut and ok.curvature_radius_min > 0
+    flagged = design_cam(lw, "translating-roller", base_radius=5.0, roller_radius=20.0, allow_undercut=True)
+    assert flagged.undercut and flagged.curvature_radius_min < 0
+
+
+def test_undercut_flat_follower_is_refused():
+    lw = law_from_segments(
+        "displacement", "mm", [{"to": 60, "motion": "345", "rise": 30}, {"to": 360, "motion": "cycloidal", "rise": -30}]
+    )
+    with pytest.raises(GearleverError, match="undercut: the cam's radius of curvature .* smallest base radius"):
+        design_cam(lw, "translating-flat", base_radius=20.0)
+
+
+@pytest.mark.parametrize(
+    ("lw", "follower", "kw", "match"),
+    [
+        (
+            law_from_segments("angle", "deg", [{"to": 360, "motion": "linear", "rise": 30}]),
+            "oscillating-flat",
+            {"pivot_distance": 50},
+            "does not return to its start",
+        ),
+        (law(), "oscillating-roller", {"roller_radius": 5, "arm": 40, "pivot_distance": 60}, "needs an angle law"),
+        (law("angle"), "translating-roller", {"roller_radius": 5}, "needs a displacement law"),
+        (law(), "translating-roler", {"roller_radius": 5}, "did you mean 'translating-roller'"),
+        (law(), "translating-roller", {"roller_radius": 5, "offset": 50}, "--offset 50 must be smaller"),
+        (law(), "translating-roller", {}, "--roller-radius must be a positive length"),
+        (law("angle"), "oscillating-roller", {"roller_radius": 5, "arm": 10, "pivot_distance": 100}, "cannot reach"),
+        (law("angle"), "oscillating-roller", {"roller_radius": 5, "pivot_distance": 100}, "--arm must be"),
+    ],
+)
+def test_bad_designs_are_refused_naming_the_problem(lw, follower, kw, match):
+    with pytest.raises(GearleverError, match=match):
+        design_cam(lw, follower, base_radius=30.0, **kw)
+
+
+def test_every_registered_follower_designs_a_cam_and_a_frame():
+    for name, kind in FOLLOWERS.items():
+        kw = {"roller_radius": 5.0} if kind.contact == "roller" else {}
+        if kind.law_output == "angle":
+            kw.update(pivot_distance=90.0, **({"arm": 60.0} if kind.contact == "roller" else {}))
+        cam = design_cam(law(kind.law_output, 10.0), name, base_radius=30.0, points=720, **kw)
+        assert cam.to_frame().shape[0] == 720 and cam.report()["follower"] == name
