@@ -17,7 +17,6 @@ Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_law.py [SEED ...] [--quick
 
 from __future__ import annotations
 
-import math
 import sys
 import time
 from pathlib import Path

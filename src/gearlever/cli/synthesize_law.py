@@ -119,20 +119,11 @@ def _r(obj, digits: int = 10):
     return obj
 
 
-def _cam_comparison(law) -> dict:
-    """The cam that gives the law with the default follower, when the cams package is there."""
-    try:
-        from gearlever import cams  # noqa: F401
-    except ImportError:
-        return {"available": False, "note": "the cams package is not in this build: no cam comparison"}
-    return {"available": False, "note": "cam comparison not wired yet"}
-
-
 def _run(args) -> int:
     from gearlever.laws import load_law
     from gearlever.synthesis._model import model_toml
     from gearlever.synthesis.law import synthesize_law
-    from gearlever.synthesis.law.measure import law_report
+    from gearlever.synthesis.law.measure import cam_comparison, law_report
 
     check_output(args.out, "--out")
     for flag, path in (("--report", args.report), ("--figure", args.figure)):
@@ -175,7 +166,7 @@ def _run(args) -> int:
     rep = law_report(res)
     rep["law"] = args.law
     rep["time_s"] = round(float(res.seconds), 2)
-    rep["cam"] = _cam_comparison(law)
+    rep["cam"] = cam_comparison(law)
     rep = _r(rep)
     ang = law.output == "angle"
     unit = "_deg" if ang else ""
@@ -213,6 +204,12 @@ def _run(args) -> int:
         f"peak accel.      {pa['achieved']:.4g} (wanted {pa['wanted']:.4g}){u} per rad^2",
         f"transmission     {mu[0]:.4g} .. {mu[1]:.4g} deg",
     ]
+    cam = rep["cam"]
+    if cam["available"]:
+        lines.append(
+            f"cam ({cam['follower']}) base radius {cam['base_radius']:.4g}, pressure angle max "
+            f"{cam['pressure_angle_max_deg']:.4g} deg (transmission {cam['transmission_min_deg']:.4g} deg), exact"
+        )
     teeth = res.details.get("teeth")
     if teeth:
         lines.append("teeth            " + ", ".join(f"{k} {v}" for k, v in teeth.items()))

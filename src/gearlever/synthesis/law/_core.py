@@ -230,6 +230,18 @@ class LawKind:
         """``m`` candidates of the initial population (uniform in the box by default)."""
         return self.lo + rng.random((m, self.d)) * (self.hi - self.lo)
 
+    def search_box(self):
+        """Box ``(lo, hi)`` of the global search's variables (by default the design variables)."""
+        return self.lo, self.hi
+
+    def to_full(self, Zs) -> np.ndarray:
+        """Design variables ``(n, d)`` of search candidates ``Zs`` (by default the same; NaN rows: none)."""
+        return Zs
+
+    def search_sample(self, rng, m: int) -> np.ndarray:
+        """``m`` candidates of the search's initial population."""
+        return self.sample(rng, m)
+
     def generate(self, Z, theta):
         """Outputs ``(n, N)`` at law inputs ``theta`` (up to a constant) and feasibility ``(n,)``."""
         raise NotImplementedError
@@ -315,6 +327,12 @@ class LawProblem:
 
     def sample(self, rng, m):
         return self.kind.sample(rng, m)
+
+    def search_objective(self, Zs) -> np.ndarray:
+        """:meth:`objective` of search candidates (mapped by the kind's ``to_full``)."""
+        Z = self.kind.to_full(np.atleast_2d(Zs))
+        F = self.objective(np.nan_to_num(Z, nan=0.0))
+        return np.where(np.all(np.isfinite(Z), axis=1), F, np.inf)
 
     # --- polish -----------------------------------------------------------------------------------------
     def _free(self):

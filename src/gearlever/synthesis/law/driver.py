@@ -106,16 +106,18 @@ def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> 
 
     pb = make_problem(spec)
     rng = np.random.default_rng([seed, k])
-    pop = max(24, 6 * pb.d)
+    lo, hi = pb.kind.search_box()
+    pop = max(24, 6 * lo.size)
+    f, init = pb.search_objective, pb.kind.search_sample
     if method == "de":
-        z, _, _ = _search.differential_evolution(pb.objective, pb.lo, pb.hi, rng, budget=evals, pop=pop, init=pb.sample)
+        z, _, _ = _search.differential_evolution(f, lo, hi, rng, budget=evals, pop=pop, init=init)
     elif method == "cma":
-        z, _, _ = _search.cma_es(pb.objective, pb.lo, pb.hi, rng, budget=evals, pop=pop, init=pb.sample)
+        z, _, _ = _search.cma_es(f, lo, hi, rng, budget=evals, pop=pop, init=init)
     else:
         raise GearleverError(f"method must be 'de' or 'cma', got {method!r}")
     if z is None:
         return (math.inf, k, None, 0.0, pb.evaluations)
-    z, off, f = pb.polish(z)
+    z, off, f = pb.polish(pb.kind.to_full(z[None, :])[0])
     return (f, k, z.tolist(), off, pb.evaluations)
 
 
@@ -275,7 +277,7 @@ def synthesize_law(
             "teeth": [int(teeth[0]), int(teeth[1])],
         }
         pb = make_problem(spec)
-        starts = n_starts(budget, pb.d)
+        starts = n_starts(budget, pb.kind.search_box()[0].size)
         per = max(budget // starts, 1)
         results = run_starts(
             spec, seed, starts, per, method, workers=workers, scheduler=scheduler, progress=progress, fn=run_chunk

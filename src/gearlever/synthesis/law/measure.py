@@ -8,7 +8,7 @@ dwells (speed below a threshold), rises and returns; :func:`law_report`
 measures a :class:`~gearlever.synthesis.law.driver.LawSynthesis` against
 its law.
 
-Numeric core: numpy and :mod:`gearlever.mechanism`.
+Numeric core: numpy, :mod:`gearlever.mechanism` and :mod:`gearlever.cams` (the cam comparison).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 
-__all__ = ["MechanismLaw", "mechanism_law", "fit_segments", "law_report", "DWELL_THRESHOLD"]
+__all__ = ["MechanismLaw", "mechanism_law", "fit_segments", "law_report", "cam_comparison", "DWELL_THRESHOLD"]
 
 #: A dwell: the output's speed analogue below this fraction of its peak.
 DWELL_THRESHOLD = 0.01
@@ -239,4 +239,49 @@ def law_report(res, *, degrees: bool = True) -> dict:
         "starts": res.starts,
         "types_tried": {k: (None if v is None else conv(v)) for k, v in res.tried.items()},
         "samples": int(n),
+    }
+
+
+#: The default cam of the comparison: a roller follower sized for this largest pressure angle (deg), with
+#: arm :data:`~gearlever.synthesis.law.fourbar.SIZE`, pivot at twice the arm and a roller of a tenth of it
+#: (oscillating, for an angle law), or a roller of a fifth of the stroke (translating, for a displacement law).
+CAM_PRESSURE_ANGLE_DEG = 30.0
+
+
+def cam_comparison(law) -> dict:
+    """The cam giving ``law`` with the default roller follower: its size, pressure angle and curvature.
+
+    A cam meets its law exactly (its profile is computed from it), so the
+    comparison with a linkage is of size, pressure angle (against the
+    linkage's transmission angle: ``90 deg - pressure angle``) and curvature.
+    Returns ``{"available": False, "note": ...}`` when the cam cannot be
+    made (a law that does not return to its start, no base radius meeting
+    the pressure angle).
+    """
+    from gearlever.cams import design_cam, size_base_radius
+    from gearlever.synthesis.law.fourbar import SIZE
+
+    pmax = math.radians(CAM_PRESSURE_ANGLE_DEG)
+    if law.output == "angle":
+        follower = "oscillating-roller"
+        dims = {"roller_radius": SIZE / 10, "arm": SIZE, "pivot_distance": 2 * SIZE}
+    else:
+        follower = "translating-roller"
+        dims = {"roller_radius": law.scale / 5}
+    try:
+        rb = size_base_radius(law, follower, max_pressure_angle=pmax, **dims)
+        cam = design_cam(law, follower, base_radius=rb, **dims)
+    except GearleverError as exc:
+        return {"available": False, "follower": follower, "note": str(exc)}
+    return {
+        "available": True,
+        "follower": follower,
+        **{k: float(v) for k, v in dims.items()},
+        "base_radius": float(cam.base_radius),
+        "pressure_angle_max_deg": math.degrees(cam.pressure_angle_max),
+        "transmission_min_deg": 90.0 - math.degrees(cam.pressure_angle_max),
+        "curvature_radius_min": float(cam.curvature_radius_min),
+        "undercut": bool(cam.undercut),
+        "error_max": 0.0,
+        "note": f"sized for a largest pressure angle of {CAM_PRESSURE_ANGLE_DEG:g} deg; a cam meets its law exactly",
     }

@@ -10,10 +10,12 @@ Where the coupler curve follows a circular arc of radius ``l5`` about ``D``,
 of knowledge base for designing linkage-type dwell mechanisms", J. Mech.
 Trans. Automation 109 (1987) 308-315).
 
-The initial population is seeded that way: each draw of a four-bar and a
-coupler point fits a circle (Kasa's algebraic fit) to the coupler points over
-the law's dwell samples and puts ``D`` at its centre, ``l5`` its radius and
-``O6`` at a random distance ``l6`` from ``D``.
+The global search works that way: each candidate four-bar and coupler point
+fits a circle (Kasa's algebraic fit) to the coupler points over the law's
+dwell samples and puts ``D`` at its centre, ``l5`` its radius and ``O6`` at
+the searched distance ``l6`` and angle ``beta`` from ``D``
+(:meth:`SixBarDwellLaw.to_full`); the polish then frees all twelve design
+variables.
 
 Constraints, exact: the four-bar's as in the four-bar kind; the dyad closes
 at every sample with no dead point and its transmission angle (at ``D``)
@@ -109,42 +111,59 @@ class SixBarDwellLaw(LawKind):
         _, _, mn, mx = self.evaluate(np.real(np.atleast_2d(Z)), self.target.theta)
         return mn, mx
 
-    def sample(self, rng, m):
-        """Uniform four-bars and coupler points, the dyad put at a circle fitted over the dwell samples."""
-        Z = super().sample(rng, m)
-        dw = self.target.dwell
-        if not dw.any():
-            return Z
-        th = self.target.theta[dw]
-        Cx, Cy, a = self._coupler_point(Z, th)
-        # Kasa's fit: x^2 + y^2 = 2 p x + 2 q y + r, least squares, batched normal equations
+    def _circle(self, Z):
+        """Kasa's circle ``(p, q, R)`` through the coupler points over the law's dwell samples, batched.
+
+        Also the coupler point at the dwell's first sample ``(Cx, Cy)``.
+        """
+        th = self.target.theta[self.target.dwell]
+        Cx, Cy, _ = self._coupler_point(Z, th)
+        # x^2 + y^2 = 2 p x + 2 q y + r by least squares (I. Kasa, IEEE Trans. Instrum. Meas. 25 (1976) 8-14)
         M = np.stack([2 * Cx, 2 * Cy, np.ones_like(Cx)], axis=-1)
         rhs = Cx * Cx + Cy * Cy
         with np.errstate(invalid="ignore"):
             A = np.einsum("nki,nkj->nij", M, M) + 1e-12 * np.eye(3)
             bvec = np.einsum("nki,nk->ni", M, rhs)
             ok = np.all(np.isfinite(A), axis=(1, 2)) & np.all(np.isfinite(bvec), axis=1)
-            sol = np.zeros((m, 3))
+            sol = np.full((Z.shape[0], 3), np.nan)
             sol[ok] = np.linalg.solve(A[ok], bvec[ok][..., None])[..., 0]
             p, q, r = sol[:, 0], sol[:, 1], sol[:, 2]
-            R = np.sqrt(np.maximum(r + p * p + q * q, 0.0))
-        l6 = Z[:, 9]
-        beta = rng.random(m) * 2 * math.pi
+            R = np.sqrt(r + p * p + q * q)
+        return p, q, R, Cx[:, 0], Cy[:, 0]
+
+    def search_box(self):
+        """The search's variables: the four-bar, the coupler point, ``l6`` and the angle ``beta`` of O6 about D.
+
+        ``D`` (at the start of the dwell) and ``l5`` are the centre and the radius of the circle fitted to the
+        coupler curve over the dwell (:meth:`to_full`): each candidate has its best arc dwell.  A law with no
+        dwell searches the design variables themselves.
+        """
+        if not self.target.dwell.any():
+            return self.lo, self.hi
+        lo = np.concatenate([self.lo[:6], [DYAD[0], -math.pi, -1.0]])
+        hi = np.concatenate([self.hi[:6], [DYAD[1], math.pi, 1.0]])
+        return lo, hi
+
+    def to_full(self, Zs):
+        if not self.target.dwell.any():
+            return Zs
+        Zs = np.asarray(Zs, dtype=float)
+        Zf = np.zeros((Zs.shape[0], self.d))
+        Zf[:, :6], Zf[:, 10] = Zs[:, :6], Zs[:, 8]
+        p, q, R, Cx, Cy = self._circle(Zf)
+        l6, beta = Zs[:, 6], Zs[:, 7]
         x6, y6 = p + l6 * np.cos(beta), q + l6 * np.sin(beta)
-        inside = (
-            ok
-            & (R >= DYAD[0])
-            & (R <= DYAD[1])
-            & (x6 >= PIVOT[0])
-            & (x6 <= PIVOT[1])
-            & (y6 >= PIVOT[0])
-            & (y6 <= PIVOT[1])
-        )
-        Z[inside, 6], Z[inside, 7], Z[inside, 8] = x6[inside], y6[inside], R[inside]
-        # the branch that puts D at the centre: D is on the side of O6->C given by the sign of the cross product
-        cross = (p - x6) * (Cy[:, 0] - y6) - (q - y6) * (Cx[:, 0] - x6)
-        Z[inside, 11] = np.where(cross[inside] < 0, 0.5, -0.5)
+        # the branch that puts D at the centre: D on the side of O6->C given by the sign of the cross product
+        cross = (p - x6) * (Cy - y6) - (q - y6) * (Cx - x6)
+        Z = np.column_stack([Zs[:, :6], x6, y6, R, l6, Zs[:, 8], np.where(cross < 0, 1.0, -1.0)])
+        with np.errstate(invalid="ignore"):
+            out = ~np.all((Z >= self.lo) & (Z <= self.hi), axis=1)
+        Z[out] = np.nan
         return Z
+
+    def search_sample(self, rng, m):
+        lo, hi = self.search_box()
+        return lo + rng.random((m, lo.size)) * (hi - lo)
 
     def details(self, z):
         z = np.asarray(z, dtype=float)
