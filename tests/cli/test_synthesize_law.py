@@ -146,3 +146,32 @@ def test_mechanism_law_refuses_an_unknown_output(tmp_path, run):
     assert run("synthesize", "law", law, "--type", "fourbar", "--out", out, "--budget", 500)[0] == 0
     code, _, err = run("mechanism", "law", out, "--output", "rockr")
     assert code == 2 and "--output" in err and "rockr" in err
+
+
+@pytest.mark.parametrize("kind", ["fourbar", "geared-fourbar", "sixbar-dwell"])
+def test_the_written_model_opens_in_analyze_draw_view_and_forces(tmp_path, run, kind):
+    law = tmp_path / "law.toml"
+    law.write_text(DWELL)
+    out = tmp_path / "m.toml"
+    assert run("synthesize", "law", law, "--type", kind, "--out", out, "--budget", 600)[0] == 0
+    code, text, err = run("mechanism", "analyze", out, "--points", 36)
+    assert code == 0, err
+    assert "output_angle_deg" in text.splitlines()[0]
+    assert run("mechanism", "draw", out, "--out", tmp_path / "d.png")[0] == 0
+    assert run("mechanism", "view", out, "--out", tmp_path / "v.html")[0] == 0
+    code, _, err = run("mechanism", "forces", out, "--points", 36)
+    assert code == 0, err
+
+
+def test_auto_tries_every_angle_kind_and_ranks_them(tmp_path, run):
+    law = tmp_path / "law.toml"
+    law.write_text(DWELL)
+    out, rep = tmp_path / "m.toml", tmp_path / "r.json"
+    code, text, err = run("synthesize", "law", law, "--type", "auto", "--out", out, "--report", rep, "--budget", 600)
+    assert code == 0, err
+    r = json.loads(rep.read_text())
+    tried = r["types_tried"]
+    assert set(tried) == {"fourbar", "slider-crank", "geared-fourbar", "sixbar-dwell"}
+    assert tried["slider-crank"] is None  # an angle law: no slider
+    best = min(v for v in tried.values() if v is not None)
+    assert tried[r["kind"]] == best and "tried" in text
