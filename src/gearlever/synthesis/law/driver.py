@@ -26,9 +26,11 @@ __all__ = [
 ]
 
 #: Candidate evaluations of the global search per kind (all starts together).
-DEFAULT_BUDGET = 60_000
+DEFAULT_BUDGET = 400_000
 #: Default bound of the transmission angle, degrees (a linkage near a toggle is no design).
 MIN_TRANSMISSION_DEG = 20.0
+#: Lawson rounds of the final polish of the best start (each start has 25).
+FINAL_ROUNDS = 100
 #: Largest budget accepted.
 MAX_BUDGET = 10**7
 #: Law inputs at which the result is measured (a tenth of a degree apart).
@@ -287,6 +289,11 @@ def synthesize_law(
         if z is None or not math.isfinite(f):
             tried[kd] = None
             continue
+        # the best start polished further (after the reduction: the same for any workers)
+        z2, off2, f2 = pb.polish(np.asarray(z), rounds=FINAL_ROUNDS)
+        if f2 < f:
+            z, off, f = z2, off2, f2
+        evals += pb.evaluations
         res = _result(pb, np.asarray(z), off, f, seed, starts, law)
         tried[kd] = res.objective
         if best is None or res.objective < best.objective:
