@@ -175,3 +175,22 @@ def test_auto_tries_every_angle_kind_and_ranks_them(tmp_path, run):
     assert tried["slider-crank"] is None  # an angle law: no slider
     best = min(v for v in tried.values() if v is not None)
     assert tried[r["kind"]] == best and "tried" in text
+
+
+def test_the_same_model_bytes_for_one_or_two_workers(tmp_path, run):
+    law = tmp_path / "law.toml"
+    law.write_text(DWELL)
+    a, b = tmp_path / "a.toml", tmp_path / "b.toml"
+    assert run("synthesize", "law", law, "--type", "fourbar", "--out", a, "--budget", 800, "--workers", 1)[0] == 0
+    assert run("synthesize", "law", law, "--type", "fourbar", "--out", b, "--budget", 800, "--workers", 2)[0] == 0
+    assert a.read_bytes() == b.read_bytes()
+
+
+def test_an_unreachable_scheduler_is_refused_naming_the_flag(tmp_path, run):
+    law = tmp_path / "law.toml"
+    law.write_text(DWELL)
+    out = tmp_path / "m.toml"
+    code, _, err = run(
+        "synthesize", "law", law, "--type", "fourbar", "--out", out, "--budget", 200, "--scheduler", "tcp://127.0.0.1:9"
+    )
+    assert code == 2 and "--scheduler" in err and len(err.strip().splitlines()) == 1 and not out.exists()
