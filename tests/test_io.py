@@ -57,13 +57,23 @@ def test_device_behind_a_symlink_is_not_replaced(tmp_path):
     assert Path("/dev/null").is_char_device() and link.is_symlink()
 
 
-def test_symlink_to_a_file_writes_through(tmp_path):
+def test_symlink_is_replaced_not_followed(tmp_path):
+    # writing through a link would change a file the user did not name (issue 25)
     real = tmp_path / "real.txt"
     real.write_text("old")
     link = tmp_path / "link.txt"
     link.symlink_to(real)
     write_text_atomic(link, "new")
-    assert link.is_symlink() and real.read_text() == "new"
+    assert not link.is_symlink() and link.read_text() == "new"
+    assert real.read_text() == "old"
+
+
+def test_dangling_symlink_is_replaced_and_its_target_not_created(tmp_path):
+    link = tmp_path / "link.txt"
+    link.symlink_to(tmp_path / "elsewhere.txt")
+    write_text_atomic(link, "new")
+    assert not link.is_symlink() and link.read_text() == "new"
+    assert not (tmp_path / "elsewhere.txt").exists()
 
 
 def test_check_target_leaves_no_probe_file(tmp_path):
@@ -99,3 +109,65 @@ def test_written_file_has_the_mode_of_a_plain_open(tmp_path):
 def test_to_json_is_strict_and_keeps_key_order():
     text = to_json({"z": float("nan"), "a": [float("-inf"), 1.5]}, indent=None)
     assert text == '{"z": null, "a": [null, 1.5]}'
+
+
+# ---------------------------------------------------------------------------
+# OutputSet: several files all or none
+# ---------------------------------------------------------------------------
+
+
+def test_output_set_writes_all_at_the_end(tmp_path):
+    from gearlever._io import output_set
+
+    with output_set() as outs:
+        write_text_atomic(tmp_path / "a.txt", "a")
+        write_text_atomic(tmp_path / "b.txt", "b")
+        assert not (tmp_path / "a.txt").exists()  # staged, not yet renamed
+    assert outs.written == [tmp_path / "a.txt", tmp_path / "b.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt", "b.txt"]
+
+
+def test_output_set_failing_leaves_old_files_and_removes_folders_it_made(tmp_path):
+    from gearlever._io import output_set
+
+    (tmp_path / "a.txt").write_text("old")
+    with pytest.raises(RuntimeError):
+        with output_set() as outs:
+            outs.declare_folder(tmp_path / "new" / "deeper")
+            write_text_atomic(tmp_path / "a.txt", "new")
+            write_text_atomic(tmp_path / "new" / "deeper" / "b.txt", "b")
+            raise RuntimeError("the third file failed")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt"]
+    assert (tmp_path / "a.txt").read_text() == "old"
+
+
+def test_output_set_refuses_one_file_twice_naming_both_flags(tmp_path):
+    from gearlever._io import OutputSet
+    from gearlever.errors import GearleverError
+
+    outs = OutputSet()
+    outs.declare(tmp_path / "x.toml", "--out")
+    outs.declare(tmp_path / "x.toml", "--out")  # the same flag again: fine
+    (tmp_path / "link").symlink_to(tmp_path / "x.toml")
+    with pytest.raises(GearleverError, match=r"--report .*link.* and --out .*x\.toml.* are the same file"):
+        outs.declare(tmp_path / "link", "--report")
+
+
+def test_a_file_written_twice_in_one_set_is_refused(tmp_path):
+    from gearlever._io import output_set
+    from gearlever.errors import GearleverError
+
+    with pytest.raises(GearleverError, match="written twice"):
+        with output_set():
+            write_text_atomic(tmp_path / "x.txt", "1", flag="--out")
+            write_text_atomic(tmp_path / "x.txt", "2", flag="--out")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_write_error_names_the_target_not_the_temporary(tmp_path):
+    with pytest.raises(OSError) as exc:
+        with atomic_path(tmp_path / "x.txt"):
+            raise OSError(errno.ENOSPC, "No space left on device")
+    assert exc.value.errno == errno.ENOSPC and exc.value.filename == str(tmp_path / "x.txt")
+    assert "cannot write" in exc.value.strerror
+    assert list(tmp_path.iterdir()) == []

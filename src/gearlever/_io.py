@@ -7,6 +7,7 @@ file (or none) is there, or the complete new one.
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import errno
 import json
 import math
@@ -189,8 +190,13 @@ def atomic_path(target, suffix: str | None = None, *, mkdir: bool = False):
     is true) or an unwritable folder raise :class:`OSError` naming the path,
     before anything is written.  If the body raises, or the process gets
     SIGTERM or Ctrl-C, the temporary file is removed and ``target`` is left
-    as it was.  A symbolic link is written
-    through (its target is replaced), as a plain ``open`` would.
+    as it was.  A symbolic link is replaced by the new file, not followed
+    (the file it points to is left alone).  A write error (a full disk) is
+    an :class:`OSError` naming ``target``, not the temporary file.
+
+    Inside :func:`output_set` the rename waits for the set's commit, so that
+    several files are written all or none (see :class:`OutputSet`); alone,
+    the write is a set of one.
 
     >>> import tempfile, pathlib
     >>> d = pathlib.Path(tempfile.mkdtemp())
@@ -199,41 +205,351 @@ def atomic_path(target, suffix: str | None = None, *, mkdir: bool = False):
     >>> (d / "x.txt").read_text()
     'hi'
     """
-    with _sigterm_unwinds():
-        with _atomic_path(target, suffix, mkdir) as tmp:
+    with output_set() as outputs:
+        with outputs.stage(target, suffix=suffix, mkdir=mkdir) as tmp:
             yield tmp
 
 
+#: The :class:`OutputSet` that :func:`atomic_path` stages into (None: each write is its own set).
+_ACTIVE: contextvars.ContextVar = contextvars.ContextVar("gearlever_output_set", default=None)
+
+
+def current_outputs() -> OutputSet | None:
+    """The :class:`OutputSet` of the enclosing :func:`output_set`, or None."""
+    return _ACTIVE.get()
+
+
 @contextlib.contextmanager
-def _atomic_path(target, suffix, mkdir):
-    target = Path(target)
-    if target.is_symlink():
-        target = Path(os.path.realpath(target))
-    target = check_target(target, mkdir=mkdir)
-    held = _hold_signals()  # a SIGTERM or Ctrl-C waits until the temporary is known, so it is removed
-    tmp = None
+def output_set():
+    """Write every file of the body all or none: yield the :class:`OutputSet` the writes are staged in.
+
+    Every :func:`atomic_path` (so :func:`write_text_atomic`, the figure and
+    table writers) inside the body writes a temporary file beside its target;
+    when the body ends normally all of them are renamed onto their targets
+    (:meth:`OutputSet.commit`); when it raises, or the process gets SIGTERM or
+    Ctrl-C, every temporary file and every folder the set created is removed
+    and no target is touched.  Nested sets join the outermost one.
+
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> try:
+    ...     with output_set():
+    ...         _ = write_text_atomic(d / "a.txt", "a")
+    ...         raise RuntimeError("the second file failed")
+    ... except RuntimeError:
+    ...     pass
+    >>> sorted(p.name for p in d.iterdir())
+    []
+    """
+    outer = _ACTIVE.get()
+    if outer is not None:
+        yield outer
+        return
+    outputs = OutputSet()
+    token = _ACTIVE.set(outputs)
     try:
+        with _sigterm_unwinds():
+            try:
+                yield outputs
+                outputs.commit()
+            except BaseException:
+                outputs.abort()
+                raise
+    finally:
+        _ACTIVE.reset(token)
+
+
+def _identity(path: Path) -> frozenset:
+    """What makes two outputs one file: the directory entry (folders resolved), the file a link names, the inode."""
+    keys = {("entry", os.path.realpath(path.parent), path.name)}
+    if path.is_symlink():
+        keys.add(("entry", *os.path.split(os.path.realpath(path))))
+    try:
+        st = os.stat(path)
+    except OSError:
+        pass
+    else:
+        keys.add(("inode", st.st_dev, st.st_ino))
+    return frozenset(keys)
+
+
+def named_error(flag: str | None, path, exc: OSError, what: str = ""):
+    """One line for a refused output: ``--report 'r.json': cannot write: No space left on device``.
+
+    A :class:`~gearlever.errors.GearleverError` naming ``flag`` and ``path``
+    (with ``exc.filename`` when it is another path, e.g. the folder); with no
+    flag, an :class:`OSError` of the same errno (so the same subclass) naming
+    the path (the target, never a temporary file).
+
+    >>> import errno
+    >>> named_error("--report", "r.json", OSError(errno.ENOSPC, "No space left on device"), "cannot write")
+    GearleverError("--report 'r.json': cannot write: No space left on device")
+    """
+    from gearlever.errors import GearleverError
+
+    reason = exc.strerror or str(exc) or type(exc).__name__
+    reason = f"{what}: {reason}" if what and not reason.startswith(what) else reason
+    where = str(path)
+    if flag is None:
+        return OSError(exc.errno, reason, exc.filename if exc.filename and not what else where)
+    culprit = f" (at {exc.filename!r})" if exc.filename and str(exc.filename) != where else ""
+    return GearleverError(f"{flag} {where!r}: {reason}{culprit}")
+
+
+class _Output:
+    """One declared output: its flag, path, identity keys and, once written, its temporary file."""
+
+    __slots__ = ("flag", "path", "text", "keys", "tmp")
+
+    def __init__(self, flag, path, text, keys):
+        self.flag, self.path, self.text, self.keys, self.tmp = flag, path, text, keys, None
+
+
+class OutputSet:
+    """Several output files written all or none: the one transaction of gearlever's writers.
+
+    Declare every output first (:meth:`declare`, :meth:`declare_folder`):
+    each is checked at once, before any work (:func:`check_target`, the
+    suffixes its flag takes), and two outputs that are one file are refused
+    naming both flags: the same path spelt twice (``./x`` and ``x``), a
+    symbolic link and the file it names, two hard links.  Then write them
+    (:meth:`stage`, or any :func:`atomic_path` inside :func:`output_set`):
+    each goes to a temporary file beside its target.  :meth:`commit` renames
+    them all; :meth:`abort` removes every temporary file and every folder the
+    set created.  A symbolic link is replaced, never followed.  Errors name
+    the output's flag (or its folder's flag), the path and the reason, in one
+    line (:class:`~gearlever.errors.GearleverError`; without a flag, an
+    :class:`OSError` naming the path).
+
+    Notes
+    -----
+    POSIX renames one file atomically, not several: :meth:`commit` renames
+    them one after the other with SIGTERM and Ctrl-C held, and if a rename
+    fails, the targets already replaced get their old file back (kept as a
+    hard link until the end, where the file system has hard links) and the
+    new ones are removed.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> outs = OutputSet()
+    >>> _ = outs.declare(d / "m.toml", "--out")
+    >>> outs.declare(d / "." / "m.toml", "--report")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: --report '...m.toml' and --out '...m.toml' are the same file: give each its own
+    """
+
+    def __init__(self):
+        self._outputs: list[_Output] = []
+        self._folders: list[tuple] = []  # (flag, resolved folder)
+        self._made: list[Path] = []  # folders created by this set, outermost first
+        self.written: list[Path] = []
+
+    # -- declaring -------------------------------------------------------------
+    def _label(self, flag, path) -> str | None:
+        """``flag``, else the flag of a declared folder holding ``path``."""
+        if flag is not None:
+            return flag
+        parent = os.path.realpath(Path(path).parent)
+        return next((f for f, folder in self._folders if folder == parent and f is not None), None)
+
+    def declare(self, path, flag: str | None = None, *, suffixes=None, mkdir: bool = False) -> Path:
+        """Check the output ``path`` of ``flag`` now, before any work; return it as a :class:`~pathlib.Path`.
+
+        ``suffixes`` (e.g. ``("png", "svg")``) are the file name endings the
+        flag takes.  Refused: a path :func:`check_target` refuses, another
+        suffix, a file another output of the set already names.  Declaring
+        the same path for the same flag again is allowed.
+        """
+        text, path = os.fspath(path), Path(path)
+        if suffixes is not None and path.suffix.lower().lstrip(".") not in suffixes:
+            from gearlever.errors import GearleverError
+
+            ends = ", ".join("." + s for s in suffixes)
+            ends = " or ".join(ends.rsplit(", ", 1))
+            raise GearleverError(f"{flag or 'output'} must end with {ends}, got {text!r}")
+        if mkdir and not path.parent.exists():
+            self._make_folder(path.parent, self._label(flag, path))
         try:
-            fd, tmp_name = tempfile.mkstemp(
-                prefix=f".{target.name}.",
-                suffix=suffix if suffix is not None else ".tmp" + target.suffix,
-                dir=target.parent,
-            )
+            check_target(path)
         except OSError as exc:
-            raise _refuse(exc.errno or errno.EACCES, exc.strerror or "cannot write", target) from None
-        os.close(fd)
-        tmp = Path(tmp_name)
-        _release_signals(held)
-        yield tmp
-        # mkstemp makes the file 0600; give it the mode a plain open() would.
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, target)
-    except BaseException:
-        _release_signals(held)
-        if tmp is not None:
-            with contextlib.suppress(FileNotFoundError):
-                tmp.unlink()
-        raise
+            raise named_error(self._label(flag, path), text, exc) from None
+        return self._entry(path, flag, text).path
+
+    def _entry(self, path: Path, flag, text: str) -> _Output:
+        keys = _identity(path)
+        for e in self._outputs:
+            if e.keys & keys:
+                if flag in (e.flag, None) and os.path.abspath(e.path) == os.path.abspath(path):
+                    return e  # declared again, or written by a writer that does not know the flag
+                from gearlever.errors import GearleverError
+
+                flag = self._label(flag, path)
+                if e.flag == flag:
+                    raise GearleverError(f"{flag or 'output'}: {text!r} and {e.text!r} are the same file")
+                a = f"{flag} {text!r}" if flag else repr(text)
+                b = f"{e.flag} {e.text!r}" if e.flag else repr(e.text)
+                raise GearleverError(f"{a} and {b} are the same file: give each its own")
+        e = _Output(self._label(flag, path), path, text, keys)
+        self._outputs.append(e)
+        return e
+
+    def declare_folder(self, folder, flag: str | None = None, *, create: bool = True) -> Path:
+        """Check the output folder ``folder`` of ``flag`` (and create it, with its parents, when ``create``).
+
+        A folder this set creates is removed again if the set is aborted.
+        Files written into it later are named by ``flag`` in errors.
+        """
+        folder = Path(folder)
+        try:
+            check_folder(folder)
+            if not folder.exists():
+                if not create:
+                    raise _refuse(errno.ENOENT, "folder does not exist", folder)
+                self._make_folder(folder, flag)
+        except OSError as exc:
+            raise named_error(flag, folder, exc) from None
+        resolved = os.path.realpath(folder)
+        if not any(f == resolved for _, f in self._folders):
+            self._folders.append((flag, resolved))
+        return folder
+
+    def _make_folder(self, folder: Path, flag) -> None:
+        missing = []
+        up = folder
+        while not up.exists() and up.parent != up:
+            missing.append(up)
+            up = up.parent
+        try:
+            check_folder(folder)
+            for m in reversed(missing):
+                m.mkdir()
+                self._made.append(m)
+        except OSError as exc:
+            raise named_error(flag, folder, exc) from None
+
+    # -- writing ---------------------------------------------------------------
+    @contextlib.contextmanager
+    def stage(self, target, flag: str | None = None, *, suffix: str | None = None, mkdir: bool = False):
+        """Yield a temporary path beside ``target`` to write; it replaces ``target`` at :meth:`commit`.
+
+        ``target`` is declared first if it was not (see :meth:`declare`); a
+        target written twice in one set is refused.  If the body raises the
+        temporary file is removed; an :class:`OSError` of the body (a full
+        disk) becomes an error naming the flag and ``target``.
+        """
+        text, target = os.fspath(target), Path(target)
+        if mkdir and not target.parent.exists():
+            self._make_folder(target.parent, self._label(flag, target))
+        try:
+            check_target(target)
+        except OSError as exc:
+            raise named_error(self._label(flag, target), text, exc) from None
+        entry = self._entry(target, flag, text)
+        if entry.tmp is not None:
+            from gearlever.errors import GearleverError
+
+            raise GearleverError(f"{entry.flag or 'output'} {entry.text!r}: written twice by one command")
+        # SIGTERM and Ctrl-C wait until the temporary file is known, so that it is removed
+        with _signals_held():
+            try:
+                fd, name = tempfile.mkstemp(
+                    prefix=f".{target.name}.",
+                    suffix=suffix if suffix is not None else ".tmp" + target.suffix,
+                    dir=target.parent,
+                )
+            except OSError as exc:
+                raise named_error(entry.flag, entry.text, exc, "cannot write") from None
+            os.close(fd)
+            entry.tmp = Path(name)
+        try:
+            yield entry.tmp
+        except OSError as exc:
+            self._drop(entry)
+            raise named_error(entry.flag, entry.text, exc, "cannot write") from None
+        except BaseException:
+            self._drop(entry)
+            raise
+
+    def _drop(self, entry: _Output) -> None:
+        if entry.tmp is not None:
+            with contextlib.suppress(OSError):
+                entry.tmp.unlink()
+            entry.tmp = None
+
+    # -- ending ----------------------------------------------------------------
+    def commit(self) -> list[Path]:
+        """Rename every staged file onto its target; return the targets written (in the order declared).
+
+        On failure the targets already replaced are restored, every
+        temporary file is removed and the error names the flag.
+        """
+        staged = [e for e in self._outputs if e.tmp is not None]
+        done: list[tuple] = []  # (entry, backup or None, existed)
+        mode = 0o666 & ~_umask()  # mkstemp makes 0600; give the mode a plain open() would
+        with _signals_held():
+            try:
+                for i, e in enumerate(staged):
+                    os.chmod(e.tmp, mode)
+                    existed = os.path.lexists(e.path)
+                    # the last rename needs no way back: if it fails its target is untouched
+                    backup = _backup(e.path) if existed and i < len(staged) - 1 else None
+                    try:
+                        os.replace(e.tmp, e.path)
+                    except BaseException:
+                        if backup is not None:
+                            with contextlib.suppress(OSError):
+                                backup.unlink()
+                        raise
+                    e.tmp = None
+                    done.append((e, backup, existed))
+            except BaseException as exc:
+                for e, backup, existed in reversed(done):
+                    with contextlib.suppress(OSError):
+                        if backup is not None:
+                            os.replace(backup, e.path)
+                        elif not existed:
+                            e.path.unlink()
+                self.abort()
+                if isinstance(exc, OSError):
+                    e = staged[len(done)]
+                    raise named_error(e.flag, e.text, exc, "cannot write") from None
+                raise
+            for _, backup, _ in done:
+                if backup is not None:
+                    with contextlib.suppress(OSError):
+                        backup.unlink()
+        written = [e.path for e, _, _ in done]
+        self.written.extend(written)
+        self._outputs.clear()
+        self._made.clear()
+        return written
+
+    def abort(self) -> None:
+        """Remove every temporary file and every (empty) folder this set created; forget the staged files."""
+        for e in self._outputs:
+            self._drop(e)
+        for folder in reversed(self._made):
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        self._outputs.clear()
+        self._made.clear()
+
+
+def _backup(path: Path) -> Path | None:
+    """A hard link to ``path`` (a link itself, not followed) under a hidden name beside it, or None."""
+    for _ in range(100):
+        name = path.parent / f".{path.name}.{os.urandom(4).hex()}.old"
+        try:
+            os.link(path, name, follow_symlinks=False)
+        except FileExistsError:
+            continue
+        except OSError:
+            return None
+        return name
+    return None
 
 
 def _umask() -> int:
@@ -242,14 +558,15 @@ def _umask() -> int:
     return mask
 
 
-def write_text_atomic(target, text: str, *, mkdir: bool = False) -> Path:
+def write_text_atomic(target, text: str, *, mkdir: bool = False, flag: str | None = None) -> Path:
     """Write ``text`` (UTF-8, ``\\n`` line ends) to ``target`` atomically and return the path.
 
     The folder must exist (it is created only when ``mkdir`` is true); see
-    :func:`atomic_path` for what is refused.
+    :func:`atomic_path` for what is refused.  ``flag`` names the output in
+    errors (see :class:`OutputSet`).
     """
     target = Path(target)
-    with atomic_path(target, mkdir=mkdir) as tmp:
+    with output_set() as outputs, outputs.stage(target, flag, mkdir=mkdir) as tmp:
         with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
     return target

@@ -253,3 +253,12 @@ def test_every_registered_follower_designs_a_cam_and_a_frame():
             kw.update(pivot_distance=90.0, **({"arm": 60.0} if kind.contact == "roller" else {}))
         cam = design_cam(law(kind.law_output, 10.0), name, base_radius=30.0, points=720, **kw)
         assert cam.to_frame().shape[0] == 720 and cam.report()["follower"] == name
+
+
+def test_a_rise_narrower_than_four_profile_steps_is_refused_naming_the_segment():
+    lw = law_from_segments(
+        "displacement", "mm", [{"to": 0.2, "motion": "cycloidal", "rise": 5}, {"to": 360, "motion": "345", "rise": -5}]
+    )
+    with pytest.raises(GearleverError, match="segment 1 spans 0.2 deg, less than 4 profile steps"):
+        design_cam(lw, "translating-flat", base_radius=30.0, points=3600)
+    assert design_cam(lw, "translating-flat", base_radius=300.0, points=72000, allow_undercut=True).theta.size == 72000

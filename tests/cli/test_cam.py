@@ -150,3 +150,29 @@ def test_samples_with_nan_are_refused_naming_the_row(tmp_path, capsys):
     argv = ["cam", "design", str(tmp_path / "l.toml"), "--follower", "translating-flat", "--base-radius", "40"]
     assert main(argv + ["--out", str(tmp_path / "c.toml")]) == 2
     assert "row 3: output is nan" in _err(capsys)
+
+
+@pytest.mark.parametrize("flag", ["--out", "--profile", "--report", "--figure"])
+@pytest.mark.parametrize("target", ["/proc/x.csv", "/dev/null", "{tmp}/missing/x.csv", "{tmp}"])
+def test_unwritable_outputs_are_refused_before_any_file_is_written(tmp_path, law, capsys, flag, target):
+    target = target.replace("{tmp}", str(tmp_path))
+    outs = {"--out": str(tmp_path / "c.toml"), "--profile": None, "--report": None, "--figure": None}
+    outs[flag] = target
+    argv = ["cam", "design", str(law), "--follower", "translating-flat", "--base-radius", "40"]
+    for f, v in outs.items():
+        if v is not None:
+            argv += [f, v]
+    before = sorted(p.name for p in tmp_path.iterdir())
+    assert main(argv) == 2
+    err = _err(capsys)
+    assert flag in err and repr(target) in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+@pytest.mark.parametrize("extra", [["--base-radius", "40"], ["--min-curvature-radius", "4"]])
+def test_a_rise_too_narrow_for_the_profile_names_the_points_flag(tmp_path, capsys, extra):
+    p = tmp_path / "n.toml"
+    p.write_text(LAW.replace("to = 60", "to = 149.8"))
+    argv = ["cam", "design", str(p), "--follower", "translating-flat", "--out", str(tmp_path / "c.toml"), *extra]
+    assert main(argv) == 2
+    assert "segment 2 spans 0.2 deg, less than 4 profile steps of 0.1 deg: give more --points than" in _err(capsys)

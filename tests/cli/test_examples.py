@@ -25,6 +25,7 @@ def test_list_names_every_example_with_its_kind_and_description(capsys):
     assert [r["name"] for r in rows] == list_examples()
     kinds = {r["name"]: r["kind"] for r in rows}
     assert kinds["fourbar.toml"] == "mechanism model" and kinds["car_differential.csv"] == "gear network"
+    assert kinds["law_lift.toml"] == "motion law (cam design)"
     four = next(r for r in rows if r["name"] == "fourbar.toml")
     assert four["description"] == "Crank-rocker four-bar with a coupler point P (lengths in mm)."
 

@@ -72,3 +72,53 @@ def test_analyze_centres_adds_the_instant_centre_columns(tmp_path):
     got = [r["ic_ground/coupler_x_mm"] for r in rows]
     np.testing.assert_allclose(got, ic.xy[:, k, 0], rtol=1e-11)
     assert rows[0]["ic_coupler/rocker_x_mm"] is None  # equal angular velocities at the sketch: at infinity
+
+
+def _chain_toml(path: Path, dyads: int) -> Path:
+    """A crank driving ``dyads`` RR dyads, each on its own ground pivot (2 dyads + 1 moving links)."""
+    lines = ['[mechanism]\nunits = "mm"\n[points]\nO = [0.0, 0.0]\nA = [10.0, 0.0]']
+    links = ['crank = ["O", "A"]']
+    ground = ['"O"']
+    for i in range(dyads):
+        t = 0.3 * np.sin(i)
+        g = np.array([40 * np.cos(t), 40 * np.sin(t)])
+        a = np.array([10.0, 0.0])
+        d = g - a
+        dist = float(np.hypot(*d))
+        along = (35.0**2 - 30.0**2 + dist**2) / (2 * dist)
+        c = a + along * d / dist + np.sqrt(35.0**2 - along**2) * np.array([-d[1], d[0]]) / dist
+        lines.append(f"G{i} = [{float(g[0])!r}, {float(g[1])!r}]\nC{i} = [{float(c[0])!r}, {float(c[1])!r}]")
+        ground.append(f'"G{i}"')
+        links.append(f'cp{i} = ["A", "C{i}"]\nrk{i} = ["G{i}", "C{i}"]')
+    text = "\n".join([*lines, "[links]", f"ground = [{', '.join(ground)}]", *links, '[[inputs]]\nlink = "crank"\n'])
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize(
+    "model, extra, needle",
+    [
+        ("fourbar", ["--input", "crank=1e10"], "--input: crank is 2.78e+07 turns from its sketch value"),
+        ("fourbar", ["--input", "crank=1e308"], "--input: crank is"),
+        ("chain101", ["--frames", "3600"], "--frames: 3600 frames x 101 moving links"),
+        ("fivebar_two_inputs", ["--frames", "3600"], "--frames: 3600 frames x 24 values of right x 4 moving links"),
+        ("chain999", ["--frames", "2"], "[links] has 999 moving links, more than the viewer's cap of 150"),
+    ],
+)
+def test_view_work_caps_refuse_before_solving_in_one_line(tmp_path, capsys, monkeypatch, model, extra, needle):
+    # refused before anything is solved (the solver is replaced by a failure): no time, no memory spent
+    def boom(*a, **k):
+        raise AssertionError("solved before the cap refused")
+
+    monkeypatch.setattr(Mechanism, "solve", boom)
+    if model.startswith("chain"):
+        path = _chain_toml(tmp_path / f"{model}.toml", (int(model[5:]) - 1) // 2)
+    else:
+        path = EXAMPLES / f"{model}.toml"
+    out = tmp_path / "v.html"
+    rc = main(["mechanism", "view", str(path), "--out", str(out), *extra])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and needle in err, err
+    assert "Traceback" not in err and not out.exists()
+    if model == "chain999":
+        assert str(path) in err

@@ -127,6 +127,7 @@ def test_samples_law_spanning_0_to_360_keeps_its_net_change():
         ([{"to": 360, "motion": "cycloidal"}], "segment 1: rise .* is missing"),
         ([{"to": 360, "motion": "cycloidal", "rise": 5, "rize": 1}], "unknown key 'rize'"),
         ([{"to": 400, "motion": "dwell"}], "past 360"),
+        ([{"to": 1e-300, "motion": "linear", "rise": 5}, {"to": 360, "motion": "linear", "rise": -5}], "span at least"),
         ([], "non-empty"),
     ],
 )

@@ -28,7 +28,7 @@ from gearlever.plotting.mechanism import (  # noqa: E402
 )
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-MODELS = sorted(p.stem for p in EXAMPLES.glob("*.toml"))
+MODELS = sorted(p.stem for p in EXAMPLES.glob("*.toml") if "[law]" not in p.read_text(encoding="utf-8"))
 
 
 def _texts(ax) -> list[str]:

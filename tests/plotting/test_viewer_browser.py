@@ -9,6 +9,7 @@ from __future__ import annotations
 import io
 import math
 import os
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -44,6 +45,24 @@ rocker  = ["O4", "B"]
 [[inputs]]
 link = "crank"
 """
+
+
+# Free text that would break the page if embedded raw, and the oddest names a model file accepts.
+HOSTILE = {
+    "mechanism": {"name": '"<!--<script> </script><b>x</b> &amp; \u2028', "units": "µm", "module": 1.0},
+    "points": {"Ø.2": [0, 0], "A-1.x": [10, 0], "B-2": [28, 20], "O.4": [40, 0]},
+    "links": {
+        "ground": ["Ø.2", "O.4"],
+        "κρανκ-1": ["Ø.2", "A-1.x"],
+        "cöupler": ["A-1.x", "B-2"],
+        "名前.r": ["O.4", "B-2"],
+    },
+    "gears": {
+        "ζ-gear.1": {"link": "κρανκ-1", "centre": "Ø.2", "teeth": 12},
+        "fixé.0": {"link": "ground", "centre": "O.4", "teeth": 30, "internal": True},
+    },
+    "inputs": [{"link": "κρανκ-1"}],
+}
 
 
 def _have_browser() -> bool:
@@ -88,6 +107,17 @@ def pages(tmp_path_factory):
     out = {}
     for name in NAMES:
         mech = Mechanism.load(EXAMPLES / f"{name}.toml")
+        path = folder / f"{name}.html"
+        path.write_text(viewer_html(mech, frames=N), encoding="utf-8")
+        out[name] = (mech, path)
+    for name in ("planetary", "ferguson"):
+        mech = Mechanism.load(EXAMPLES / f"{name}.toml")
+        path = folder / f"{name}.html"
+        path.write_text(viewer_html(mech, frames=N), encoding="utf-8")
+        out[name] = (mech, path)
+    big = tomllib.loads((EXAMPLES / "fourbar.toml").read_text(encoding="utf-8"))
+    big["points"] = {p: [1000 * v for v in xy] for p, xy in big["points"].items()}
+    for name, mech in (("fourbar_big", Mechanism.from_dict(big)), ("hostile", Mechanism.from_dict(HOSTILE))):
         path = folder / f"{name}.html"
         path.write_text(viewer_html(mech, frames=N), encoding="utf-8")
         out[name] = (mech, path)
@@ -360,27 +390,319 @@ def test_plot_lists_quantities_and_its_cursor_follows_the_frame(driver, pages):
     assert driver.execute_script("return document.querySelector('#plot .curve').getAttribute('d').length") > 100
 
 
-def test_csv_export_holds_the_frame_data(driver, pages):
+_DOWNLOAD = """
+const done = arguments[arguments.length - 1];
+HTMLAnchorElement.prototype.click = function () { fetch(this.href).then(r => r.text()).then(done); };
+document.getElementById(arguments[0]).click();
+"""
+
+
+def _csv(driver):
+    import csv
+
+    rows = list(csv.reader(io.StringIO(driver.execute_async_script(_DOWNLOAD, "export-csv"))))
+    return rows[0], rows[1:]
+
+
+def test_csv_export_holds_the_whole_cycle_with_empty_cells_at_infinity(driver, pages):
     mech = _open(driver, pages, "slider_crank", "?frame=77")
-    text = driver.execute_async_script(
-        """
-        const done = arguments[0];
-        HTMLAnchorElement.prototype.click = function () { fetch(this.href).then(r => r.text()).then(done); };
-        document.getElementById('export-csv').click();
-        """
-    )
-    rows = dict(line.split(",", 2)[:2] for line in text.splitlines()[1:])
-    r = _solve_frames(mech, [77])
-    assert float(rows["B x"]) == pytest.approx(r.point["B"][0, 0], rel=REL)
-    assert float(rows["input crank"]) == pytest.approx(77.0)
-    svg = driver.execute_async_script(
-        """
-        const done = arguments[0];
-        HTMLAnchorElement.prototype.click = function () { fetch(this.href).then(r => r.text()).then(done); };
-        document.getElementById('export-svg').click();
-        """
-    )
+    head, rows = _csv(driver)
+    assert len(rows) == N and all(len(r) == len(head) for r in rows)
+    col = {name: i for i, name in enumerate(head)}
+    r = _solve_frames(mech, list(range(N)))
+    ic = r.centres()
+    for k in (0, 77, 200, 359):
+        row = rows[k]
+        assert int(row[col["frame"]]) == k and float(row[col["input_crank_deg"]]) == pytest.approx(k)
+        for p in ("A", "B"):
+            assert float(row[col[f"{p}_x_mm"]]) == pytest.approx(r.point[p][k, 0], rel=REL, abs=1e-9)
+            assert float(row[col[f"{p}_y_mm"]]) == pytest.approx(r.point[p][k, 1], rel=REL, abs=1e-9)
+            assert float(row[col[f"v_{p}_x_mm_per_crank"]]) == pytest.approx(r.velocity[p][k, 0], rel=REL, abs=1e-9)
+        # the slider's centre is at infinity at every frame: empty, as analyze --centres documents, never "nan"
+        assert row[col["ic_ground/piston_x_mm"]] == "" and row[col["ic_ground/piston_y_mm"]] == ""
+        j = ic.pairs.index("crank/rod")
+        assert float(row[col["ic_crank/rod_x_mm"]]) == pytest.approx(ic.xy[k, j, 0], rel=REL, abs=1e-9)
+    assert not any(cell.lower() in ("nan", "null", "undefined") for row in rows for cell in row)
+    svg = driver.execute_async_script(_DOWNLOAD, "export-svg")
     assert svg.startswith("<svg") and 'data-point="B"' in svg
+
+
+def test_csv_export_leaves_frames_that_do_not_assemble_empty(driver, pages):
+    mech = _open(driver, pages, "double_rocker")
+    head, rows = _csv(driver)
+    closed = mech.solve(mech.sketch_inputs[0] + 2 * np.pi * np.arange(72) / 72).closed
+    col = {name: i for i, name in enumerate(head)}
+    assert [int(r[col["closed"]]) for r in rows] == [int(c) for c in closed]
+    bad = int(np.flatnonzero(~closed)[0])
+    assert rows[bad][col["B_x_mm"]] == "" and rows[bad][col["input_crank_deg"]] != ""
+
+
+def test_number_formatter_keeps_the_zeros_of_whole_numbers(driver, pages):
+    _open(driver, pages, "fourbar")
+    table = [
+        (1000, 4, "1000"),
+        (120000, None, "120000"),
+        (100, 4, "100"),
+        (10, None, "10"),
+        (0, None, "0"),
+        (-0.0, None, "0"),
+        (1.5, None, "1.5"),
+        (-2.5, 4, "-2.5"),
+        (0.1 + 0.2, None, "0.3"),
+        (12.5, 4, "12.5"),
+        (6.854, 4, "6.854"),
+        (1e-7, None, "1e-7"),
+        (1.5e-7, None, "1.5e-7"),
+        (123456789, None, "1.23457e+8"),
+        (1.23456789e10, 4, "1.235e+10"),
+        (None, None, "–"),
+    ]
+    got = driver.execute_script(
+        "return arguments[0].map(([v, d]) => window.gearlever.fmt(v, d === null ? undefined : d));",
+        [[v, d] for v, d, _ in table],
+    )
+    assert got == [want for _, _, want in table]
+    ticks = [(1000, 250, "1000"), (2.5, 2.5, "2.5"), (120000, 20000, "120000"), (0.3, 0.1, "0.3"), (-50, 50, "-50")]
+    got = driver.execute_script(
+        "return arguments[0].map(([v, s]) => window.gearlever.tickLabel(v, s));", [[v, st] for v, st, _ in ticks]
+    )
+    assert got == [want for _, _, want in ticks]
+
+
+def test_plot_ticks_and_hover_show_large_values_in_full(driver, pages):
+    """A four-bar 1000 times larger: x of A runs over +-10000 mm; every tick and the hover read as numbers."""
+    mech = _open(driver, pages, "fourbar_big")
+    driver.execute_script(
+        "const s = document.getElementById('quantity'); s.value = 'x:A'; s.dispatchEvent(new Event('change'));"
+    )
+    ticks = driver.execute_script(
+        "return Array.from(document.querySelectorAll('#plot text.ytick'), t => [t.textContent, +t.dataset.value]);"
+    )
+    assert len(ticks) >= 3
+    for text, value in ticks:
+        assert float(text) == pytest.approx(value, abs=1e-9 * 10000), ticks
+    assert {t for t, _ in ticks} >= {"-10000", "0", "10000"} or {t for t, _ in ticks} >= {"-5000", "0", "5000"}
+    xt = driver.execute_script("return Array.from(document.querySelectorAll('#plot text.xtick'), t => t.textContent);")
+    assert xt[:4] == ["0", "50", "100", "150"]
+    # hover at frame 0: x of A = 10000 mm exactly
+    driver.execute_script(
+        """
+        const p = document.getElementById('plot'), r = p.getBoundingClientRect();
+        p.dispatchEvent(new MouseEvent('mousemove', {clientX: r.left + 62, clientY: r.top + 40, bubbles: true}));
+        """
+    )
+    text = driver.find_element("css selector", "#plot .hover-text").text
+    assert text.endswith(": 10000"), text
+    assert mech.model.points["A"][0] == pytest.approx(10000)
+
+
+def test_hostile_names_load_and_display_literally(driver, pages):
+    _open(driver, pages, "hostile")
+    title = HOSTILE["mechanism"]["name"]
+    assert driver.execute_script("return document.querySelector('h1').textContent") == title
+    assert driver.execute_script("return document.title") == title + " - gearlever viewer"
+    # nothing was injected: the page's own two scripts, no element from the names
+    assert driver.execute_script("return document.scripts.length") == 2
+    assert driver.execute_script("return document.querySelectorAll('b, i, img').length") == 0
+    labels = driver.execute_script("return Array.from(document.querySelectorAll('#labels text'), t => t.textContent)")
+    for name in ("κρανκ-1", "名前.r", "Ø.2", "A-1.x", "ζ-gear.1: z = 12", "fixé.0: z = 30 (internal)"):
+        assert name in labels
+    gears = driver.execute_script("return Array.from(document.querySelectorAll('[data-gear]'), e => e.dataset.gear)")
+    assert sorted(gears) == sorted(["ζ-gear.1", "fixé.0"])
+    options = driver.execute_script("return Array.from(document.querySelectorAll('#quantity option'), o => o.text)")
+    assert "angle of 名前.r (deg)" in options and "x of B-2 (µm)" in options
+    assert "κρανκ-1: θ = " in driver.find_element("id", "readout").text
+    assert "input: κρανκ-1" in driver.find_element("id", "legend").text
+    head, _ = _csv(driver)
+    assert "Ø.2_x_µm" in head and "input_κρανκ-1_deg" in head
+
+
+@pytest.mark.parametrize(
+    "name, gear, centre, radius", [("planetary", "ring", "O", 60.0), ("ferguson", "fixed", "O", None)]
+)
+def test_ground_gears_are_drawn(driver, pages, name, gear, centre, radius):
+    mech = _open(driver, pages, name, "?frame=17")
+    r = mech.model.pitch_radius(gear)
+    if radius is not None:
+        assert r == pytest.approx(radius)
+    e = driver.execute_script(
+        "const e = document.querySelector(`[data-gear='${arguments[0]}']`);"
+        "return e && [e.getAttribute('cx'), e.getAttribute('cy'), e.getAttribute('r'),"
+        " e.getBoundingClientRect().width];",
+        gear,
+    )
+    assert e is not None, f"gear {gear} not drawn"
+    x, y = mech.model.points[centre]
+    assert float(e[0]) == pytest.approx(x, abs=1e-9) and float(e[1]) == pytest.approx(y, abs=1e-9)
+    assert float(e[2]) == pytest.approx(r, rel=1e-6) and e[3] > 50  # drawn, and large on the screen
+    drawn = driver.execute_script("return Array.from(document.querySelectorAll('[data-gear]'), e => e.dataset.gear)")
+    assert set(drawn) == {g for g in mech.model.gears if mech.model.pitch_radius(g) is not None}
+
+
+_CENTRE = (
+    "const r = document.querySelector(arguments[0]).getBoundingClientRect();"
+    "return [r.left + r.width / 2, r.top + r.height / 2];"
+)
+
+
+def _drag(driver, start, pivot, turn_deg, lead=None, steps=12):
+    """Press at ``start`` (screen px), optionally move to ``lead`` first, then turn the pointer ``turn_deg``
+    counter-clockwise about ``pivot`` along an arc, and release."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.actions.action_builder import ActionBuilder
+
+    px, py = pivot
+    path = [start]
+    if lead is not None:
+        path.append(lead)
+    sx, sy = path[-1]
+    dx, dy = sx - px, sy - py
+    for s in range(1, steps + 1):
+        a = math.radians(turn_deg) * s / steps
+        path.append((px + dx * math.cos(a) + dy * math.sin(a), py - dx * math.sin(a) + dy * math.cos(a)))
+    chain = ActionChains(driver, duration=10)
+    builder = ActionBuilder(driver, duration=10)
+    builder.pointer_action.move_to_location(round(start[0]), round(start[1]))
+    builder.pointer_action.pointer_down()
+    for x, y in path[1:]:
+        builder.pointer_action.move_to_location(round(x), round(y))
+    builder.pointer_action.pointer_up()
+    builder.perform()
+    del chain
+
+
+def test_dragging_from_the_pivot_turns_the_crank_by_the_pointer_turn(driver, pages):
+    """Grab at the pivot itself (where the old page jumped from 0 to 241 deg), move out along 45 deg, then
+    turn the pointer 45 deg about the pivot: the crank turns 45 deg (frame 45 of 360), no jump."""
+    mech = _open(driver, pages, "fourbar", "?frame=0")
+    px, py = driver.execute_script(_CENTRE, "[data-point='O2']")
+    lead = (px + 80 * math.cos(math.radians(45)), py - 80 * math.sin(math.radians(45)))
+    _drag(driver, (px, py), (px, py), 45, lead=lead)
+    k = _frame(driver)
+    assert abs(k - 45) <= 2, k
+    r = _solve_frames(mech, [k])
+    _assert_points(_read(driver, "[data-point]", "data-point"), r, 0, mech.model.length_scale)
+
+
+def test_dragging_relative_from_the_link_body_and_from_the_dashed_ring(driver, pages):
+    _open(driver, pages, "fourbar", "?frame=100")
+    px, py = driver.execute_script(_CENTRE, "[data-point='O2']")
+    ax, ay = driver.execute_script(_CENTRE, "[data-point='A']")
+    # on the crank's body, a quarter of the way out: no jump at the press, then -30 deg
+    start = (px + 0.3 * (ax - px), py + 0.3 * (ay - py))
+    hit = driver.execute_script(
+        "return document.elementFromPoint(arguments[0], arguments[1]).closest('.grab') !== null", *start
+    )
+    assert hit
+    _drag(driver, start, (px, py), -30)
+    assert abs(_frame(driver) - 70) <= 2, _frame(driver)
+    # on the dashed ring, opposite the crank
+    ring_r = driver.execute_script("return document.querySelector('.input-hit').getBoundingClientRect().width / 2")
+    ux, uy = (px - ax) / math.hypot(ax - px, ay - py), (py - ay) / math.hypot(ax - px, ay - py)
+    start = (px + ring_r * ux, py + ring_r * uy)
+    hit = driver.execute_script(
+        "return document.elementFromPoint(arguments[0], arguments[1]).classList.contains('input-hit')", *start
+    )
+    assert hit
+    _drag(driver, start, (px, py), 60)
+    assert abs(_frame(driver) - 130) <= 2, _frame(driver)
+
+
+def test_dragging_the_input_gear_turns_it(driver, pages):
+    mech = _open(driver, pages, "planetary", "?frame=0")
+    px, py = driver.execute_script(_CENTRE, "[data-point='O']")
+    s = driver.execute_script(
+        "const e = document.querySelector('[data-gear=sun]').getBoundingClientRect(); return e.width / 2;"
+    )
+    # inside the sun's pitch circle, left of the arm's triangle (its side P2 P3 is at x = -21 mm of r = 24 mm)
+    start = (px - 0.94 * s, py)
+    on = driver.execute_script(
+        "const e = document.elementFromPoint(arguments[0], arguments[1]); return e.dataset.gear || e.tagName;", *start
+    )
+    assert on == "sun"
+    _drag(driver, start, (px, py), 30)
+    k = _frame(driver)
+    assert abs(k - 30) <= 2, k
+    r = _solve_frames(mech, [k])
+    _assert_points(_read(driver, "[data-point]", "data-point"), r, 0, mech.model.length_scale)
+
+
+_LAYOUT = """
+const v = document.getElementById("view").getBoundingClientRect();
+const W = window.innerWidth, H = window.innerHeight;
+const vis = (e) => e.checkVisibility({contentVisibilityAuto: true, visibilityProperty: true});
+const boxes = Array.from(document.querySelectorAll("#labels text")).filter(vis).map((t) => {
+  const r = t.getBoundingClientRect(); return {t: t.textContent, l: r.left, r: r.right, top: r.top, b: r.bottom}; });
+const outside = boxes.filter((b) => b.l < Math.max(0, v.left) - 0.5 || b.r > Math.min(W, v.right) + 0.5
+  || b.top < v.top - 0.5 || b.b > v.bottom + 0.5).map((b) => b.t);
+const overlaps = [];
+for (let i = 0; i < boxes.length; i++) for (let j = i + 1; j < boxes.length; j++) {
+  const a = boxes[i], b = boxes[j];
+  const x = Math.min(a.r, b.r) - Math.max(a.l, b.l), y = Math.min(a.b, b.b) - Math.max(a.top, b.top);
+  if (x > 1 && y > 1) overlaps.push(a.t + "|" + b.t);
+}
+const controls = document.querySelectorAll("#toolbar button, #toolbar select, #toolbar input, #toolbar summary");
+const centres = Array.from(controls)
+  .filter(vis).map((e) => { const r = e.getBoundingClientRect(); return r.top + r.height / 2; }).sort((a, b) => a - b);
+let rows = 0, last = -1e9;
+centres.forEach((c) => { if (c - last > 12) rows++; last = c; });
+return {height: v.height, H: H, W: W, rows: rows, labels: boxes.length, outside: outside, overlaps: overlaps,
+  plotBottom: document.getElementById("plot").getBoundingClientRect().bottom,
+  scrollW: document.documentElement.scrollWidth};
+"""
+
+
+@pytest.fixture
+def window(driver):
+    """Set the viewport to (width, height) CSS pixels for one test; back to 1000 x 800 after it."""
+
+    def size(w, h):
+        driver.execute_cdp_cmd(
+            "Emulation.setDeviceMetricsOverride", {"width": w, "height": h, "deviceScaleFactor": 1, "mobile": w < 600}
+        )
+
+    yield size
+    driver.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+
+
+@pytest.mark.parametrize("w, h, fraction", [(1000, 800, 0.5), (390, 844, 0.45)])
+@pytest.mark.parametrize(
+    "name, query",
+    [("whitworth", "?frame=40"), ("whitworth", "?frame=250"), ("watt_sixbar", ""), ("zrdpm_gear_contour", "")]
+    + [("planetary", "?frame=20"), ("fourbar", "?frame=300")],
+)
+def test_layout_fits_the_window_with_labels_inside_and_apart(driver, pages, window, w, h, fraction, name, query):
+    window(w, h)
+    _open(driver, pages, name, query)
+    m = driver.execute_script(_LAYOUT)
+    assert m["W"] == w and m["H"] == h
+    assert m["height"] >= fraction * h, m  # the drawing takes the height left by the controls and the plot
+    assert m["plotBottom"] <= h + 0.5, m  # the plot is above the fold
+    assert m["rows"] <= 2, m  # a compact toolbar
+    assert m["scrollW"] <= w, m  # nothing sticks out sideways
+    assert m["labels"] >= 4 and not m["outside"], m
+    assert not m["overlaps"], m
+
+
+def test_coincident_instant_centres_fan_out(driver, pages, window):
+    """With the centres shown, labels that share an anchor (a pin is two centres' place) do not stack."""
+    for w, h in ((1000, 800), (390, 844)):
+        window(w, h)
+        _open(driver, pages, "whitworth", "?frame=40")
+        driver.find_element("id", "options-button").click() if w < 600 else None
+        driver.find_element("id", "show-centres").click()
+        m = driver.execute_script(_LAYOUT)
+        assert m["labels"] >= 15 and not m["outside"], m
+        assert not m["overlaps"], m
+
+
+def test_phone_options_menu_opens_and_its_check_boxes_work(driver, pages, window):
+    window(390, 844)
+    _open(driver, pages, "fourbar", "?frame=30")
+    assert not driver.find_element("id", "show-velocity").is_displayed()
+    driver.find_element("id", "options-button").click()
+    driver.find_element("id", "show-velocity").click()
+    assert not _read(driver, "[data-vel]", "data-vel")["A"]["hidden"]
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -60,3 +60,25 @@ def test_unsafe_or_invalid_formulas_refused_naming_the_expression(text):
 def test_undefined_values_are_nan_not_errors():
     v = parse_expression("log(x)")(np.array([-1.0, 1.0]))
     assert np.isnan(v[0]) and v[1] == 0.0
+
+
+@pytest.mark.parametrize(
+    ("text", "needle"),
+    [
+        ("9" * 499, "a number of 499 digits is too large"),
+        ("x + " + "9" * 400, "a number of 400 digits is too large"),
+        ("x * 1e999", "infinite as a float"),
+    ],
+)
+def test_number_literals_beyond_float_range_refused_in_one_short_line(text, needle):
+    # issue 25: a 499-digit integer gave "int too large to convert to float" without naming the expression
+    with pytest.raises(GearleverError) as ei:
+        parse_expression(text)
+    msg = str(ei.value)
+    assert msg.startswith("expression '") and needle in msg
+    assert "\n" not in msg and len(msg) < 200
+
+
+def test_largest_finite_literal_accepted():
+    assert parse_expression("1.7e308 * x")(np.array([1.0]))[0] == 1.7e308
+    assert parse_expression("9" * 300 + " - x")(np.array([0.0]))[0] == float("9" * 300)

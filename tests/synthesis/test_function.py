@@ -1,12 +1,22 @@
 """Function generation: Freudenstein four-bar and slider-crank, exact recovery of known linkages, defects, refusals."""
 
+import re
+import warnings
+
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.loops.fourbar import fourbar
 from gearlever.mechanism import Mechanism
 from gearlever.synthesis.function import function_targets, precision_points, synthesize_function
+from tests.synthesis._function_check import RECOMPUTE_TOL, recompute
+
+
+def _recompute(r):
+    return recompute(r.model, r.input_angle, r.output, r.dense_input, r.dense_desired)
 
 
 def test_chebyshev_points_formula_freudenstein_1955():
@@ -133,3 +143,249 @@ def test_input_range_extends_the_structural_error_to_the_ends_of_the_design_rang
     assert full.structural_error_max > 1.3 * inner.structural_error_max
     with pytest.raises(GearleverError, match="input_range"):
         synthesize_function(t.input_angle, t.output, input_range=(1.0, 1.0))
+
+
+# ---------------------------------------------------------------------------
+# Every combination of signs and ranges: the written model, checked independently
+# ---------------------------------------------------------------------------
+
+
+@given(
+    fx=st.sampled_from(
+        [
+            ("x**1.5", 1, 4),
+            ("log10(x)", 1, 2),
+            ("log(x)", 1, 3),
+            ("sin(x)", 0, 1.5),
+            ("exp(x)", 0, 1),
+            ("x**2", 0, 1),
+            ("1/x", 1, 3),
+            ("x**-0.5", 1, 4),
+            ("tan(x)", 0, 1),
+            ("sqrt(x)", 0.5, 2),
+        ]
+    ),
+    start=st.floats(0, 360),
+    span=st.floats(5, 300) | st.floats(-300, -5),
+    out_start=st.floats(0, 360),
+    out_span=st.floats(5, 270) | st.floats(-270, -5),
+    points=st.integers(3, 5),
+    kind=st.sampled_from(["fourbar", "fourbar", "slider-crank"]),
+)
+@settings(max_examples=80, suppress_health_check=[HealthCheck.too_slow])
+def test_any_ranges_give_a_model_whose_structural_error_is_recomputed_or_a_clean_refusal(
+    fx, start, span, out_start, out_span, points, kind
+):
+    expr, x0, x1 = fx
+    orange = np.radians([out_start, out_start + out_span]) if kind == "fourbar" else (out_start / 60, out_span / 60)
+    if kind == "slider-crank":
+        orange = (orange[0], orange[0] + orange[1])
+    t = function_targets(expr, (x0, x1), np.radians([start, start + span]), orange, points)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", GearleverWarning)
+            r = synthesize_function(t.input_angle, t.output, kind=kind, desired=t.desired, input_range=t.input_range)
+    except GearleverError as exc:
+        assert "\n" not in str(exc)
+        return
+    err_t, sem, margin = _recompute(r)
+    tol = RECOMPUTE_TOL * (1.0 if kind == "fourbar" else r.size)
+    if r.defect:
+        # a refusal has a cause: the linkage folds flat (or cannot close) somewhere in the range,
+        # or an exact target lies on the other branch
+        assert margin.min() < 1e-6 or (r.exact and np.abs(err_t).max() > 1e-9), r.defect
+        return
+    assert margin.min() > 0
+    for v in (r.structural_error_max, r.structural_error_rms, r.transmission_angle_min, r.transmission_angle_max):
+        assert np.isfinite(v)
+    assert np.all(np.isfinite(r.generated)) and np.all(np.isfinite(r.dense_generated))
+    assert r.structural_error_max == pytest.approx(sem, abs=tol)
+    np.testing.assert_allclose(
+        np.angle(np.exp(1j * (r.error - err_t))) if kind == "fourbar" else r.error - err_t, 0, atol=tol
+    )
+    if r.exact:
+        assert np.abs(r.error).max() < tol
+    assert all(v > 0 for k, v in r.lengths.items() if k != "offset")
+
+
+def test_issue_case_x_to_the_1_5_has_the_structural_error_of_its_written_model():
+    # issue 25: crank 2.24544, coupler 2.94696, rocker 0.89714 on ground 1 (Freudenstein's a and c negative),
+    # structural error 0.619 deg; it was NaN (the engine asked a full turn away, through a dead point)
+    t = function_targets("x**1.5", (1, 4), np.radians([30, 90]), np.radians([90, 180]))
+    r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    assert r.coefficients[0] < 0 and r.coefficients[1] < 0  # K1 = d/a, K2 = d/c: both links reversed
+    lengths = [r.lengths[k] for k in ("ground", "crank", "coupler", "rocker")]
+    np.testing.assert_allclose(lengths, [1.0, 2.24544, 2.94696, 0.89714], atol=5e-6)
+    assert r.defect == "" and np.degrees(r.input_offset) == pytest.approx(-180) and r.output_offset == np.pi
+    err_t, sem, _ = _recompute(r)
+    assert np.degrees(r.structural_error_max) == pytest.approx(0.619, abs=5e-4)
+    assert r.structural_error_max == pytest.approx(sem, abs=RECOMPUTE_TOL)
+    assert np.abs(r.error).max() < 1e-9
+
+
+@pytest.mark.parametrize("ranges", [((10, 70), (90, 180)), ((60, 120), (90, 180)), ((200, 260), (90, 180))])
+@pytest.mark.parametrize("points", [3, 5])
+def test_issue_ranges_are_checked_on_the_written_model(ranges, points):
+    ir, orng = ranges
+    t = function_targets("x**1.5", (1, 4), np.radians(ir), np.radians(orng), points)
+    r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    assert r.defect == ""
+    err_t, sem, _ = _recompute(r)
+    assert r.structural_error_max == pytest.approx(sem, abs=RECOMPUTE_TOL)
+    np.testing.assert_allclose(r.error, err_t, atol=RECOMPUTE_TOL)
+
+
+def test_dead_point_inside_the_range_is_a_defect_naming_where():
+    # x**1.5 with the crank 30 -> 90 deg and the rocker 10 -> 70 deg: the linkage folds flat near 89.2 deg
+    t = function_targets("x**1.5", (1, 4), np.radians([30, 90]), np.radians([10, 70]))
+    r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    assert "dead point between the input angles 89.1" in r.defect
+    d, a, b, c = (r.lengths[k] for k in ("ground", "crank", "coupler", "rocker"))
+    phi = np.radians(np.linspace(89.0, 89.3, 31))
+    valid = fourbar(d, a, b, c, phi + r.input_offset, branch=r.branch).valid
+    assert valid[0] and not valid[-1]  # the closed form agrees: it stops closing there
+
+
+def test_reversed_slider_crank_crank_is_checked_on_the_written_model():
+    # the crank pin at phi + pi (Freudenstein's negative a): s = -a cos(phi) + sqrt(b^2 - (e + a sin(phi))^2)
+    a, b, e = 2.0, 5.0, 1.0
+    phi = np.radians([200.0, 240.0, 280.0, 320.0])
+    s = -a * np.cos(phi) + np.sqrt(b * b - (e + a * np.sin(phi)) ** 2)
+    r = synthesize_function(phi, s, kind="slider-crank")
+    assert r.coefficients[0] < 0 and r.defect == ""
+    np.testing.assert_allclose([r.lengths["crank"], r.lengths["rod"], r.lengths["offset"]], [a, b, e], atol=1e-9)
+    err_t, sem, _ = _recompute(r)
+    np.testing.assert_allclose(r.error, err_t, atol=1e-9)
+    assert np.abs(r.error).max() < 1e-9
+    assert r.structural_error_max == pytest.approx(sem, abs=1e-9)
+
+
+def test_impractical_proportions_warn_with_the_ratio():
+    t = function_targets("x**1.5", (1, 4), np.radians([300, 400]), np.radians([90, 180]))
+    with pytest.warns(GearleverWarning, match=r"impractical proportions: the coupler is 27.7 times the ground"):
+        r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    assert r.link_ratio == pytest.approx(27.716, abs=1e-3)
+    lengths = [r.lengths[k] for k in ("ground", "crank", "coupler", "rocker")]
+    assert r.link_ratio == pytest.approx(max(lengths) / min(lengths), rel=1e-12)
+    # the ratios do not depend on the scale
+    with pytest.warns(GearleverWarning, match=r"times the ground"):
+        r2 = synthesize_function(t.input_angle, t.output, desired=t.desired, ground=0.01, input_range=t.input_range)
+    assert r2.link_ratio == pytest.approx(r.link_ratio, rel=1e-9)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", GearleverWarning)
+        ok = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
+        assert synthesize_function(ok.input_angle, ok.output).proportions() == ""
+
+
+_T = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "needle"),
+    [
+        ({"ground": True}, "ground must be a positive length (a number), got True: a bool is not a length"),
+        ({"ground": "1"}, "ground must be a positive length (a number), got the text '1'"),
+        ({"ground": 0.0}, "ground must be a positive"),
+        ({"ground": float("inf")}, "ground must be a positive"),
+        ({"desired": "x"}, "desired must be a callable giving the wanted output"),
+        ({"desired": 3.0}, "desired must be a callable"),
+        ({"desired": lambda q: q[:2]}, "desired must give a finite output"),
+        ({"desired": lambda q: 1 / 0}, "desired must give a number"),
+        ({"kind": "crank"}, "kind must be one of"),
+        ({"kind": None}, "kind must be one of"),
+        ({"input_range": "12"}, "input_range must be two numbers"),
+        ({"input_range": (True, 2.0)}, "input_range must be two numbers"),
+        ({"input_range": (0.0, 7.0)}, "span must be less than 360 deg"),
+        ({"dense_points": 1.5}, "dense_points must be an integer"),
+        ({"dense_points": 10**9}, "dense_points must be an integer from 2 to 100000"),
+        ({"name": 3}, "name must be text"),
+    ],
+)
+def test_api_bad_parameters_refused_naming_them(kwargs, needle):
+    with pytest.raises(GearleverError, match=re.escape(needle)):
+        synthesize_function(_T.input_angle, _T.output, **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        ((["1", "2", "3"], [1.0, 2.0, 3.0]), "input_angle must be an array of finite numbers, got text"),
+        (([True, False, True], [1.0, 2.0, 3.0]), "input_angle must be an array of finite numbers, got bools"),
+        (([0.1, 0.2, 0.3], "abc"), "output must be an array of finite numbers"),
+        (([1e300, 0.2, 0.3], [1.0, 2.0, 3.0]), "input_angle must be angles in radians of at most"),
+    ],
+)
+def test_api_bad_targets_refused_naming_them(args, needle):
+    with pytest.raises(GearleverError, match=re.escape(needle)):
+        synthesize_function(*args)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "needle"),
+    [
+        ({"x_range": "12"}, "x_range must be two numbers"),
+        ({"output_range": (False, 1.0)}, "output_range must be two numbers"),
+        ({"points": 3.0}, "points must be an integer"),
+        ({"points": True}, "points must be an integer"),
+        ({"spacing": None}, "spacing must be 'chebyshev' or 'even'"),
+        ({"expression": 5}, "expression must be text"),
+        ({"input_range": (0.0, 2 * np.pi)}, "input_range must span less than a full turn"),
+    ],
+)
+def test_function_targets_bad_parameters_refused_naming_them(kwargs, needle):
+    args = {"expression": "log10(x)", "x_range": (1, 2), "input_range": (0.5, 1.5), "output_range": (2.0, 3.0)}
+    with pytest.raises(GearleverError, match=re.escape(needle)):
+        function_targets(**{**args, **kwargs})
+
+
+@given(
+    lengths=st.tuples(st.floats(0.2, 3), st.floats(0.2, 3), st.floats(0.2, 3)),
+    start=st.floats(0, 360),
+    span=st.floats(10, 200) | st.floats(-200, -10),
+    points=st.integers(3, 5),
+    branch=st.sampled_from(["open", "crossed"]),
+)
+@settings(max_examples=40)
+def test_pairs_of_a_known_fourbar_anywhere_are_recovered_and_checked(lengths, start, span, points, branch):
+    a, b, c = lengths
+    assume(max(1.0, a, b, c) < 0.45 * (1.0 + a + b + c))  # assembles with room to spare
+    lens = sorted([1.0, a, b, c])
+    assume(abs(lens[0] + lens[3] - lens[1] - lens[2]) > 0.05)  # not Grashof's special case (change points)
+    phi = np.radians(start + np.linspace(0.0, span, points))
+    dense = np.radians(start + np.linspace(0.0, span, 1441))
+    assume(fourbar(1.0, a, b, c, dense, branch=branch).valid.all())
+    dyad = np.sqrt((1 - a * np.cos(dense)) ** 2 + (a * np.sin(dense)) ** 2)
+    assume(np.min(np.minimum(dyad - abs(b - c), b + c - dyad)) > 1e-2)  # clear of dead points
+    psi = fourbar(1.0, a, b, c, phi, branch=branch).theta4
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", GearleverWarning)
+        r = synthesize_function(phi, psi)
+    assert r.defect == ""
+    np.testing.assert_allclose([r.lengths[k] for k in ("crank", "coupler", "rocker")], [a, b, c], rtol=1e-6)
+    err_t, sem, _ = _recompute(r)
+    assert np.abs(r.error).max() < 1e-7 and np.abs(err_t).max() < 1e-7  # wrapped: angles are poses
+    assert r.structural_error_max == pytest.approx(sem, abs=RECOMPUTE_TOL)
+
+
+@given(
+    crank=st.floats(0.5, 3) | st.floats(-3, -0.5),
+    rod=st.floats(3.5, 8),
+    offset=st.floats(-2, 2),
+    start=st.floats(0, 360),
+    span=st.floats(10, 200) | st.floats(-200, -10),
+    points=st.integers(3, 5),
+)
+@settings(max_examples=40)
+def test_slider_crank_pairs_anywhere_are_recovered_and_checked(crank, rod, offset, start, span, points):
+    # rod > |crank| + |offset| + 0.5: the crank turns fully, no dead point anywhere
+    assume(rod > abs(crank) + abs(offset) + 0.5)
+    phi = np.radians(start + np.linspace(0.0, span, points))
+    s = crank * np.cos(phi) + np.sqrt(rod**2 - (offset - crank * np.sin(phi)) ** 2)
+    r = synthesize_function(phi, s, kind="slider-crank")
+    assert r.defect == "" and r.branch == "+"
+    got = [r.lengths["crank"], r.lengths["rod"], r.lengths["offset"]]
+    np.testing.assert_allclose(got, [abs(crank), rod, offset], atol=1e-6 * rod)
+    err_t, sem, _ = _recompute(r)
+    assert np.abs(r.error).max() < 1e-7 * rod and np.abs(err_t).max() < 1e-7 * rod
+    assert r.structural_error_max == pytest.approx(sem, abs=RECOMPUTE_TOL * rod)
+    assert r.input_offset % np.pi == pytest.approx(0, abs=1e-9) or r.input_offset % np.pi == pytest.approx(np.pi)

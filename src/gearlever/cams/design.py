@@ -14,9 +14,9 @@ point x of the fixed frame at input theta is R(-theta) x in the cam's frame.
 Roller followers (the centre's path q(s) given by the kind): the pitch curve
 P(theta) = R(-theta) q(s(theta)) has, in the fixed frame, tangent w = q' - J q
 and second derivative -J w + q'' - J q' (J the quarter turn, ' = d/dtheta);
-its outward normal n = J w / |w|, the cam surface is P - Rr n, the pressure
+its outward normal n = J w / norm(w), the cam surface is P - Rr n, the pressure
 angle is the angle between n and the roller centre's direction of travel, and
-the pitch curve's radius of curvature is rho_p = -|w|**3 / (w x P'') (the
+the pitch curve's radius of curvature is rho_p = -norm(w)**3 / (w x P'') (the
 curve runs clockwise); the cam surface's is rho_p - Rr, undercut where a
 convex rho_p < Rr.  For the translating roller these are R. L. Norton,
 *Design of Machinery*, eq. for the pressure angle phi = arctan((v - e) / (s +
@@ -52,6 +52,8 @@ __all__ = ["CamDesign", "design_cam", "size_base_radius"]
 MAX_POINTS = 2_000_000
 #: Points used by the base-radius search.
 SEARCH_POINTS = 3600
+#: Most points of the search that suggests the smallest workable base radius in a refusal.
+SUGGEST_POINTS = 36_000
 
 
 def _J(x: np.ndarray) -> np.ndarray:
@@ -98,7 +100,7 @@ class CamDesign(Result):
     stroke : float
         Follower's total travel.
     pressure_angle_max : float
-        max |pressure_angle| (rad).
+        The largest absolute pressure angle (rad).
     curvature_radius_min : float
         Smallest radius of curvature of the convex cam surface (negative when undercut).
     undercut : bool
@@ -256,6 +258,7 @@ def _core(kind, p: FollowerParams, base_radius: float, theta, s, v, a):
         hh1, hh2 = h1 * v, h2 * v * v + h1 * a
         al1 = be1 - 1.0
         nf = np.stack([np.cos(beta), np.sin(beta)], axis=-1)
+        nf[np.abs(nf) < 1e-15] = 0.0  # cos(pi/2) is 6e-17, not 0: keep a square face's pressure angle exactly 0
         with np.errstate(divide="ignore", invalid="ignore"):
             dh = hh1 / al1
             rho = h + (hh2 * al1 - hh1 * be2) / al1**3
@@ -286,6 +289,14 @@ def _prepare(law, follower, p, points):
     if isinstance(points, bool) or not isinstance(points, int | np.integer) or not 8 <= points <= MAX_POINTS:
         raise GearleverError(f"points must be an integer in 8 .. {MAX_POINTS:,}, got {points!r}")
     theta = np.linspace(0.0, 2 * math.pi, int(points), endpoint=False)
+    step = 2 * math.pi / int(points)
+    widths = np.diff(law.breaks)
+    for k, name in enumerate(law.motions):
+        if name != "dwell" and law.rises[k] != 0 and widths[k] < 4 * step:
+            raise GearleverError(
+                f"{law.source}: segment {k + 1} spans {math.degrees(widths[k]):.6g} deg, less than 4 profile steps "
+                f"of {math.degrees(step):.6g} deg: give more points (or widen the segment)"
+            )
     vals = law.evaluate(theta)
     s = vals.s - _law_min(law)
     return kind, theta, s, vals.v, vals.a
@@ -377,7 +388,7 @@ def size_base_radius(
     roller_radius, offset, arm, pivot_distance : float
         Follower dimensions (see :class:`~gearlever.cams.followers.FollowerParams`).
     max_pressure_angle : float, optional
-        Bound on |pressure angle| (rad).
+        Bound on the absolute pressure angle (rad).
     min_curvature_radius : float, optional
         Bound on the convex cam surface's radius of curvature (0 asks only for no undercut).
 
@@ -392,7 +403,7 @@ def size_base_radius(
     Larger base circles lower the pressure angle and raise the radius of
     curvature (R. L. Norton, *Design of Machinery*, sec. 8.6 "Sizing the
     cam"); the search returns the first radius of the scan meeting the bounds
-    and also free of folding.  Evaluated at ``points`` equally spaced angles.
+    and also free of folding and of undercut.  Evaluated at ``points`` equally spaced angles.
 
     Examples
     --------
@@ -418,11 +429,13 @@ def size_base_radius(
         why, r = _assess(kind, p, rb, theta, s, v, a, stroke)
         if why is not None:
             return False
+        if np.any(r["undercut"]):  # a radius meeting the bounds but undercut cannot be made
+            return False
         if max_pressure_angle is not None and np.max(np.abs(r["phi"])) > max_pressure_angle:
             return False
         if min_curvature_radius is not None:
             rho = r["rho"]
-            if np.any(r["undercut"]) or np.any((rho > 0) & (rho < min_curvature_radius)):
+            if np.any((rho > 0) & (rho < min_curvature_radius)):
                 return False
         return True
 
@@ -507,7 +520,7 @@ def design_cam(
                     arm=p.arm,
                     pivot_distance=p.pivot_distance,
                     min_curvature_radius=0.0,
-                    points=int(points),
+                    points=min(int(points), SUGGEST_POINTS),
                 )
                 why += f"; the smallest base radius without it is {least:.6g}"
             except GearleverError:
@@ -525,7 +538,7 @@ def design_cam(
             arm=p.arm,
             pivot_distance=p.pivot_distance,
             min_curvature_radius=0.0,
-            points=int(points),
+            points=min(int(points), SUGGEST_POINTS),
         )
         if kind.contact == "roller":
             detail = (

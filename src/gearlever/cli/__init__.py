@@ -25,7 +25,11 @@ Exit status and errors (handled here, once, for every sub-command):
 
 Before the handler runs, an ``--out`` file is checked
 (:func:`gearlever.cli._common.check_output`): a directory, a device, a
-missing folder or an unwritable place is refused before any work.  Numeric
+missing folder or an unwritable place is refused before any work.  Every
+file a command writes is staged beside its target and renamed into place
+when the handler returns (:func:`gearlever._io.output_set`): a command
+writes all its files or none, two of its outputs may not be one file, and a
+symbolic link is replaced, not followed.  Numeric
 :class:`RuntimeWarning` s (overflow) are not printed: they would break the
 one-line rule; the affected values come out as inf/nan (null in JSON).
 """
@@ -196,6 +200,7 @@ def main(argv=None) -> int:
 
 
 def _main(argv) -> int:
+    from gearlever._io import output_set
     from gearlever.cli._common import ReaderGone, check_output
 
     chosen = None
@@ -203,14 +208,23 @@ def _main(argv) -> int:
         parser = build_parser()
         args = parser.parse_args(argv)
         chosen = _chosen_parser(parser, args)
-        out = getattr(args, "out", None)
-        if isinstance(out, str):
-            check_output(out, "--out")
-        with warnings.catch_warnings():
-            # numeric warnings (overflow, invalid value) would be extra lines on
-            # stderr; the results show them as inf/nan (json null) or the library refuses
-            warnings.simplefilter("ignore", RuntimeWarning)
-            status = args.func(args)
+        # every file the command writes is staged and renamed into place when it ends: all or none
+        reader_gone = False
+        with output_set():
+            out = getattr(args, "out", None)
+            if isinstance(out, str):
+                check_output(out, "--out")
+            with warnings.catch_warnings():
+                # numeric warnings (overflow, invalid value) would be extra lines on
+                # stderr; the results show them as inf/nan (json null) or the library refuses
+                warnings.simplefilter("ignore", RuntimeWarning)
+                try:
+                    status = args.func(args)
+                except (BrokenPipeError, ReaderGone):
+                    # stdout's reader left (``| head``): not an error, so the files are still written
+                    reader_gone = True
+        if reader_gone:
+            raise ReaderGone()
     except UsageError as exc:
         _print_error(_one_line(exc))
         return 2

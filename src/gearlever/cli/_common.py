@@ -14,11 +14,16 @@ for every command, and what each command can add):
   a named constant next to the code that allocates and a comment giving the
   memory/time reasoning.  Caps on a product of arguments (turns times steps
   per turn) are checked in the handler with :func:`check_cap`.
-* Outputs: ``main`` checks ``args.out`` with :func:`check_output` before the
-  handler runs; a command with other output arguments calls
-  :func:`check_output` (files) or :func:`check_output_folder` (folders) first
-  thing, before any work.  Write with :func:`emit` or the atomic helpers of
-  :mod:`gearlever._io`, never with ``open(path, "w")``.
+* Outputs: ``main`` runs every handler inside one
+  :func:`gearlever._io.output_set`, so that a command writes all its files
+  or none, and checks ``args.out`` with :func:`check_output` before the
+  handler runs; a command with other output arguments declares them with
+  :func:`check_output` (files, with the suffixes the flag takes) or
+  :func:`check_output_folder` (folders) first thing, before any work: two
+  flags naming one file are refused there.  Write with :func:`emit` or the
+  atomic helpers of :mod:`gearlever._io` (they stage into the set), never
+  with ``open(path, "w")``; call :func:`commit_outputs` before printing the
+  paths written.
 * JSON: :func:`to_json` only (strict: NaN and infinities become null).
 * Long work: wrap it in ``with progress("what"):`` so that a user at a
   terminal sees it is alive (nothing is printed when stderr is not a
@@ -37,7 +42,6 @@ import threading
 import time
 
 from gearlever import _io
-from gearlever._io import write_text_atomic
 from gearlever.errors import GearleverError
 
 
@@ -154,47 +158,71 @@ def check_cap(what: str, value: float, cap: float) -> None:
         raise GearleverError(f"{what} imply {value:.6g}, more than the cap {_cap_text(cap)}")
 
 
-def check_output(path, flag: str = "--out") -> None:
-    """Refuse an output file that cannot be written, before any work is done.
+#: File name endings of a figure output (the formats :func:`gearlever.plotting._common.save` writes).
+FIGURE_SUFFIXES = ("png", "svg", "pdf")
+
+
+def _outputs():
+    """The output set of the running command (:func:`gearlever.cli.main` opens one), or a throw-away one."""
+    return _io.current_outputs() or _io.OutputSet()
+
+
+def check_output(path, flag: str = "--out", suffixes=None) -> None:
+    """Declare an output file of the command and refuse it now, before any work, if it cannot be written.
 
     Refused, with a :class:`GearleverError` naming ``flag``, the path and the
     reason: an empty name, a directory, a device, a folder that does not
     exist (it is not created), a path under a regular file, an unwritable
-    folder (``/proc``).  ``None`` (stdout) passes.
+    folder (``/proc``), a suffix not in ``suffixes`` (e.g. ``("png",)``), a
+    file that another output of the command already names (``--out x.toml
+    --report ./x.toml``, a link to it, a hard link).  ``None`` (stdout) passes.
+    See :class:`gearlever._io.OutputSet`.
 
     >>> check_output(None)
     >>> check_output("/proc/x.csv")
     Traceback (most recent call last):
     ...
     gearlever.errors.GearleverError: --out '/proc/x.csv': cannot write in this folder: No such file or directory
+    >>> check_output("f.txt", "--figure", ("png",))
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: --figure must end with .png, got 'f.txt'
     """
     if path is None:
         return
-    try:
-        _io.check_target(path)
-    except OSError as exc:
-        raise GearleverError(_oserror_text(flag, path, exc)) from None
+    _outputs().declare(path, flag, suffixes=suffixes)
 
 
-def check_output_folder(path, flag: str) -> None:
-    """Refuse an output folder that is a file or cannot be created or written (nothing is created).
+def check_output_folder(path, flag: str, *, create: bool = False) -> None:
+    """Refuse an output folder that is a file or cannot be created or written; with ``create``, make it.
+
+    A folder made here is removed again if the command fails (it writes all
+    or none, see :class:`gearlever._io.OutputSet`); files written into it are
+    named by ``flag`` in errors.
 
     >>> check_output_folder("/proc/t", "--tables")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     gearlever.errors.GearleverError: --tables '/proc/t': cannot write in this folder: ... (at '/proc')
     """
-    try:
-        _io.check_folder(path)
-    except OSError as exc:
-        raise GearleverError(_oserror_text(flag, path, exc)) from None
+    outputs = _outputs()
+    if create:
+        outputs.declare_folder(path, flag)
+    else:
+        try:
+            _io.check_folder(path)
+        except OSError as exc:
+            raise _io.named_error(flag, path, exc) from None
 
 
-def _oserror_text(flag: str, path, exc: OSError) -> str:
-    reason = exc.strerror or type(exc).__name__
-    where = str(path) if path is not None else ""
-    culprit = f" (at {exc.filename!r})" if exc.filename and str(exc.filename) != where else ""
-    return f"{flag} {where!r}: {reason}{culprit}"
+def commit_outputs() -> list:
+    """Write the files the command has staged so far (all or none); return their paths.
+
+    A command that prints the paths it wrote calls this first, so that it
+    prints only what is there.
+    """
+    outputs = _io.current_outputs()
+    return [] if outputs is None else outputs.commit()
 
 
 class ReaderGone(Exception):
@@ -206,13 +234,16 @@ class ReaderGone(Exception):
 
 
 def emit(text: str, out: str | None = None, flag: str = "--out") -> None:
-    """Print ``text`` to stdout, or write it atomically to the file ``out`` (checked first).
+    """Print ``text`` to stdout, or write it atomically to the file ``out`` (checked first, named ``flag``).
+
+    Inside a command the file is renamed into place with the command's other
+    outputs, when it ends (all or none).
 
     A closed pipe on stdout raises :class:`ReaderGone` (``main`` exits 0).
     """
     if out is not None:
         check_output(out, flag)
-        write_text_atomic(out, text if text.endswith("\n") else text + "\n")
+        _io.write_text_atomic(out, text if text.endswith("\n") else text + "\n", flag=flag)
     else:
         try:
             print(text)

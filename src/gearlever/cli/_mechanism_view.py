@@ -10,8 +10,12 @@ stay at their sketch values (or ``--input``; degrees for a link, length for a
 slider); for two or more inputs the page offers
 :data:`gearlever.plotting.viewer.GRID_STEPS` values of the second.  With
 ``--rpm`` (one per input, ``NAME=VALUE``; a bare value for a one-input model)
-the page shows time and velocities per second.  Cap: ``--frames`` at most
-:data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`.
+the page shows time and velocities per second.  Caps (refused before anything is
+solved, exit 2): ``--frames`` at most :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`,
+frames x grid values x moving links at most :data:`~gearlever.plotting.viewer.MAX_VIEW_WORK`,
+a page of at most :data:`~gearlever.plotting.viewer.MAX_PAGE_BYTES` bytes, at most
+:data:`~gearlever.plotting.viewer.MAX_VIEW_LINKS` moving links, an ``--input`` at most
+:data:`~gearlever.plotting.viewer.MAX_START_TURNS` turns from the sketch.
 """
 
 from __future__ import annotations
@@ -69,7 +73,12 @@ def _view(args) -> int:
         page = viewer_html(mech, frames=args.frames, rpm=rpm, inputs=inputs or None)
     except GearleverError as exc:
         text = str(exc)
-        for lib, flag in (("rpm:", "--rpm:"), ("inputs:", "--input:")):
+        for lib, flag in (
+            ("rpm:", "--rpm:"),
+            ("inputs:", "--input:"),
+            ("frames:", "--frames:"),
+            ("mech:", f"{args.model}:"),
+        ):
             if text.startswith(lib):
                 text = flag + text[len(lib) :]
         raise GearleverError(text) from None

@@ -165,11 +165,8 @@ def _run(args) -> int:
     from gearlever.synthesis._model import model_toml
     from gearlever.synthesis.path import synthesize_path
 
-    for flag, path in (("--report", args.report), ("--figure", args.figure)):
-        if path is not None:
-            check_output(path, flag)
-    if args.figure is not None and not args.figure.lower().endswith(".png"):
-        raise GearleverError(f"--figure must end with .png, got {args.figure!r}")
+    check_output(args.report, "--report")
+    check_output(args.figure, "--figure", ("png",))
     targets, angles = read_targets(args.points)
     timing = args.timing or ("relative" if angles is not None else "none")
     if timing != "none" and angles is None:
@@ -221,14 +218,15 @@ def _run(args) -> int:
         bar.close()
     rep = _rounded(res.report())
     rep["time_s"] = round(float(res.seconds), 2)
-    if res.feasible:
-        comment = (
-            f"Synthesized by gearlever synthesize path ({res.kind}, seed {args.seed}, budget {args.budget}); "
-            f"objective {res.objective:.6g}; input at the first target {math.degrees(res.input_angles[0]):.12g} deg"
-        )
-        emit(model_toml(res.model(), comment), args.out)
+    if not res.feasible:  # a command writes all its files or none
+        raise GearleverError("no buildable linkage meets the constraints: nothing was written")
+    comment = (
+        f"Synthesized by gearlever synthesize path ({res.kind}, seed {args.seed}, budget {args.budget}); "
+        f"objective {res.objective:.6g}; input at the first target {math.degrees(res.input_angles[0]):.12g} deg"
+    )
+    emit(model_toml(res.model(), comment), args.out)
     if args.report is not None:
-        rep["model"] = args.out if res.feasible else None
+        rep["model"] = args.out
         emit(to_json(rep), args.report, "--report")
     if args.figure is not None:
         from gearlever.plotting._common import save
@@ -236,8 +234,6 @@ def _run(args) -> int:
 
         ax = path_synthesis_plot(res)
         save(ax.figure, args.figure)
-    if not res.feasible:
-        raise GearleverError("no buildable linkage meets the constraints: the model was not written")
     err = max(rep["per_target_error"]) if rep["per_target_error"] else math.nan
     tried = ", ".join(f"{k} {v:.6g}" for k, v in rep["types_tried"].items()) if rep["types_tried"] else res.kind
     mu = rep["transmission_deg"]

@@ -9,7 +9,7 @@ This module also holds the figure options shared by ``mechanism draw``,
 
 from __future__ import annotations
 
-from gearlever.cli._common import capped_float, capped_int, check_cap, positive_float, progress
+from gearlever.cli._common import capped_float, capped_int, check_cap, commit_outputs, positive_float, progress
 from gearlever.errors import GearleverError
 from gearlever.plotting._limits import (
     ANIMATION_DPI,
@@ -120,5 +120,6 @@ def _run(args) -> int:
         path = animate_fourbar(
             *args.fourbar, args.out, frames=args.frames, branch=args.branch, fps=args.fps, dpi=dpi, figsize=size
         )
+    commit_outputs()  # the line names the file written: it is there first
     print(f"wrote {path}")
     return 0

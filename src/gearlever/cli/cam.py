@@ -10,7 +10,9 @@
 Without ``--base-radius`` the base circle is sized: the smallest meeting
 ``--max-pressure-angle`` and/or ``--min-curvature-radius``.  With both, the
 design at ``--base-radius`` is checked against the bounds and refused when it
-breaks one (the line gives the smallest base radius meeting it).  Every file
+breaks one (the line gives the smallest base radius meeting it).  The search
+samples at most :data:`SIZING_POINTS` cam angles, so a design at a finer
+``--points`` may show the bound passed by its sampling (1e-6 deg on the lift law).  Every file
 is written atomically; every refusal is one line naming the file, segment or flag.
 """
 
@@ -34,6 +36,8 @@ from gearlever.errors import GearleverError
 
 #: Most profile points.
 MAX_POINTS = 1_000_000
+#: Most points the base-circle search evaluates per candidate radius (it tries about 130 radii).
+SIZING_POINTS = 36_000
 #: Profile file kinds by suffix.
 PROFILE_SUFFIXES = (".csv", ".svg", ".dxf")
 
@@ -213,14 +217,17 @@ def _design(args) -> int:
     bound_phi = None if args.max_pressure_angle is None else math.radians(args.max_pressure_angle)
     sized = None
     if sizing:
-        sized = size_base_radius(
-            law,
-            kind.name,
-            **dims,
-            max_pressure_angle=bound_phi,
-            min_curvature_radius=args.min_curvature_radius,
-            points=args.points,
-        )
+        try:
+            sized = size_base_radius(
+                law,
+                kind.name,
+                **dims,
+                max_pressure_angle=bound_phi,
+                min_curvature_radius=args.min_curvature_radius,
+                points=min(args.points, SIZING_POINTS),
+            )
+        except GearleverError as exc:
+            raise GearleverError(_points_flag(str(exc), min(args.points, SIZING_POINTS))) from None
     if args.base_radius is None and sized is None:
         raise GearleverError(
             "--base-radius is required (or give --max-pressure-angle or --min-curvature-radius to size it)"
@@ -229,12 +236,12 @@ def _design(args) -> int:
     try:
         cam = design_cam(law, kind.name, base_radius=rb, **dims, points=args.points)
     except GearleverError as exc:
-        text = str(exc)
+        text = _points_flag(str(exc), args.points)
         if text.startswith(("undercut", "base radius")):
             who = "--base-radius" if args.base_radius is not None else "the sized base radius"
             roller = f" with --roller-radius {args.roller_radius:g}" if args.roller_radius else ""
             raise GearleverError(f"{who} {rb:.6g}{roller}: {text}") from None
-        raise
+        raise GearleverError(text) from None
     if args.base_radius is not None and sizing:
         if bound_phi is not None and cam.pressure_angle_max > bound_phi * (1 + 1e-12):
             raise GearleverError(
@@ -286,22 +293,28 @@ def _design(args) -> int:
         from gearlever.plotting._common import save
         from gearlever.plotting.cam import cam_design_figure
 
-        save(cam_design_figure(cam, vals), args.figure)
+        save(cam_design_figure(cam, vals if args.rpm is None else vals.per_second(args.rpm)), args.figure)
+    u = "" if cam.units == "length" else f" {cam.units}"
     lines = [
         f"follower          {cam.follower}",
-        f"base radius       {cam.base_radius:.6g} {cam.units}" + (" (sized)" if args.base_radius is None else ""),
+        f"base radius       {cam.base_radius:.6g}{u}" + (" (sized)" if args.base_radius is None else ""),
         f"pressure angle    max {report['pressure_angle_max_deg']:.4g} deg "
         f"at {report['pressure_angle_max_at_deg']:.4g} deg",
-        f"curvature radius  min {cam.curvature_radius_min:.4g} {cam.units} (convex surface)",
+        f"curvature radius  min {cam.curvature_radius_min:.4g}{u} (convex surface)",
         f"undercut          {'yes' if cam.undercut else 'no'}",
     ]
     if kind.contact == "flat":
-        lines.append(f"face width        {cam.face_width:.4g} {cam.units}")
+        lines.append(f"face width        {cam.face_width:.4g}{u}")
     if not cont.ok:
         lines.append(f"law               not continuous: {cont.problems()[0]}")
     lines.append(f"cam               {args.out}")
     emit("\n".join(lines))
     return 0
+
+
+def _points_flag(text: str, points: int) -> str:
+    """The library's "give more points" as the flag that gives them."""
+    return text.replace("give more points", f"give more --points than {points}")
 
 
 def _samples_name(law_path: str) -> str:

@@ -5,19 +5,20 @@ Sub-commands::
     gearlever examples list [--format csv|json]
     gearlever examples copy NAME [NAME ...] [--to DIR] [--force]
 
-``copy`` writes each file atomically into ``DIR`` (default: the current
-folder, created if missing) and prints the path of each copy, one a line, so
-that ``gearlever mechanism analyze $(gearlever examples copy fourbar)`` works.
-Every name and every target is checked before anything is written: an
-unknown name is refused with the list of valid ones, an existing file is
-refused unless ``--force``.
+``copy`` writes the files into ``DIR`` (default: the current folder,
+created if missing) all or none, and prints the path of each copy, one a
+line, so that ``gearlever mechanism analyze $(gearlever examples copy
+fourbar)`` works.  Every name and every target is checked before anything is
+written: an unknown name is refused with the list of valid ones, an existing
+file is refused unless ``--force`` (a symbolic link in the way is replaced,
+never written through).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from gearlever.cli._common import check_output_folder, emit, table_text
+from gearlever.cli._common import check_output_folder, commit_outputs, emit, table_text
 from gearlever.errors import GearleverError
 
 #: What a file of each suffix holds.
@@ -36,6 +37,8 @@ def _kind(name: str, text: str) -> str:
     first = next((ln.strip() for ln in text.splitlines() if ln.strip() and not ln.startswith("#")), "")
     if name.endswith(".csv") and first.replace(" ", "") in TARGET_HEADERS:
         return TARGET_HEADERS[first.replace(" ", "")]
+    if name.endswith(".toml") and any(ln.strip() == "[law]" for ln in text.splitlines()):
+        return "motion law (cam design)"
     return KINDS.get(Path(name).suffix, "")
 
 
@@ -87,8 +90,8 @@ def _copy(args) -> int:
     from gearlever._io import write_text_atomic
     from gearlever.data import example_path
 
-    check_output_folder(args.to, "--to")
-    sources = [example_path(n) for n in dict.fromkeys(args.name)]  # refuses unknown names first
+    sources = list({p.name: p for p in (example_path(n) for n in args.name)}.values())  # refuses unknown names first
+    check_output_folder(args.to, "--to", create=True)
     folder = Path(args.to)
     targets = [folder / s.name for s in sources]
     dirs = [str(t) for t in targets if t.is_dir()]
@@ -97,8 +100,7 @@ def _copy(args) -> int:
     existing = [str(t) for t in targets if t.exists() or t.is_symlink()]
     if existing and not args.force:
         raise GearleverError(f"--to: {', '.join(existing)} already exist(s); give --force to replace")
-    folder.mkdir(parents=True, exist_ok=True)
-    for src, dst in zip(sources, targets):
-        write_text_atomic(dst, src.read_text(encoding="utf-8"))
-    emit("\n".join(str(t) for t in targets))
+    for src, dst in zip(sources, targets):  # all or none: renamed into place together
+        write_text_atomic(dst, src.read_text(encoding="utf-8"), flag="--to")
+    emit("\n".join(str(t) for t in commit_outputs()))
     return 0

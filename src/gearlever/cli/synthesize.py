@@ -19,18 +19,22 @@ from __future__ import annotations
 import csv
 import io
 import math
+import sys
 import time
+import warnings
 
 from gearlever.cli._common import (
+    FIGURE_SUFFIXES,
     capped_float,
     capped_int,
     check_output,
     check_output_folder,
+    commit_outputs,
     emit,
     flagged,
     to_json,
 )
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, GearleverWarning
 
 MAX_ROWS = 10_000
 
@@ -76,7 +80,7 @@ def register(sub) -> None:
     )
     f.add_argument("--out", required=True, help="model file (TOML) to write")
     f.add_argument("--report", help="JSON report to write")
-    f.add_argument("--figure", help="PNG figure to write")
+    f.add_argument("--figure", help="figure to write (.png, .svg or .pdf)")
     f.set_defaults(func=_function)
 
     m = ss.add_parser("motion", help="a four-bar whose coupler passes through 3, 4 or 5 poses")
@@ -85,9 +89,11 @@ def register(sub) -> None:
     g.add_argument("--fixed-pivots", nargs=4, type=float, metavar=("X2", "Y2", "X4", "Y4"), help="3 poses: O2, O4")
     g.add_argument("--moving-pivots", nargs=4, type=float, metavar=("XA", "YA", "XB", "YB"), help="3 poses: A, B")
     m.add_argument("--out", required=True, help="model file (TOML) of the best four-bar")
-    m.add_argument("--all", metavar="DIR", help="write every ranked solution here (solution_01.toml, ...)")
+    m.add_argument(
+        "--all", metavar="DIR", help="write every ranked solution here (solution_01.toml, ...; created if missing)"
+    )
     m.add_argument("--report", help="JSON report to write")
-    m.add_argument("--figure", help="PNG figure to write")
+    m.add_argument("--figure", help="figure to write (.png, .svg or .pdf)")
     m.set_defaults(func=_motion)
     from gearlever.cli._synthesize_path import register_path
 
@@ -125,13 +131,12 @@ def _read_csv(path: str, flag: str, columns: tuple) -> dict:
 
 
 def _check_outputs(args) -> None:
+    """Every output declared before any work: refused if unwritable, of the wrong suffix, or one file twice."""
     check_output(args.out, "--out")
-    if args.report:
-        check_output(args.report, "--report")
-    if args.figure:
-        check_output(args.figure, "--figure")
+    check_output(args.report, "--report")
+    check_output(args.figure, "--figure", FIGURE_SUFFIXES)
     if getattr(args, "all", None):
-        check_output_folder(args.all, "--all")
+        check_output_folder(args.all, "--all", create=True)
 
 
 def _r(v, digits=10):
@@ -145,7 +150,9 @@ def _function(args) -> int:
     import numpy as np
 
     from gearlever.synthesis._model import model_toml
-    from gearlever.synthesis.function import function_targets, synthesize_function
+    from gearlever.synthesis.function import MAX_ANGLE, MAX_LENGTH, function_targets, synthesize_function
+
+    _MAX_PAIR_DEG = round(math.degrees(MAX_ANGLE), -3)  # 57000 deg, within the library's cap
 
     _check_outputs(args)
     t0 = time.perf_counter()
@@ -164,6 +171,20 @@ def _function(args) -> int:
             if phi.size < 3:
                 raise GearleverError(
                     f"PAIRS {args.pairs!r}: function generation needs at least 3 targets, got {phi.size}"
+                )
+            caps = (("input_deg", _MAX_PAIR_DEG), (out_col, MAX_LENGTH if slider else _MAX_PAIR_DEG))
+            for col, cap in caps:
+                big = [(i, v) for i, v in enumerate(cols[col]) if abs(v) > cap]
+                if big:
+                    i, v = big[0]
+                    raise GearleverError(
+                        f"PAIRS {args.pairs!r} row {i + 2} column {col}: must be at most {cap:g} in size, got {v:g}"
+                    )
+            if max(cols["input_deg"]) - min(cols["input_deg"]) >= 360:
+                raise GearleverError(
+                    f"PAIRS {args.pairs!r} column input_deg: the targets span "
+                    f"{max(cols['input_deg']) - min(cols['input_deg']):g} deg; a crank is back in the same pose "
+                    "after a full turn, so they must span less than 360 deg"
                 )
             seen = {}
             for i, v in enumerate(cols["input_deg"]):
@@ -184,27 +205,36 @@ def _function(args) -> int:
                 args.expr, args.x_range, np.radians(args.input_range), orange, args.points, args.spacing
             )
             phi, out, desired = targets.input_angle, targets.output, targets.desired
-        res = synthesize_function(
-            phi,
-            out,
-            kind=args.kind,
-            ground=args.ground,
-            desired=desired,
-            input_range=None if targets is None else targets.input_range,
-        )
+        with warnings.catch_warnings():
+            # the library's warning is replaced by the line below, which names the flags
+            warnings.filterwarnings("ignore", message="impractical proportions", category=GearleverWarning)
+            res = synthesize_function(
+                phi,
+                out,
+                kind=args.kind,
+                ground=args.ground,
+                desired=desired,
+                input_range=None if targets is None else targets.input_range,
+            )
     except GearleverError as exc:
         raise flagged(exc, _FLAGS) from None
     if res.defect:
         raise GearleverError(f"synthesize function: refused, {res.defect}; change the ranges or the points")
-    elapsed = time.perf_counter() - t0
+    checked = np.concatenate([res.generated, res.dense_generated, [res.structural_error_max]])
+    if not np.all(np.isfinite(checked)):  # the engine reached every row (no defect): a gap is a bug, never written
+        raise GearleverError("synthesize function: refused, the engine left outputs undefined over the range")
     conv = (lambda v: v) if slider else math.degrees
     unit = "" if slider else "_deg"
+    offsets = _offsets(res)
+    phi0 = math.degrees(res.input_angle[0])
     comment = (
         f"gearlever synthesize function ({args.kind}): "
         + (f"y = {args.expr}" if args.expr else f"pairs from {args.pairs}")
-        + f"; the crank angle of target 1 is {math.degrees(res.input_angle[0]):.10g} deg"
+        + f"; the crank angle of target 1 is {phi0:.10g} deg"
+        + (f"; the model's crank angle is the input angle {offsets['crank']:+d} deg" if offsets["crank"] else "")
     )
-    emit(model_toml(res.model, comment), args.out)
+    note = res.proportions()
+    warn = f"{note}; {_scale_hint(res, args)}" if note else None
     rep = {
         "kind": args.kind,
         "objective": (
@@ -215,6 +245,7 @@ def _function(args) -> int:
         + (" (Freudenstein's equation)" if not slider else " (slider-crank loop equation)"),
         "expression": args.expr,
         "lengths": {k: _r(v) for k, v in res.lengths.items()},
+        "link_ratio": _r(res.link_ratio, 6),
         "coefficients": [_r(k) for k in res.coefficients],
         "branch": res.branch,
         "grashof": res.grashof,
@@ -222,6 +253,7 @@ def _function(args) -> int:
             {
                 "x": _r(targets.x[j]) if targets is not None else None,
                 "input_deg": _r(math.degrees(res.input_angle[j])),
+                "model_input_deg": _r(math.degrees(res.input_angle[j]) + offsets["crank"]),
                 f"output{unit}": _r(conv(res.output[j])),
                 f"generated{unit}": _r(conv(res.generated[j])),
                 f"error{unit}": _r(conv(res.error[j]), 8),
@@ -237,18 +269,15 @@ def _function(args) -> int:
             _r(math.degrees(res.transmission_angle_max), 6),
         ],
         "defect": res.defect or None,
-        "model_angle_offsets_deg": _offsets(res),
+        "model_angle_offsets_deg": offsets,
+        "warnings": [warn] if warn else [],
         "evaluations": res.evaluations,
-        "time_s": round(elapsed, 2),
+        "time_s": round(time.perf_counter() - t0, 2),
     }
-    if args.report:
-        emit(to_json(rep), args.report, "--report")
-    if args.figure:
-        from gearlever.plotting._common import save
-        from gearlever.plotting.synthesis import function_figure
-
-        save(function_figure(res), args.figure)
     L = res.lengths
+    model_at = f"crank angle at target 1: {phi0:.10g} deg"
+    if offsets["crank"]:
+        model_at += f"; the model's crank angle there: {phi0 + offsets['crank']:.10g} deg"
     lines = [
         f"type             {args.kind} ({rep['objective']})",
         "lengths          " + ", ".join(f"{k} {v:.10g}" for k, v in L.items()),
@@ -257,20 +286,49 @@ def _function(args) -> int:
         f"structural error max {rep[f'structural_error_max{unit}']:.6g}, rms {rep[f'structural_error_rms{unit}']:.6g}"
         f"{' deg' if not slider else ''} over {res.dense_input.size} crank angles (engine)",
         f"transmission     {rep['transmission_angle_deg'][0]:.4g} .. {rep['transmission_angle_deg'][1]:.4g} deg",
-        f"model            {args.out} (crank angle at target 1: {math.degrees(res.input_angle[0]):.10g} deg)",
+        f"model            {args.out} ({model_at})",
     ]
+    figure = None
+    if args.figure:
+        from gearlever.plotting.synthesis import function_figure
+
+        figure = function_figure(res)
+    # every output is ready: only now is anything staged (written all or none by commit_outputs)
+    emit(model_toml(res.model, comment), args.out)
+    if args.report:
+        emit(to_json(rep), args.report, "--report")
+    if figure is not None:
+        from gearlever.plotting._common import save
+
+        save(figure, args.figure)
+    commit_outputs()  # the summary names the files written: they are there first
+    if warn:
+        print(f"gearlever synthesize function: warning: {warn}", file=sys.stderr)
     print("\n".join(lines))
     return 0
 
 
-def _offsets(res) -> dict:
-    """Model link angle minus the input (output) angle at target 1: 0 or 180 deg (a link pointing the other way)."""
-    pts = res.model["points"]
-    A = pts["A"]
-    out = {"crank": round(math.degrees(math.atan2(A[1], A[0]) - res.input_angle[0])) % 360}
+def _scale_hint(res, args) -> str:
+    """What a designer can do about impractical proportions: other ranges, and the scale that sizes the linkage."""
+    named = {k: abs(v) for k, v in res.lengths.items()}
+    longest = max(named, key=named.get)
     if res.kind == "fourbar":
-        B, O4 = pts["B"], pts["O4"]
-        out["rocker"] = round(math.degrees(math.atan2(B[1] - O4[1], B[0] - O4[0]) - res.output[0])) % 360
+        size = f"--ground {args.ground / named[longest]:.4g} makes the {longest} 1 long"
+    else:
+        what = "--output-range" if args.expr else "the PAIRS outputs"
+        size = f"{what} times {1 / named[longest]:.4g} makes the {longest} 1 long"
+    return (
+        "the ratios follow from the ranges, not from the scale: other --input-range/--output-range "
+        f"(start angles and spans) give other proportions; to size this linkage, {size}"
+    )
+
+
+def _offsets(res) -> dict:
+    """The model's crank input minus the design's input angle (a multiple of 180 deg: reversed, whole turns);
+    the model's rocker angle minus the output angle (0 or 180 deg)."""
+    out = {"crank": round(math.degrees(res.input_offset))}
+    if res.kind == "fourbar":
+        out["rocker"] = round(math.degrees(res.output_offset)) % 360
     return out
 
 
@@ -316,12 +374,13 @@ def _motion(args) -> int:
         args.out,
     )
     if args.all:
-        from gearlever._io import check_folder, write_text_atomic
+        from pathlib import Path
 
-        folder = check_folder(args.all, create=True)
         for k, s in enumerate(res.solutions, start=1):
-            write_text_atomic(
-                folder / f"solution_{k:02d}.toml", model_toml(s.model, f"rank {k}: {s.defect or 'no defect'}")
+            emit(
+                model_toml(s.model, f"rank {k}: {s.defect or 'no defect'}"),
+                Path(args.all) / f"solution_{k:02d}.toml",
+                "--all",
             )
 
     def sol_rec(k, s):
@@ -378,5 +437,6 @@ def _motion(args) -> int:
         "input at poses   " + ", ".join(f"{v:.8g}" for v in b["input_deg"]) + " deg",
         f"model            {args.out}",
     ]
+    commit_outputs()  # the summary names the files written: they are there first
     print("\n".join(lines))
     return 0

@@ -59,8 +59,11 @@ TWO_PI = 2 * math.pi
 ANGLE_UNITS = {"deg": math.pi / 180, "rad": 1.0}
 #: Units of displacement outputs (kept as given: the law is in these units).
 LENGTH_UNITS = ("mm", "cm", "m", "in", "ft", "um")
-#: Most segments or samples a law may have.
+#: Narrowest segment (deg): below it the derivatives h / beta**k overflow long before a cam could follow.
+MIN_SEGMENT_DEG = 1e-6
+#: Most segments a law may have.
 MAX_SEGMENTS = 10_000
+#: Most samples (rows of the samples CSV) a law may have.
 MAX_SAMPLES = 1_000_000
 
 
@@ -208,7 +211,7 @@ class ContinuityReport(Result):
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class MotionLaw:
     """An output law over one input turn.
 
@@ -432,6 +435,11 @@ def law_from_segments(output: str, units: str, segments, *, start: float = 0.0, 
             )
         if to > 360:
             raise GearleverError(f"{where}: to = {to:g} deg is past 360 (segments must cover 0 .. 360 exactly)")
+        if to - ends[-1] < MIN_SEGMENT_DEG:
+            raise GearleverError(
+                f"{where}: spans {to - ends[-1]:g} deg (from {ends[-1]:g} to {to:g}); a segment must span at least "
+                f"{MIN_SEGMENT_DEG:g} deg"
+            )
         name = seg.get("motion")
         if name is None:
             raise GearleverError(f"{where}: motion is missing; known: {', '.join(MOTIONS)}")

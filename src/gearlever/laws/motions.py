@@ -10,7 +10,7 @@ The motions are the standard cam laws of R. L. Norton, *Design of Machinery*
 (chapter 8, "Cam design": simple harmonic, cycloidal, modified trapezoid,
 modified sine, 3-4-5 and 4-5-6-7 polynomials) and of H. A. Rothbart, *Cam
 Design Handbook* (chapter 3, "Cam motions").  Their peak factors (the maxima of
-|y'|, |y''|, |y'''|, tabulated in both texts as C_v, C_a, C_j) are checked in the
+abs(y'), abs(y''), abs(y'''), tabulated in both texts as C_v, C_a, C_j) are checked in the
 tests: cycloidal 2, 2 pi, 4 pi**2; harmonic pi/2, pi**2/2; 3-4-5 1.875, 5.7735,
 60; 4-5-6-7 2.1875, 7.5132, 52.5; modified trapezoid 2.0, 4.8881, 61.4; modified
 sine 1.7596, 5.5280, 69.5.

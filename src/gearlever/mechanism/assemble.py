@@ -341,7 +341,10 @@ def _close(eq: _Equations):
             if float(np.max(np.abs(F), initial=0.0)) <= 1e-11 * L:
                 ok = True
                 break
-            y = y - np.linalg.lstsq(eq.jacobian(y), F, rcond=None)[0]
+            step = _newton_step(eq.jacobian(y), F)
+            if step is None:
+                break
+            y = y - step
         if ok and float(np.max(np.abs(y - pred), initial=0.0)) <= 0.1 * L:
             xprev, tprev, x, t = x, t, y, tn
             dt = min(2 * dt, 0.25)
@@ -353,9 +356,24 @@ def _close(eq: _Equations):
         F = eq.residual(x[:, None])[:, 0]
         if float(np.max(np.abs(F), initial=0.0)) <= 0.1 * CLOSE_TOL * L:
             break
-        x = x - np.linalg.lstsq(eq.jacobian(x), F, rcond=None)[0]
+        step = _newton_step(eq.jacobian(x), F)
+        if step is None:
+            break
+        x = x - step
     F = eq.residual(x[:, None])[:, 0]
     return x, 1.0, float(np.max(np.abs(F), initial=0.0)) <= CLOSE_TOL * L
+
+
+def _newton_step(J: np.ndarray, F: np.ndarray):
+    """The minimum-norm Newton step ``J^+ F``, or None when ``J`` or ``F`` is not finite.
+
+    LAPACK is never handed an infinity or NaN (lengths near 1e308 overflow
+    when squared): its ``DLASCL`` refuses them by printing a line on the C
+    stdout, which would corrupt the output of the command line.
+    """
+    if not (np.isfinite(J).all() and np.isfinite(F).all()):
+        return None
+    return np.linalg.lstsq(J, F, rcond=None)[0]
 
 
 def _why_not(model: MechanismModel, eq: _Equations, x: np.ndarray, t: float) -> str:

@@ -849,7 +849,8 @@ def parse_lengths(raw, links: dict) -> dict:
     GearleverError
         Naming the entry (``lengths.crank``): not a table, unknown link, a
         link with fewer than two points, points not on the link or equal, a
-        value that is not a positive finite number, a pair given twice.
+        value that is not a positive finite number or exceeds
+        :data:`MAX_COORDINATE`, a pair given twice.
 
     Examples
     --------
@@ -892,6 +893,8 @@ def parse_lengths(raw, links: dict) -> dict:
         length = _num(where, value)
         if length <= 0:
             raise GearleverError(f"{where} must be a positive length, got {value!r}")
+        if length > MAX_COORDINATE:  # the assembled points could not be written (nor squared: 1e308**2 is inf)
+            raise GearleverError(f"{where} must be at most {MAX_COORDINATE:g} (the cap on coordinates), got {value!r}")
         ident = (lname, frozenset((p, q)))
         if ident in seen:
             raise GearleverError(f"{where}: the pair {p}-{q} of link {lname!r} is already given as {seen[ident]!r}")

@@ -120,7 +120,8 @@ def cam_profile_plot(design, ax=None, at: float = 0.0):
             ax.plot(x, [contact[1], contact[1]], color="C3", lw=2.0, label="face")
     ax.plot([contact[0]], [contact[1]], marker=".", color="C3")
     ax.set_aspect("equal")
-    ax.set_title(f"{design.follower} cam, base radius {design.base_radius:.4g} {design.units}", fontsize=9)
+    unit = "" if design.units == "length" else f" {design.units}"
+    ax.set_title(f"{design.follower} cam, base radius {design.base_radius:.4g}{unit}", fontsize=9)
     ax.legend(fontsize=7, loc="lower left")
     ax.grid(True, lw=0.3)
     return ax

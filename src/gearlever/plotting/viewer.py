@@ -13,19 +13,46 @@ The page template (HTML, CSS, JavaScript) is package data in
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from importlib import resources
 
 import numpy as np
 
-from gearlever._io import to_json
+from gearlever._io import _strict
 from gearlever.errors import GearleverError
 
-__all__ = ["viewer_html", "viewer_data", "MAX_VIEW_FRAMES", "GRID_STEPS", "SIGNIFICANT_DIGITS"]
+__all__ = [
+    "viewer_html",
+    "viewer_data",
+    "page_estimate",
+    "MAX_VIEW_FRAMES",
+    "MAX_VIEW_LINKS",
+    "MAX_VIEW_WORK",
+    "MAX_PAGE_BYTES",
+    "MAX_CENTRE_BODIES",
+    "MAX_START_TURNS",
+    "GRID_STEPS",
+    "SIGNIFICANT_DIGITS",
+]
 
-#: Largest number of frames of a page (about 0.8 kB per frame for a six-bar: a 3 MB page at the cap).
+#: Largest number of frames of a page (about 0.7 kB per frame for a six-bar: a 2.5 MB page at the cap).
 MAX_VIEW_FRAMES = 3600
+#: Largest number of moving links of a model shown (the solve grows faster than the number of links).
+MAX_VIEW_LINKS = 150
+#: Largest work of a page: frames x values of the second input x moving links ("link-frames").
+MAX_VIEW_WORK = 250_000
+#: Largest page (bytes): refused before solving from an estimate of the numbers it holds, and checked after.
+MAX_PAGE_BYTES = 20_000_000
+#: Instant centres and Kennedy lines are drawn for models of at most this many bodies (ground included):
+#: n bodies have n (n - 1) / 2 centres and n (n - 1) (n - 2) / 6 Kennedy triples.
+MAX_CENTRE_BODIES = 16
+#: Largest distance of the start of a rotary input from its sketch value (turns); for a slider input,
+#: times the model's length scale.  The solver walks from the sketch to the start in small steps.
+MAX_START_TURNS = 1000
+#: Estimated bytes of one stored number in the page (6 significant digits, sign, point, comma).
+_BYTES_PER_VALUE = 10
 #: Values of the second input offered by the page's extra slider (models with two or more inputs).
 GRID_STEPS = 24
 #: Significant digits of the coordinates stored in the page.
@@ -66,7 +93,22 @@ def _frames_inputs(mech, frames: int, inputs) -> tuple:
         v = float(value)
         if not math.isfinite(v):
             raise GearleverError(f"inputs: {name} must be a finite number, got {value!r}")
-        start[labels.index(name)] = v
+        i = labels.index(name)
+        if m.inputs[i].kind == "link":
+            turns = abs(v - start[i]) / (2 * math.pi)
+            if not turns <= MAX_START_TURNS:
+                raise GearleverError(
+                    f"inputs: {name} is {turns:.3g} turns from its sketch value, "
+                    f"more than the cap of {MAX_START_TURNS} turns"
+                )
+        else:
+            span = abs(v - start[i]) / m.length_scale
+            if not span <= MAX_START_TURNS:
+                raise GearleverError(
+                    f"inputs: {name} is {span:.3g} times the model's size from its sketch value, "
+                    f"more than the cap of {MAX_START_TURNS}"
+                )
+        start[i] = v
     if m.inputs[0].kind != "link":
         raise GearleverError(
             f"inputs: the viewer turns the first input a full turn; {labels[0]!r} is a slider "
@@ -82,6 +124,80 @@ def _frames_inputs(mech, frames: int, inputs) -> tuple:
         half = GRID_STEPS // 2
         values, default = start[1] + 0.5 * m.length_scale * (j - half) / half, half
     return start, values, default
+
+
+def page_estimate(model, frames: int) -> dict:
+    """The work and the estimated size of a page, before anything is solved.
+
+    Parameters
+    ----------
+    model : gearlever.mechanism.model.MechanismModel
+    frames : int
+        Frames over one turn of the first input.
+
+    Returns
+    -------
+    dict
+        ``links`` (moving links), ``grid`` (values of the second input, 1 for
+        one input), ``work`` (``frames x grid x links``, link-frames, capped
+        by :data:`MAX_VIEW_WORK`), ``bytes`` (estimated data block, capped by
+        :data:`MAX_PAGE_BYTES`), ``bytes_per_frame`` and ``centres`` (whether
+        the page holds instant centres, :data:`MAX_CENTRE_BODIES`).
+
+    Notes
+    -----
+    The size counts the numbers the page stores per frame and value of the
+    second input: 6 per moving point (position, velocity, acceleration), 3
+    per moving link (angle, angular velocity and acceleration) and per
+    slider, 2 per instant centre, 1 assembly flag; at 10 bytes each (6
+    significant digits, sign, point, exponent, comma) an upper bound of the
+    data block (a constant array is stored once, so real pages are smaller).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism.model import model_from_dict
+    >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]},
+    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+    >>> est = page_estimate(m, 360)
+    >>> est["work"], est["bytes"], est["centres"]
+    (360, 43200, True)
+    """
+    from gearlever.mechanism.model import GROUND
+
+    K = len(model.moving)
+    M = GRID_STEPS if len(model.inputs) > 1 else 1
+    bodies = K + 1
+    centres = M == 1 and bodies <= MAX_CENTRE_BODIES
+    moving_points = len(set(model.points) - set(model.links[GROUND].points))
+    per_frame = 6 * moving_points + 3 * K + 3 * len(model.sliders) + (bodies * (bodies - 1) if centres else 0) + 1
+    return {
+        "links": K,
+        "grid": M,
+        "work": frames * M * K,
+        "bytes": _BYTES_PER_VALUE * per_frame * frames * M,
+        "bytes_per_frame": _BYTES_PER_VALUE * per_frame * M,
+        "centres": centres,
+    }
+
+
+def _check_size(m, frames: int) -> bool:
+    """Refuse a page over the caps before anything is solved; True if it shows instant centres."""
+    est = page_estimate(m, frames)
+    K, M = est["links"], est["grid"]
+    if K > MAX_VIEW_LINKS:
+        raise GearleverError(f"mech: [links] has {K} moving links, more than the viewer's cap of {MAX_VIEW_LINKS}")
+    grid = f" x {M} values of {m.inputs[1].label}" if M > 1 else ""
+    if est["work"] > MAX_VIEW_WORK:
+        raise GearleverError(
+            f"frames: {frames} frames{grid} x {K} moving links is {est['work']} link-frames, more than the cap of "
+            f"{MAX_VIEW_WORK}; use at most {MAX_VIEW_WORK // (M * K)} frames"
+        )
+    if est["bytes"] > MAX_PAGE_BYTES:
+        raise GearleverError(
+            f"frames: a page of {frames} frames{grid} would be about {est['bytes'] / 1e6:.3g} MB, more than the "
+            f"cap of {MAX_PAGE_BYTES / 1e6:g} MB; use at most {MAX_PAGE_BYTES // est['bytes_per_frame']} frames"
+        )
+    return est["centres"]
 
 
 def _rates(mech, rpm) -> tuple:
@@ -141,6 +257,7 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     frames = int(frames)
     m = mech.model
     W = len(m.inputs)
+    with_centres = _check_size(m, frames)
     start, grid, grid_default = _frames_inputs(mech, frames, inputs)
     rates, period = _rates(mech, rpm)
     turn = start[0] + 2 * np.pi * np.arange(frames) / frames
@@ -270,7 +387,9 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
         "ascale": 0.5 * L / amax if amax > 0 else 0.0,
         "ic": None,
     }
-    if W == 1:
+    data["centres_capped"] = W == 1 and not with_centres
+    data["centres_max"] = MAX_CENTRE_BODIES
+    if W == 1 and with_centres:
         ic = instant_centres(results[0])
         data["ic"] = {
             "links": list(ic.links),
@@ -335,8 +454,23 @@ def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
     two angular velocities are equal (centre at infinity).  ``id="readout"``
     holds ``θ = ...°``; controls ``play``, ``frame``, ``speed``,
     ``show-velocity``, ``show-paths``; ``?frame=k`` (and ``&play=1``) in
-    the URL.  The instant centres are
-    :func:`gearlever.mechanism.centres.instant_centres`.
+    the URL; gears ``data-gear="NAME"`` (ground gears included);
+    ``window.gearlever.fmt`` the number formatter and
+    ``window.gearlever.cycleCsv()`` the CSV of the whole cycle (empty cells
+    where there is no value).  The instant centres are
+    :func:`gearlever.mechanism.centres.instant_centres` (models of at most
+    :data:`MAX_CENTRE_BODIES` bodies).
+
+    The data block is compact strict JSON with ``<``, ``>``, ``&``, U+2028
+    and U+2029 written as ``\\uXXXX`` escapes, so no text of the model can
+    end or bend the ``<script>`` element; the page puts names into the
+    document as text.  Refused before anything is solved
+    (:class:`~gearlever.errors.GearleverError`, naming ``frames``,
+    ``inputs`` or ``mech``): more than :data:`MAX_VIEW_LINKS` moving links,
+    more than :data:`MAX_VIEW_WORK` link-frames, a page estimated over
+    :data:`MAX_PAGE_BYTES` (:func:`page_estimate`; checked again on the
+    page built), a start more than :data:`MAX_START_TURNS` turns from the
+    sketch.
 
     Examples
     --------
@@ -348,14 +482,39 @@ def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
     (True, True)
     """
     data = viewer_data(mech, frames, rpm, inputs)
+    payload = _script_json(data)
+    if len(payload) > MAX_PAGE_BYTES:  # the estimate of _check_size missed: refuse all the same
+        most = max(2, int(frames * MAX_PAGE_BYTES / len(payload)))
+        raise GearleverError(
+            f"frames: the page of {frames} frames would be {len(payload) / 1e6:.3g} MB, more than the cap of "
+            f"{MAX_PAGE_BYTES / 1e6:g} MB; use at most {most} frames"
+        )
     fill = {
-        "__DATA__": to_json(data, indent=None).replace("</", "<\\/"),
+        "__DATA__": payload,
         "__TITLE__": _escape(mech.model.name),
         "/*__CSS__*/": _template("viewer.css"),
         "/*__JS__*/": _template("viewer.js"),
     }
     # one pass: a model name holding a marker is not expanded
     return re.sub("|".join(re.escape(k) for k in fill), lambda mt: fill[mt.group(0)], _template("viewer.html"))
+
+
+#: Characters that may not appear raw in JSON inside a <script> element: "<" would let "</script>" or
+#: "<!--" end or bend the element, ">" and "&" are escaped alike, U+2028/U+2029 end a line in older JavaScript.
+_SCRIPT_ESCAPES = {"<": "\\u003c", ">": "\\u003e", "&": "\\u0026", "\u2028": "\\u2028", "\u2029": "\\u2029"}
+
+
+def _script_json(data) -> str:
+    """Compact strict JSON, safe between ``<script>`` tags: ``<``, ``>``, ``&``, U+2028/9 as ``\\uXXXX``.
+
+    The characters can only occur inside JSON strings, where the escape
+    is the same string.
+
+    >>> _script_json({"name": "</script><!--&"})
+    '{"name":"\\\\u003c/script\\\\u003e\\\\u003c!--\\\\u0026"}'
+    """
+    text = json.dumps(_strict(data), separators=(",", ":"), allow_nan=False)
+    return re.sub("[<>&\u2028\u2029]", lambda mt: _SCRIPT_ESCAPES[mt.group(0)], text)
 
 
 def _escape(text: str) -> str:

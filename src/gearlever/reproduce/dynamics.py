@@ -37,8 +37,8 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     save(turning_moment_figure(fw), Path(figures_dir) / "dynamics_engine_flywheel.png", dpi=90)
     peak = float(np.max(np.hypot(*d.reaction[BEARING].T)))
     return [
-        f"figures/dynamics_engine_forces.png: engine at {RPM:g} rpm, input torque {tau.min():.1f} .. "
+        f"{Path(figures_dir) / 'dynamics_engine_forces.png'}: engine at {RPM:g} rpm, input torque {tau.min():.1f} .. "
         f"{tau.max():.1f} N m, peak crank-pin load {peak:.0f} N",
-        f"figures/dynamics_engine_flywheel.png: dE = {fw.energy_fluctuation:.2f} J, "
+        f"{Path(figures_dir) / 'dynamics_engine_flywheel.png'}: dE = {fw.energy_fluctuation:.2f} J, "
         f"I = {fw.inertia:.4f} kg m^2 for Cs = {FLUCTUATION}",
     ]

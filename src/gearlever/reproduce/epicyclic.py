@@ -28,7 +28,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
         write_csv(df, Path(tables_dir) / f"epicyclic_{name}.csv")
         first = spec["inputs"][0]
         lines.append(
-            f"tables/epicyclic_{name}.csv: {len(df)} members, per {first}: "
+            f"{Path(tables_dir) / f'epicyclic_{name}.csv'}: {len(df)} members, per {first}: "
             + ", ".join(f"{m} {v}" for m, v in zip(df["member"], df[f"per_{first}"]))
         )
     return lines

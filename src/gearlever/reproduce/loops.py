@@ -25,7 +25,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     )
     out.append(
         f"loops: ZRDPM contour-1 acceleration plan (eqs. 19-20) at phi = {ZRDPM_PHI_DEG:g} deg, "
-        f"l1 = {ZRDPM_L1_CM:g} cm -> figures/loops_zrdpm_acceleration_plan.png"
+        f"l1 = {ZRDPM_L1_CM:g} cm -> {figures_dir / 'loops_zrdpm_acceleration_plan.png'}"
     )
     save(fourbar_plans(*FOURBAR, FOURBAR_THETA2_DEG), figures_dir / "loops_fourbar_plans.png")
     save(fourbar_curves(*FOURBAR), figures_dir / "loops_fourbar_curves.png")
@@ -37,6 +37,6 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
         f"loops: four-bar {'/'.join(f'{v:g}' for v in FOURBAR)} ({grashof(*FOURBAR).kind}): "
         f"max |dtheta4/dphi| = {np.abs(r.dtheta4_dphi).max():.6f}, "
         f"max |d2theta4/dphi2| = {np.abs(r.d2theta4_dphi2).max():.6f} "
-        "-> figures/loops_fourbar_{plans,curves}.png, loops_fourbar.gif"
+        f"-> {figures_dir / 'loops_fourbar'}_{{plans,curves}}.png, loops_fourbar.gif"
     )
     return out

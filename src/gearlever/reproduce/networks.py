@@ -21,13 +21,15 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     nut = nuttall_designs_table()
     write_csv(nut, Path(tables_dir) / "nuttall.csv")
     lines.append(
-        f"tables/nuttall.csv: {len(nut)} designs, solver = source closed form in "
+        f"{Path(tables_dir) / 'nuttall.csv'}: {len(nut)} designs, solver = source closed form in "
         f"{int(nut['closed_form_agrees'].sum())}/{len(nut)}"
     )
     car = car_cases_table()
     write_csv(car, Path(tables_dir) / "car_differential.csv")
     imbalance = float((car["power_in_W"] - car["power_out_W"]).abs().max())
-    lines.append(f"tables/car_differential.csv: {len(car)} cases, max |P_in - P_out| = {imbalance:.1e} W")
+    lines.append(
+        f"{Path(tables_dir) / 'car_differential.csv'}: {len(car)} cases, max |P_in - P_out| = {imbalance:.1e} W"
+    )
 
     d = design_nuttall(NuttallTeeth(*FIGURE_TEETH))
     dl, dr, h0 = waypoint_path(FIGURE_WAYPOINTS, track=d.track, step=0.02)
@@ -38,7 +40,8 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     ax = plot_chariot_path(runs)
     save(ax.figure, Path(figures_dir) / "chariot_path.png")
     lines.append(
-        f"figures/chariot_path.png: way-point tour, drift exact {runs['exact wheels'].max_drift:.1e} rad, "
+        f"{Path(figures_dir) / 'chariot_path.png'}: way-point tour, "
+        f"drift exact {runs['exact wheels'].max_drift:.1e} rad, "
         f"1 % wrong d1 {runs['d1 1 % too large'].max_drift:.3f} rad"
     )
 
@@ -51,7 +54,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     ax = plot_drift(runs)
     save(ax.figure, Path(figures_dir) / "chariot_drift.png")
     lines.append(
-        "figures/chariot_drift.png: random path of 20 turns, max drift "
+        f"{Path(figures_dir) / 'chariot_drift.png'}: random path of 20 turns, max drift "
         + ", ".join(f"{k} {r.max_drift:.2e} rad" for k, r in runs.items())
     )
     return lines

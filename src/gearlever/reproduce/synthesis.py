@@ -166,7 +166,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     save(fig, target, dpi=DPI)
     L = r.lengths
     out.append(
-        f"synthesis: figures/{target.name}: log10 generator ground {L['ground']:.4g}, crank {L['crank']:.4g}, "
+        f"synthesis: {target}: log10 generator ground {L['ground']:.4g}, crank {L['crank']:.4g}, "
         f"coupler {L['coupler']:.4g}, rocker {L['rocker']:.4g} ({r.grashof}); max structural error "
         f"{math.degrees(r.structural_error_max):.3f} deg over {LOG10['input_deg'][0]:g}..{LOG10['input_deg'][1]:g} deg"
     )
@@ -205,7 +205,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
         save(fig, target, dpi=DPI)
         Lm = best.lengths
         out.append(
-            f"synthesis: figures/{target.name}: {len(res.dyads)} Burmester point pairs, {len(res.solutions)} "
+            f"synthesis: {target}: {len(res.dyads)} Burmester point pairs, {len(res.solutions)} "
             f"four-bars; best ground {Lm['ground']:.6g}, crank {Lm['crank']:.6g}, coupler {Lm['coupler']:.6g}, "
             f"rocker {Lm['rocker']:.6g} ({best.grashof}, crank turns fully: {'yes' if best.crank_turns else 'no'})"
         )
@@ -217,7 +217,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     write_csv(df, Path(tables_dir) / "synthesis_checks.csv", float_format=FLOAT_FORMAT)
     worst = float((df.deviation.abs() / df.tolerance).max())
     out.append(
-        f"synthesis: tables/synthesis_checks.csv: {int(df.within.sum())}/{len(df)} published answers "
+        f"synthesis: {Path(tables_dir) / 'synthesis_checks.csv'}: {int(df.within.sum())}/{len(df)} published answers "
         f"({df.example.nunique()} worked example(s), function generation) within tolerance; "
         f"worst at {worst:.2f} of its tolerance"
     )

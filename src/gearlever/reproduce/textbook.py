@@ -16,7 +16,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     write_csv(df, Path(tables_dir) / "textbook_checks.csv", float_format=FLOAT_FORMAT)
     worst = (df.deviation.abs() / df.tolerance).max()
     return [
-        f"textbook: tables/textbook_checks.csv: {int(df.within.sum())}/{len(df)} published answers "
+        f"textbook: {Path(tables_dir) / 'textbook_checks.csv'}: {int(df.within.sum())}/{len(df)} published answers "
         f"({df.example.nunique()} worked examples: epicyclic torques, crank effort, flywheels) within tolerance; "
         f"worst at {worst:.2f} of its tolerance"
     ]

@@ -49,10 +49,17 @@ _UNARY = {ast.USub: np.negative, ast.UAdd: np.positive}
 #: Longest expression accepted (characters).
 MAX_EXPRESSION_CHARS = 500
 _MAX_DEPTH = 60
+#: Characters of a refused expression shown in its message.
+_SHOWN_CHARS = 60
+
+
+def shown(text: str) -> str:
+    """``text`` cut to :data:`_SHOWN_CHARS` characters for a message (with ``...`` when cut)."""
+    return text if len(text) <= _SHOWN_CHARS else text[: _SHOWN_CHARS - 3] + "..."
 
 
 def _refuse(text: str, why: str) -> GearleverError:
-    return GearleverError(f"expression {text!r}: {why}")
+    return GearleverError(f"expression {shown(text)!r}: {why}")
 
 
 def _compile(node, text: str, depth: int = 0) -> Callable:
@@ -61,8 +68,16 @@ def _compile(node, text: str, depth: int = 0) -> Callable:
     if isinstance(node, ast.Constant):
         v = node.value
         if isinstance(v, bool) or not isinstance(v, (int, float)):
-            raise _refuse(text, f"only numbers are allowed as constants, not {v!r}")
-        value = float(v)
+            raise _refuse(text, f"only numbers are allowed as constants, not {v!r:.40}")
+        try:
+            value = float(v)
+        except OverflowError:
+            digits = len(str(v))
+            raise _refuse(
+                text, f"a number of {digits} digits is too large (numbers must be finite floats, below 1.8e308)"
+            ) from None
+        if not math.isfinite(value):
+            raise _refuse(text, "a number is beyond 1.8e308, infinite as a float (numbers must be finite)")
         return lambda x: value
     if isinstance(node, ast.Name):
         if node.id == "x":
@@ -128,7 +143,7 @@ def parse_expression(text: str) -> Callable[[np.ndarray], np.ndarray]:
     if not text.strip():
         raise GearleverError("expression must not be empty")
     if len(text) > MAX_EXPRESSION_CHARS:
-        raise _refuse(text[:40] + "...", f"longer than {MAX_EXPRESSION_CHARS} characters")
+        raise _refuse(text, f"longer than {MAX_EXPRESSION_CHARS} characters")
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:

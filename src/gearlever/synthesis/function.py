@@ -6,7 +6,8 @@ four-bar the line from the crank pivot ``O2`` (origin) to the rocker pivot
 slider's travel ``s`` is measured along that line from the foot of the
 perpendicular from ``O2``.  Three targets are met exactly, more by least
 squares on the linear design equation.  Every result is checked by solving
-the synthesized model with the mechanism engine over the whole input range.
+the model as its file holds it with the mechanism engine over the whole input
+range, driven from the sketch along its assembly branch.
 
 Numeric core: numpy, :mod:`gearlever.loops`, :mod:`gearlever.mechanism`.
 """
@@ -14,16 +15,20 @@ Numeric core: numpy, :mod:`gearlever.loops`, :mod:`gearlever.mechanism`.
 from __future__ import annotations
 
 import math
+import numbers
+import tomllib
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from gearlever._result import Result
-from gearlever.errors import GearleverError
+from gearlever._validate import finite_array, positive
+from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.loops.fourbar import fourbar, grashof, transmission_angle
-from gearlever.synthesis._model import fourbar_model, slider_crank_model
-from gearlever.synthesis.expr import parse_expression
+from gearlever.synthesis._model import fourbar_model, model_toml, slider_crank_model
+from gearlever.synthesis.expr import parse_expression, shown
 
 __all__ = [
     "FunctionTargets",
@@ -33,12 +38,28 @@ __all__ = [
     "synthesize_function",
     "MAX_TARGETS",
     "DENSE_POINTS",
+    "MAX_DENSE_POINTS",
+    "PRACTICAL_LINK_RATIO",
 ]
 
 #: Most targets accepted (pairs or precision points).
 MAX_TARGETS = 10_000
 #: Input angles at which the synthesized linkage is solved to measure the structural error.
 DENSE_POINTS = 721
+#: Most input angles solved for the structural error (one batched engine call of this many rows).
+MAX_DENSE_POINTS = 100_000
+#: Longest over shortest link above which a synthesized linkage is reported as impractically
+#: proportioned (a warning; the model is still written).  gearlever's rule of thumb, not a published
+#: limit: past twenty to one the short link's pins and bearings are hard to fit against the long
+#: link's loads and the output is sensitive to its length (the textbook three-position problem of
+#: Su's lecture, tables/synthesis_checks.csv, has 11.3 and passes).
+PRACTICAL_LINK_RATIO = 20.0
+#: Longest over shortest link beyond which the targets are refused: far past any practical linkage,
+#: and within the mechanism engine's own limit (a link shorter than 1e-6 of the model's size).
+MAX_LINK_RATIO = 1e4
+#: Largest angle (rad) and length accepted as a target, range end or ground.
+MAX_ANGLE = 1e3
+MAX_LENGTH = 1e12
 #: An exact (three-target) synthesis must meet its targets to this fraction of the output range
 #: (or of a radian); more is a branch defect.
 _EXACT_TOL = 1e-9
@@ -63,9 +84,7 @@ def precision_points(a: float, b: float, n: int, spacing: str = "chebyshev") -> 
     >>> precision_points(0.0, 1.0, 3, "even").tolist()
     [0.0, 0.5, 1.0]
     """
-    a, b = float(a), float(b)
-    if not (math.isfinite(a) and math.isfinite(b)) or not b != a:
-        raise GearleverError(f"range must be two different finite numbers, got [{a!r}, {b!r}]")
+    a, b = _range("the range [a, b]", (a, b))
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 2 <= n <= MAX_TARGETS:
         raise GearleverError(f"points must be an integer from 2 to {MAX_TARGETS}, got {n!r}")
     if spacing == "chebyshev":
@@ -121,10 +140,17 @@ class FunctionTargets(Result):
 
 
 def _range(name: str, r) -> tuple:
+    """Two different finite numbers ``(from, to)``: text and bools are refused, not read as numbers."""
     try:
-        a, b = (float(v) for v in r)
+        if isinstance(r, (str, bytes)):
+            raise TypeError
+        a, b = r
     except (TypeError, ValueError):
-        raise GearleverError(f"{name} must be two numbers (from, to), got {r!r}") from None
+        raise GearleverError(f"{name} must be two numbers (from, to), got {r!r:.60}") from None
+    for v in (a, b):
+        if isinstance(v, bool) or not isinstance(v, numbers.Real):
+            raise GearleverError(f"{name} must be two numbers (from, to), got {v!r:.40} in {r!r:.60}")
+    a, b = float(a), float(b)
     if not (math.isfinite(a) and math.isfinite(b)):
         raise GearleverError(f"{name} must be finite, got {r!r}")
     if a == b:
@@ -168,17 +194,24 @@ def function_targets(
     """
     f = parse_expression(expression)
     xr, ir, orng = _range("x_range", x_range), _range("input_range", input_range), _range("output_range", output_range)
+    if abs(ir[1] - ir[0]) >= 2 * math.pi or max(abs(ir[0]), abs(ir[1])) > MAX_ANGLE:
+        raise GearleverError(
+            "input_range must span less than a full turn (the crank is back in the same pose after it) within "
+            f"{MAX_ANGLE:g} rad of zero, got {math.degrees(ir[0]):.6g} .. {math.degrees(ir[1]):.6g} deg"
+        )
+    if not isinstance(spacing, str):
+        raise GearleverError(f"spacing must be 'chebyshev' or 'even', got {spacing!r}")
     if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or not 3 <= points <= MAX_TARGETS:
         raise GearleverError(f"points must be an integer from 3 to {MAX_TARGETS}, got {points!r}")
     x = precision_points(xr[0], xr[1], int(points), spacing)
     ends = f(np.array(xr))
     if not np.all(np.isfinite(ends)):
-        raise GearleverError(f"expression {expression!r} is not finite at the ends of x_range {xr}")
+        raise GearleverError(f"expression {shown(expression)!r} is not finite at the ends of x_range {xr}")
     if ends[0] == ends[1]:
-        raise GearleverError(f"expression {expression!r} has the same value at both ends of x_range {xr}")
+        raise GearleverError(f"expression {shown(expression)!r} has the same value at both ends of x_range {xr}")
     dense = f(np.linspace(xr[0], xr[1], DENSE_POINTS))
     if not np.all(np.isfinite(dense)):
-        raise GearleverError(f"expression {expression!r} is not finite everywhere in x_range {xr}")
+        raise GearleverError(f"expression {shown(expression)!r} is not finite everywhere in x_range {xr}")
     t = FunctionTargets(expression, x, np.empty(0), np.empty(0), xr, ir, orng)
     phi = ir[0] + (x - xr[0]) / (xr[1] - xr[0]) * (ir[1] - ir[0])
     return FunctionTargets(expression, x, phi, t.desired(phi), xr, ir, orng)
@@ -186,32 +219,35 @@ def function_targets(
 
 @dataclass(frozen=True)
 class FunctionSynthesis(Result):
-    """A synthesized function generator, checked by the mechanism engine.
+    """A synthesized function generator, checked by the mechanism engine on the model as written.
 
     Attributes
     ----------
     kind : {"fourbar", "slider-crank"}
     input_angle : ndarray
-        Crank angles of the targets, radians.
+        Crank angles of the targets, radians (the design's input angle).
     output : ndarray
         Wanted outputs: rocker angle (radians) or slider travel (length).
     generated : ndarray
-        The engine's output at the targets.
+        The engine's output at the targets (solving :attr:`model`).
     error : ndarray
-        ``generated - output``.
+        ``generated - output`` (four-bar: wrapped to ``(-pi, pi]``, a rocker
+        angle being a pose).
     coefficients : ndarray
         ``(K1, K2, K3)`` of the design equation (see :func:`synthesize_function`).
     lengths : dict
-        ``ground, crank, coupler, rocker`` (four-bar) or ``crank, rod, offset``.
+        ``ground, crank, coupler, rocker`` (four-bar) or ``crank, rod, offset``:
+        the model's lengths, all positive except the slider's offset (signed).
     branch : str
         ``"open"``/``"crossed"`` (four-bar, :mod:`gearlever.loops.fourbar`) or
         ``"+"``/``"-"`` (slider ahead of or behind the crank pin).
     model : dict
-        Model dict assembled at the first target (:mod:`gearlever.synthesis._model`).
+        Model dict assembled at the first target (:mod:`gearlever.synthesis._model`),
+        exactly as :func:`~gearlever.synthesis._model.model_toml` writes it (15 digits).
     dense_input, dense_desired, dense_generated : ndarray
         The input range sampled, wanted output and engine output there.
     structural_error_max, structural_error_rms : float
-        Over the dense samples (output units).
+        Over the dense samples (output units); NaN only with a :attr:`defect`.
     transmission_angle_min, transmission_angle_max : float
         Radians, over the dense samples.
     grashof : str
@@ -225,6 +261,19 @@ class FunctionSynthesis(Result):
         Largest link length (or offset), for relative tolerances.
     evaluations : int
         Input rows solved by the mechanism engine.
+    input_offset : float
+        The model's crank input (the engine's absolute crank angle, radians)
+        minus the design's input angle: ``0`` or ``pi`` (a crank pointing the
+        other way, Freudenstein's negative ``a``) less the whole turns that
+        put the sketch's angle in ``(-pi, pi]``.  Solve :attr:`model` at
+        ``input_angle + input_offset``.
+    output_offset : float
+        Four-bar: the model's rocker angle minus the output angle, ``0`` or
+        ``pi`` (Freudenstein's negative ``c``); slider-crank: ``0``.
+    link_ratio : float
+        Longest over shortest link (the slider's offset counts only as a
+        longest); above :data:`PRACTICAL_LINK_RATIO` the proportions are
+        impractical (:func:`synthesize_function` warns).
 
     Examples
     --------
@@ -255,6 +304,9 @@ class FunctionSynthesis(Result):
     exact: bool
     size: float
     evaluations: int
+    input_offset: float = 0.0
+    output_offset: float = 0.0
+    link_ratio: float = 1.0
 
     def _frame_columns(self) -> dict:
         unit = "rad" if self.kind == "fourbar" else "length"
@@ -265,25 +317,57 @@ class FunctionSynthesis(Result):
             f"error_{unit}": self.error,
         }
 
+    def proportions(self) -> str:
+        """``""``, or a sentence naming the link ratio when it exceeds :data:`PRACTICAL_LINK_RATIO`.
+
+        Examples
+        --------
+        >>> t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
+        >>> synthesize_function(t.input_angle, t.output, desired=t.desired).proportions()
+        ''
+        """
+        if not self.link_ratio > PRACTICAL_LINK_RATIO:
+            return ""
+        named = {k: v for k, v in self.lengths.items() if k != "offset" or v != 0.0}
+        longest = max(named, key=lambda k: abs(named[k]))
+        shortest = min((k for k in named if k != "offset"), key=lambda k: named[k])
+        return (
+            f"impractical proportions: the {longest} is {abs(named[longest]) / named[shortest]:.3g} times the "
+            f"{shortest} (longest/shortest link {self.link_ratio:.3g}, above {PRACTICAL_LINK_RATIO:g})"
+        )
+
+
+def _length(name: str, v) -> float:
+    """A positive finite length up to :data:`MAX_LENGTH`: a bool is not a length, text is not a number."""
+    if isinstance(v, bool):
+        raise GearleverError(f"{name} must be a positive length (a number), got {v!r}: a bool is not a length")
+    if isinstance(v, (str, bytes)):
+        raise GearleverError(f"{name} must be a positive length (a number), got the text {v!r:.40}")
+    x = positive(name, v)
+    if x > MAX_LENGTH:
+        raise GearleverError(f"{name} must be a positive length of at most {MAX_LENGTH:g}, got {v!r}")
+    return x
+
 
 def _wrap(x):
     return np.arctan2(np.sin(x), np.cos(x))
 
 
-def _targets(input_angle, output):
-    try:
-        phi = np.asarray(input_angle, dtype=float).reshape(-1)
-        out = np.asarray(output, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise GearleverError("input_angle and output must be arrays of numbers") from None
+def _targets(input_angle, output, kind):
+    phi = finite_array("input_angle", input_angle).reshape(-1)
+    out = finite_array("output", output).reshape(-1)
     if phi.shape != out.shape:
         raise GearleverError(f"input_angle and output must have the same length, got {phi.size} and {out.size}")
-    if not (np.all(np.isfinite(phi)) and np.all(np.isfinite(out))):
-        raise GearleverError("input_angle and output must be finite (found NaN or inf)")
     if phi.size < 3:
         raise GearleverError(f"function generation needs at least 3 targets, got {phi.size}")
     if phi.size > MAX_TARGETS:
         raise GearleverError(f"at most {MAX_TARGETS} targets, got {phi.size}")
+    if np.abs(phi).max() > MAX_ANGLE:
+        raise GearleverError(f"input_angle must be angles in radians of at most {MAX_ANGLE:g} in size")
+    if kind == "fourbar" and np.abs(out).max() > MAX_ANGLE:
+        raise GearleverError(f"output must be rocker angles in radians of at most {MAX_ANGLE:g} in size")
+    if kind != "fourbar" and np.abs(out).max() > MAX_LENGTH:
+        raise GearleverError(f"output must be slider travels of at most {MAX_LENGTH:g} in size")
     order = np.argsort(phi, kind="stable")
     if np.any(np.diff(phi[order]) == 0):
         j = int(order[int(np.flatnonzero(np.diff(phi[order]) == 0)[0]) + 1])
@@ -303,10 +387,33 @@ def _error_and_angle_stats(derr, mu) -> tuple:
 
 
 def _solve_linear(M, rhs, what):
+    if not np.all(np.isfinite(M)) or not np.all(np.isfinite(rhs)):
+        raise GearleverError(f"{what}: the design equations overflow (targets too large)")
     if np.linalg.matrix_rank(M, tol=1e-12 * max(1.0, np.abs(M).max())) < 3:
         raise GearleverError(f"{what}: the targets do not determine the three design coefficients (degenerate)")
     K, *_ = np.linalg.lstsq(M, rhs, rcond=None)
     return K
+
+
+def _desired_values(desired, dense):
+    """The wanted output over ``dense`` from the caller's ``desired``, refused naming it when it is not usable."""
+    if isinstance(desired, str) or not callable(desired):
+        hint = (
+            " (for a formula in x, pass function_targets(expression, ...).desired)" if isinstance(desired, str) else ""
+        )
+        raise GearleverError(
+            "desired must be a callable giving the wanted output at an array of crank angles (radians), "
+            f"e.g. FunctionTargets.desired, or None; got {type(desired).__name__} {desired!r:.40}{hint}"
+        )
+    try:
+        want = np.asarray(desired(dense), dtype=float)
+    except (TypeError, ValueError, ArithmeticError) as exc:
+        raise GearleverError(
+            f"desired must give a number at every crank angle of the range (it raised {type(exc).__name__})"
+        ) from None
+    if want.shape != dense.shape or not np.all(np.isfinite(want)):
+        raise GearleverError("desired must give a finite output at every crank angle of the range")
+    return want
 
 
 def synthesize_function(
@@ -325,19 +432,24 @@ def synthesize_function(
     Parameters
     ----------
     input_angle : array_like
-        Crank angles of the targets, radians from the ground line.
+        Crank angles of the targets, radians from the ground line (any
+        start, either direction; the targets and ``input_range`` together
+        span less than a full turn).
     output : array_like
         Wanted rocker angles (radians from the ground line O2->O4) for a
         four-bar, or slider travels (length along the slider line from the
         foot of the perpendicular from O2) for a slider-crank.
     kind : {"fourbar", "slider-crank"}
     ground : float
-        Scale: the ground link ``|O2 O4|`` of the four-bar (the slider-crank
-        is scaled by its travels).
+        Scale: the ground link ``|O2 O4|`` of the four-bar, a positive
+        length (not a bool, not text); the slider-crank is scaled by its
+        travels and ignores it.
     desired : callable, optional
-        Wanted output as a function of crank angle (radians) for the
-        structural error over the range; default: straight lines between
-        the targets in order of input angle.
+        Wanted output as a function of an array of crank angles (radians)
+        for the structural error over the range, e.g.
+        :meth:`FunctionTargets.desired`; default: straight lines between the
+        targets in order of input angle (four-bar: each rocker angle taken
+        within half a turn of the one before).
     input_range : pair of float, optional
         Crank angles (radians) of the ends of the design range: the
         structural error, the dead-point check and the transmission angle
@@ -345,13 +457,21 @@ def synthesize_function(
         :attr:`FunctionTargets.input_range`, whose Chebyshev-spaced targets
         lie inside it.  Default: the span of the targets.
     dense_points : int
-        Samples of the input range for the structural error.
+        Samples of the input range for the structural error, 2 to
+        :data:`MAX_DENSE_POINTS`.
     name : str
         Model name.
 
     Returns
     -------
     FunctionSynthesis
+
+    Warns
+    -----
+    GearleverWarning
+        When the longest link is more than :data:`PRACTICAL_LINK_RATIO`
+        times the shortest (:meth:`FunctionSynthesis.proportions`): the
+        ratios follow from the targets, not from ``ground``.
 
     Notes
     -----
@@ -366,15 +486,24 @@ def synthesize_function(
 
     linear in ``K``: three targets give it exactly, more by least squares
     (the equation error; the structural error is then measured).  A negative
-    ``a`` (``c``) is the crank (rocker) pointing the other way: its link
-    angle is ``phi + pi`` (``psi + pi``).
+    ``a`` (``c``) is the crank (rocker) pointing the other way: the model
+    has the positive length ``|a|`` (``|c|``) and its link angle is
+    ``phi + pi`` (``psi + pi``), recorded in
+    :attr:`FunctionSynthesis.input_offset` (``output_offset``).
     Slider-crank (offset ``e``, crank ``a``, rod ``b``): ``(s - a cos phi)^2
     + (e - a sin phi)^2 = b^2`` is linear in ``(2a, 2ae, b^2 - a^2 - e^2)``:
-    ``K1 s cos(phi) + K2 sin(phi) + K3 = s^2``.
+    ``K1 s cos(phi) + K2 sin(phi) + K3 = s^2``; a negative ``a`` is again the
+    crank reversed.
+
     The linkage is assembled at the first target on the branch nearest to
-    its output, solved in closed form (:func:`gearlever.loops.fourbar.fourbar`)
-    over the range to find dead points and branch changes, and by the
-    mechanism engine for the reported outputs.
+    its output, and the model is written to text and read back
+    (:func:`~gearlever.synthesis._model.model_toml`) so that what is checked
+    is what a file holds.  The mechanism engine then solves that model over
+    the targets and the whole range in one batched call, continuing from
+    the sketch along its branch (:func:`gearlever.mechanism.solve.solve`):
+    a row it cannot reach (a dead point or a branch change between the
+    targets) is a :attr:`FunctionSynthesis.defect`, and the generated
+    outputs and the structural error are the engine's.
 
     Examples
     --------
@@ -388,94 +517,165 @@ def synthesize_function(
     >>> round(float(np.degrees(r.structural_error_max)), 3)  # the ends of the range 45..105 deg too
     0.169
     """
-    phi, out = _targets(input_angle, output)
-    if kind not in KINDS:
+    if not isinstance(kind, str) or kind not in KINDS:
         raise GearleverError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
-    if isinstance(dense_points, bool) or not isinstance(dense_points, (int, np.integer)) or not 2 <= dense_points:
-        raise GearleverError(f"dense_points must be an integer >= 2, got {dense_points!r}")
-    dense_points = min(int(dense_points), 100_000)
+    phi, out = _targets(input_angle, output, kind)
+    d = _length("ground", ground)
+    if isinstance(dense_points, bool) or not isinstance(dense_points, (int, np.integer)):
+        raise GearleverError(f"dense_points must be an integer from 2 to {MAX_DENSE_POINTS}, got {dense_points!r}")
+    if not 2 <= dense_points <= MAX_DENSE_POINTS:
+        raise GearleverError(f"dense_points must be an integer from 2 to {MAX_DENSE_POINTS}, got {dense_points!r}")
+    if not isinstance(name, str):
+        raise GearleverError(f"name must be text, got {type(name).__name__}")
     lo, hi = float(phi.min()), float(phi.max())
     if input_range is not None:
         ra, rb = _range("input_range", input_range)
         lo, hi = min(lo, ra, rb), max(hi, ra, rb)
-    dense = np.linspace(lo, hi, dense_points)
+    if hi - lo >= 2 * math.pi:
+        raise GearleverError(
+            f"input_angle: the targets{' and input_range' if input_range is not None else ''} span "
+            f"{math.degrees(hi - lo):.6g} deg; a crank is back in the same pose after a full turn, "
+            "so the span must be less than 360 deg"
+        )
+    dense = np.linspace(lo, hi, int(dense_points))
     if desired is None:
         order = np.argsort(phi)
-        want = np.interp(dense, phi[order], out[order])
+        # rocker angles are poses: a target given a turn away from its neighbour is the same pose
+        seq = np.unwrap(out[order]) if kind == "fourbar" else out[order]
+        want = np.interp(dense, phi[order], seq)
     else:
-        want = np.asarray(desired(dense), dtype=float)
-        if want.shape != dense.shape or not np.all(np.isfinite(want)):
-            raise GearleverError("desired must give a finite output at every crank angle of the range")
+        want = _desired_values(desired, dense)
     if kind == "fourbar":
-        return _fourbar(phi, out, float(ground), dense, want, name or "synthesized four-bar function generator")
-    return _slider(phi, out, dense, want, name or "synthesized slider-crank function generator")
+        r = _fourbar(phi, out, d, dense, want, name or "synthesized four-bar function generator")
+    else:
+        r = _slider(phi, out, dense, want, name or "synthesized slider-crank function generator")
+    note = "" if r.defect else r.proportions()
+    if note:
+        warnings.warn(
+            f"{note}; the ratios follow from the targets (input and output ranges), not from the scale",
+            GearleverWarning,
+            stacklevel=2,
+        )
+    return r
+
+
+def _written(model: dict) -> dict:
+    """The model as its file holds it: written to TOML text and read back (15 significant digits)."""
+    return tomllib.loads(model_toml(model))
+
+
+def _engine(model, phi, dense, out0, output):
+    """Solve the written model over the targets and the range in one batched call, continuing from the sketch.
+
+    ``output(res)`` gives the raw output per row (rocker angle in the design's
+    frame, or slider travel).  The rows run from target 1 (the sketch) down
+    to the low end of the range, then from target 1 up to the high end, so
+    that the continuation meets a dead point next to the last row it
+    reached; the engine's crank input of a row is the sketch's angle plus
+    the input's change from target 1.  Returns ``(generated at the targets,
+    over the range, defect, input_offset, rows solved)``.
+    """
+    from gearlever.mechanism import Mechanism
+
+    try:
+        mech = Mechanism.from_dict(model)
+    except GearleverError as exc:
+        raise GearleverError(f"the synthesized linkage is not a model the engine can solve: {exc}") from None
+    q_sketch = float(mech.sketch_inputs[0])
+    rows = np.concatenate([phi, dense])
+    idx = np.arange(rows.size)
+    down = idx[rows <= phi[0]]
+    down = down[np.lexsort((down != 0, -rows[down]))]  # target 1 first, then descending
+    up = idx[rows > phi[0]]
+    up = up[np.argsort(rows[up], kind="stable")]
+    order = np.concatenate([down, up])
+    res = mech.solve((q_sketch + (rows[order] - phi[0]))[:, None])
+    raw = np.where(res.closed, output(res), np.nan)
+    defect = ""
+    if not res.closed.all():
+        k = int(np.flatnonzero(~res.closed)[0])
+        prev = 0 if k == down.size else k - 1  # the up leg starts again from target 1
+        frm, to = sorted((math.degrees(rows[order[prev]]), math.degrees(rows[order[k]])))
+        defect = (
+            f"the linkage meets a dead point between the input angles {frm:.6g} and {to:.6g} deg: driven from "
+            "target 1, the written model cannot pass it on one branch (circuit/branch defect)"
+        )
+    elif out0 is not None:
+        # a continuous angle along each leg from target 1, equal there to the wanted output within half a turn
+        raw[0] = out0 + _wrap(raw[0] - out0)
+        raw[: down.size] = np.unwrap(raw[: down.size])
+        raw[down.size :] = np.unwrap(np.concatenate([[raw[0]], raw[down.size :]]))[1:]
+    gen = np.empty_like(raw)
+    gen[order] = raw
+    n = phi.size
+    return gen[:n], gen[n:], defect, q_sketch - float(phi[0]), int(rows.size)
 
 
 def _fourbar(phi, psi, d, dense, want, name):
-    if not (math.isfinite(d) and d > 0):
-        raise GearleverError(f"ground must be a positive length, got {d!r}")
     M = np.column_stack([np.cos(psi), -np.cos(phi), np.ones_like(phi)])
     K = _solve_linear(M, np.cos(phi - psi), "input_angle/output")
     K1, K2, K3 = (float(k) for k in K)
     if abs(K1) < 1e-12 or abs(K2) < 1e-12:
         raise GearleverError("the targets need an infinitely long crank or rocker (K1 or K2 is 0); change the ranges")
-    a, c = d / K1, d / K2
+    a, c = d / K1, d / K2  # signed: Freudenstein's a < 0 (c < 0) is the crank (rocker) reversed
     b2 = a * a + c * c + d * d - 2 * a * c * K3
-    if not b2 > 0:
+    if not (math.isfinite(b2) and b2 > 0):
         raise GearleverError(f"no real four-bar meets these targets (coupler length squared {b2:.6g} <= 0)")
     b = math.sqrt(b2)
     A_, C_ = abs(a), abs(c)
     longest = max(d, A_, b, C_)
+    if longest > MAX_LINK_RATIO * min(d, A_, b, C_):
+        raise GearleverError(
+            f"the targets need a linkage whose longest link is more than {MAX_LINK_RATIO:g} times its shortest "
+            f"(ground {d:.6g}, crank {A_:.6g}, coupler {b:.6g}, rocker {C_:.6g}); change the ranges"
+        )
     if longest >= (d + A_ + b + C_ - longest) * (1 - 1e-12):
         raise GearleverError("the synthesized four-bar cannot assemble (one link as long as the other three)")
     off_a = 0.0 if a > 0 else math.pi
     off_c = 0.0 if c > 0 else math.pi
-    # branch: the one that puts the rocker nearest the first target's output
+    # branch: the one that puts the rocker nearest the first target's output (closed form)
     best = None
     for branch in ("open", "crossed"):
-        r = fourbar(d, A_, b, C_, np.concatenate([phi, dense]) + off_a, branch=branch)
-        gen = r.theta4 - off_c
-        miss = np.abs(_wrap(gen[: phi.size] - psi))
+        r = fourbar(d, A_, b, C_, phi + off_a, branch=branch)
+        miss = np.abs(_wrap(r.theta4 - off_c - psi))
         miss = np.where(np.isfinite(miss), miss, np.inf)
         key = (miss[0], float(np.max(miss)))
         if best is None or key < best[0]:
             best = (key, branch, r, miss)
     _, branch, r, miss = best
-    other = fourbar(d, A_, b, C_, phi + off_a, branch="crossed" if branch == "open" else "open")
-    miss_other = np.abs(_wrap(other.theta4 - off_c - psi))
-    defect = ""
-    n = phi.size
-    dense_r_valid = r.valid[n:]
-    if not dense_r_valid.all():
-        bad = dense[int(np.flatnonzero(~dense_r_valid)[0])]
-        defect = (
-            f"the linkage meets a dead point or cannot close at crank angle {math.degrees(bad):.6g} deg "
-            "between the targets (circuit/branch defect)"
+    th4 = float(r.theta4[0])
+    if not math.isfinite(th4):
+        raise GearleverError(
+            f"the synthesized four-bar cannot be assembled at target 1 (input {math.degrees(phi[0]):.6g} deg): "
+            "the least-squares linkage does not reach every crank angle of the range; change the ranges or the points"
         )
-    else:
-        tol = max(_EXACT_TOL, 1e-9) if n == 3 else np.inf
-        worse = (miss > tol) & (miss_other < miss)
+    # sketch at the first target on that branch, positive lengths, the reversed links by pi
+    A = (A_ * math.cos(phi[0] + off_a), A_ * math.sin(phi[0] + off_a))
+    B = (d + C_ * math.cos(th4), C_ * math.sin(th4))
+    model = _written(fourbar_model((0.0, 0.0), (d, 0.0), A, B, name=name))
+
+    def rocker(res):
+        P, O = res.point["B"], res.point["O4"]
+        return np.arctan2(P[:, 1] - O[:, 1], P[:, 0] - O[:, 0]) - off_c
+
+    gen_t, gen_d, defect, q_off, evals = _engine(model, phi, dense, float(psi[0]), rocker)
+    n = phi.size
+    if not defect and n == 3:
+        # exact: every target on the sketch's branch; one met only on the other branch is a branch defect
+        other = fourbar(d, A_, b, C_, phi + off_a, branch="crossed" if branch == "open" else "open")
+        miss_other = np.abs(_wrap(other.theta4 - off_c - psi))
+        miss_t = np.abs(_wrap(gen_t - psi))
+        worse = (miss_t > _EXACT_TOL) & (miss_other < miss_t)
         if np.any(worse):
             j = int(np.flatnonzero(worse)[0])
             defect = f"target {j + 1} is reached only on the other assembly branch (branch defect)"
-    # sketch at the first target on that branch
-    th4 = float(r.theta4[0])
-    A = (a * math.cos(phi[0]), a * math.sin(phi[0]))
-    B = (d + C_ * math.cos(th4), C_ * math.sin(th4))
-    if not np.isfinite(th4):
-        raise GearleverError("the synthesized four-bar cannot assemble at the first target")
-    model = fourbar_model((0.0, 0.0), (d, 0.0), A, B, name=name)
-    gen_t, gen_d, evals = _engine_outputs(model, phi + off_a, dense + off_a, "O4", "B", off_c, psi[0])
-    err = gen_t - psi
-    derr = gen_d - want
     mu = transmission_angle(d, A_, b, C_, dense + off_a)
-    g = grashof(d, A_, b, C_).kind
     return FunctionSynthesis(
         "fourbar",
         phi,
         psi,
         gen_t,
-        err,
+        _wrap(gen_t - psi),
         np.array([K1, K2, K3]),
         {"ground": d, "crank": A_, "coupler": b, "rocker": C_},
         branch,
@@ -483,33 +683,16 @@ def _fourbar(phi, psi, d, dense, want, name):
         dense,
         want,
         gen_d,
-        *_error_and_angle_stats(derr, mu),
-        g,
+        *_error_and_angle_stats(gen_d - want, mu),
+        grashof(d, A_, b, C_).kind,
         defect,
         n == 3,
         longest,
         evals,
+        q_off,
+        off_c,
+        longest / min(d, A_, b, C_),
     )
-
-
-def _engine_outputs(model, q_targets, q_dense, pivot, pin, offset, ref, slider=False):
-    """Outputs at the targets and over the range from the mechanism engine (continuation from the sketch)."""
-    from gearlever.mechanism import Mechanism
-
-    mech = Mechanism.from_dict(model)
-    q = np.concatenate([q_targets, q_dense])
-    res = mech.solve(q[:, None])
-    P = res.point[pin]
-    if slider:
-        gen = np.where(res.closed, P[:, 0], np.nan)
-    else:
-        O = res.point[pivot]
-        raw = np.arctan2(P[:, 1] - O[:, 1], P[:, 0] - O[:, 0]) - offset
-        # the output as a continuous angle near the first target's
-        gen = np.where(res.closed, ref + _wrap(raw - ref), np.nan)
-        gen = np.where(res.closed, gen, np.nan)
-    n = q_targets.size
-    return gen[:n], gen[n:], int(q.size)
 
 
 def _slider(phi, s, dense, want, name):
@@ -518,12 +701,19 @@ def _slider(phi, s, dense, want, name):
     K1, K2, K3 = (float(k) for k in K)
     if abs(K1) < 1e-12 * max(1.0, float(np.abs(s).max())):
         raise GearleverError("the targets need a crank of zero length (K1 = 0); change the ranges")
-    a = K1 / 2
+    a = K1 / 2  # signed: a < 0 is the crank reversed
     e = K2 / K1
     b2 = K3 + a * a + e * e
-    if not b2 > 0:
+    if not (math.isfinite(b2) and b2 > 0):
         raise GearleverError(f"no real slider-crank meets these targets (rod length squared {b2:.6g} <= 0)")
     b = math.sqrt(b2)
+    A_ = abs(a)
+    scale = max(A_, b, abs(e), float(np.abs(s).max()))
+    if max(A_, b, abs(e)) > MAX_LINK_RATIO * min(A_, b):
+        raise GearleverError(
+            f"the targets need a slider-crank whose longest length is more than {MAX_LINK_RATIO:g} times its "
+            f"shortest link (crank {A_:.6g}, rod {b:.6g}, offset {e:.6g}); change the ranges"
+        )
     allphi = np.concatenate([phi, dense])
     h = e - a * np.sin(allphi)
     with np.errstate(invalid="ignore"):
@@ -534,28 +724,21 @@ def _slider(phi, s, dense, want, name):
     miss = {k: np.abs(v[:n] - s) for k, v in cands.items()}
     branch = min(cands, key=lambda k: (np.nan_to_num(miss[k][0], nan=np.inf), np.nanmax(miss[k])))
     other = "-" if branch == "+" else "+"
-    scale = max(abs(a), b, abs(e), float(np.abs(s).max()))
-    defect = ""
-    dense_ok = np.isfinite(root[n:]) & (root[n:] > 1e-9 * scale)
-    if not dense_ok.all():
-        bad = dense[int(np.flatnonzero(~dense_ok)[0])]
-        defect = (
-            f"the rod cannot reach the slider line or is at a dead point at crank angle {math.degrees(bad):.6g} deg "
-            "between the targets (branch defect)"
-        )
-    elif n == 3:
-        worse = (miss[branch] > 1e-9 * scale) & (miss[other] < miss[branch])
-        if np.any(worse):
-            defect = f"target {int(np.flatnonzero(worse)[0]) + 1} is reached only on the other branch (branch defect)"
     s0 = float(cands[branch][0])
     if not math.isfinite(s0):
-        raise GearleverError("the synthesized slider-crank cannot assemble at the first target")
-    model = slider_crank_model((0.0, 0.0), (a * math.cos(phi[0]), a * math.sin(phi[0])), (s0, e), name=name)
-    # the engine's crank angle is that of O2->A: a < 0 puts the pin at phi + pi
+        raise GearleverError(
+            f"the synthesized slider-crank cannot be assembled at target 1 (input {math.degrees(phi[0]):.6g} deg): "
+            "the rod does not reach the slider line there; change the ranges or the points"
+        )
     off_a = 0.0 if a > 0 else math.pi
-    gen_t, gen_d, evals = _engine_outputs(model, phi + off_a, dense + off_a, "O2", "B", 0.0, 0.0, slider=True)
-    err = gen_t - s
-    derr = gen_d - want
+    A = (A_ * math.cos(phi[0] + off_a), A_ * math.sin(phi[0] + off_a))
+    model = _written(slider_crank_model((0.0, 0.0), A, (s0, e), name=name))
+    gen_t, gen_d, defect, q_off, evals = _engine(model, phi, dense, None, lambda res: res.point["B"][:, 0])
+    if not defect and n == 3:
+        err = np.abs(gen_t - s)
+        worse = (err > 1e-9 * scale) & (miss[other] < err)
+        if np.any(worse):
+            defect = f"target {int(np.flatnonzero(worse)[0]) + 1} is reached only on the other branch (branch defect)"
     rod = np.arctan2(h[n:], root[n:] if branch == "+" else -root[n:])  # rod angle from B to A seen along the line
     mu = np.arccos(np.clip(np.abs(np.sin(rod)), 0.0, 1.0))
     return FunctionSynthesis(
@@ -563,18 +746,21 @@ def _slider(phi, s, dense, want, name):
         phi,
         s,
         gen_t,
-        err,
+        gen_t - s,
         np.array([K1, K2, K3]),
-        {"crank": abs(a), "rod": b, "offset": e},
+        {"crank": A_, "rod": b, "offset": e},
         branch,
         model,
         dense,
         want,
         gen_d,
-        *_error_and_angle_stats(derr, mu),
-        "crank turns fully" if b > abs(a) + abs(e) else "crank rocks",
+        *_error_and_angle_stats(gen_d - want, mu),
+        "crank turns fully" if b > A_ + abs(e) else "crank rocks",
         defect,
         n == 3,
         scale,
         evals,
+        q_off,
+        0.0,
+        max(A_, b, abs(e)) / min(A_, b),
     )

@@ -28,7 +28,20 @@
   const P = (name, k) => [at(S.x[name], k), at(S.y[name], k)];
   const inputAngle = (k) => D.inputs[0].start + 2 * Math.PI * k / N;
   function rotOf(link, k) { return link === "ground" ? 0 : at(S.phi[link], k); }
-  function fmt(v, d) { return v === null || v === undefined ? "–" : Number(v).toPrecision(d || 6).replace(/\.?0+(e|$)/, "$1"); }
+  // a number to d significant digits (default 6), trailing zeros of the fraction dropped (never those of
+  // a whole number: 1000 stays "1000"); "–" for no value
+  function fmt(v, d) {
+    if (v === null || v === undefined || v === "" || !isFinite(Number(v))) return "–";
+    const s = Number(v).toPrecision(d || 6);
+    const e = s.indexOf("e");
+    let man = e < 0 ? s : s.slice(0, e);
+    const ex = e < 0 ? "" : s.slice(e);
+    if (man.indexOf(".") >= 0) man = man.replace(/0+$/, "").replace(/\.$/, "");
+    if (/^-0*$/.test(man)) man = "0";
+    return man + ex;
+  }
+  // text for innerHTML: model names, units and labels are the user's text
+  const esc = (t) => String(t).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
 
   // units
   const U = D.units;
@@ -94,6 +107,13 @@
     }
     el("line", { class: "guide", x1: ox + s.smin * s.dir[0], y1: oy + s.smin * s.dir[1], x2: ox + s.smax * s.dir[0], y2: oy + s.smax * s.dir[1] }, gGround);
   });
+  // gears of the ground (a fixed sun, a ring gear): drawn once, they do not move
+  D.gears.filter((gr) => gr.link === "ground" && gr.r !== null).forEach((gr) => {
+    const [cx, cy] = P(gr.centre, 0);
+    if (cx === null || cy === null) return;
+    el("circle", { class: "gear ground-gear" + (gr.internal ? " internal" : ""), "data-gear": gr.name, cx: cx, cy: cy, r: gr.r }, gGround);
+    if (gr.internal) el("circle", { class: "ring-back", cx: cx, cy: cy, r: gr.r + 0.05 * L }, gGround);
+  });
   function firstClosed() { for (let k = 0; k < N; k++) if (closedAt(k)) return k; return -1; }
 
   // moving links: one group each, holding its body, slider blocks, moving guides and gears
@@ -110,7 +130,7 @@
     D.gears.filter((gr) => gr.link === lk.name && gr.r !== null).forEach((gr) => {
       parts.gears.push({
         gr: gr,
-        c: el("circle", { class: "gear" + (gr.internal ? " internal" : ""), stroke: color, r: gr.r }, g),
+        c: el("circle", { class: "gear" + (gr.internal ? " internal" : ""), "data-gear": gr.name, stroke: color, r: gr.r }, g),
         m: el("line", { class: "gear-mark", stroke: color }, g),
       });
     });
@@ -124,7 +144,11 @@
   });
   // the input: a dashed ring about its pivot
   let inputMark = null;
-  if (pivotName) inputMark = el("circle", { class: "input-mark", r: 0.16 * L }, gLinks);
+  let inputHit = null;
+  if (pivotName) {
+    inputMark = el("circle", { class: "input-mark", r: 0.16 * L }, gLinks);
+    inputHit = el("circle", { class: "input-hit grab", "data-input-ring": D.inputs[0].label, r: 0.16 * L }, gLinks);
+  }
 
   // paths of the moving points
   const movingPoints = D.points.filter((p) => D.ground_points.indexOf(p) < 0);
@@ -237,12 +261,90 @@
     const sx = evt.clientX - r.left, sy = evt.clientY - r.top;
     return [(sx - st.tx) / st.s, (st.ty - sy) / st.s];
   }
-  function placeText(t, x, y, dx, dy) {
+  // labels are queued by render() and laid out together: each at the first of a ring of places about its
+  // anchor that stays inside the drawing and overlaps no label placed before it (nor a point), in order
+  // of priority (points, links, gears, centres); coincident anchors therefore fan out instead of stacking
+  let queue = [];
+  function placeText(t, x, y, dx, dy, rank) {
     if (x === null || y === null || !isFinite(x) || !isFinite(y)) { show(t, false); return; }
     const [X, Y] = toScreen(x, y);
-    t.setAttribute("x", (X + dx).toFixed(1));
-    t.setAttribute("y", (Y + dy).toFixed(1));
-    show(t, true);
+    queue.push({ t: t, X: X, Y: Y, dx: dx, dy: dy, rank: rank || 0 });
+  }
+  const boxCache = new Map();
+  function textBox(t) {
+    // the label's box relative to its (x, y), measured once per label and text-anchor
+    const key = t.getAttribute("text-anchor") || "start";
+    let c = boxCache.get(t);
+    if (c && c.key === key) return c;
+    t.setAttribute("x", 0); t.setAttribute("y", 0);
+    const b = t.getBBox();
+    c = { key: key, x: b.x - 1, y: b.y - 1, w: b.width + 2, h: b.height + 2 };
+    boxCache.set(t, c);
+    return c;
+  }
+  const RING = (() => {
+    const out = [];
+    [10, 18, 28, 40, 54].forEach((r) => {
+      for (let i = 0; i < 12; i++) { const a = -Math.PI / 4 + i * Math.PI / 6; out.push([r * Math.cos(a), -r * Math.sin(a)]); }
+    });
+    return out;
+  })();
+  function layoutLabels(points) {
+    const W = view.clientWidth || 800, H = view.clientHeight || 500;
+    // boxes placed so far (labels weigh 10, point circles 1) in a grid of 48 px cells: a place is
+    // checked against its neighbours only, so that a model with hundreds of names still animates
+    const CELL = 48, cells = new Map();
+    const cellsOf = (b, f) => {
+      const i1 = Math.floor((b.x + b.w) / CELL), j1 = Math.floor((b.y + b.h) / CELL);
+      for (let i = Math.floor(b.x / CELL); i <= i1; i++) for (let j = Math.floor(b.y / CELL); j <= j1; j++) f(i * 65536 + j);
+    };
+    const add = (b) => cellsOf(b, (c) => { const a = cells.get(c); if (a) a.push(b); else cells.set(c, [b]); });
+    const overlap = (a, b) => Math.max(0, Math.min(a.x + a.w, b.x + b.w) - Math.max(a.x, b.x)) * Math.max(0, Math.min(a.y + a.h, b.y + b.h) - Math.max(a.y, b.y));
+    const cost = (b, limit) => {  // the weighted overlap with the boxes near b, summed up to limit
+      let c = 0;
+      const i0 = Math.floor(b.x / CELL), i1 = Math.floor((b.x + b.w) / CELL);
+      const j0 = Math.floor(b.y / CELL), j1 = Math.floor((b.y + b.h) / CELL);
+      for (let i = i0; i <= i1; i++) for (let j = j0; j <= j1; j++) {
+        const a = cells.get(i * 65536 + j);
+        if (!a) continue;
+        for (let n = 0; n < a.length; n++) { c += a[n].wt * overlap(b, a[n]); if (c >= limit) return c; }
+      }
+      return c;
+    };
+    const inside = (b) => b.x >= 1 && b.y >= 1 && b.x + b.w <= W - 1 && b.y + b.h <= H - 1;
+    points.forEach(([X, Y]) => { if (X >= -5 && X <= W + 5 && Y >= -5 && Y <= H + 5) add({ x: X - 5, y: Y - 5, w: 10, h: 10, wt: 1 }); });
+    queue.sort((a, b) => a.rank - b.rank);
+    // with many names the search stays near the anchor (the first ring), so that playing stays smooth
+    const tries = queue.length > 60 ? 12 : RING.length;
+    queue.forEach((q) => {
+      // an anchor out of the drawing (panned or zoomed away, a far centre): no label pinned to the edge
+      if (!(q.X >= 0 && q.X <= W && q.Y >= 0 && q.Y <= H)) { show(q.t, false); return; }
+      show(q.t, true);
+      const rel = textBox(q.t);
+      let best = null, bestCost = Infinity;
+      for (let n = -1; n < tries; n++) {
+        let dx = q.dx, dy = q.dy;
+        if (n >= 0) {
+          // a ring place: the box's nearest corner at (u, v) from the anchor
+          const [u, v] = RING[n];
+          dx = (u >= 0 ? u : u - rel.w) - rel.x; dy = (v >= 0 ? v : v - rel.h) - rel.y;
+        }
+        const b = { x: q.X + dx + rel.x, y: q.Y + dy + rel.y, w: rel.w, h: rel.h, wt: 10 };
+        if (!inside(b)) continue;
+        const c = cost(b, bestCost);
+        if (c < bestCost) { bestCost = c; best = [dx, dy, b]; }
+        if (c === 0) break;
+      }
+      if (!best) {  // no place inside: clamp the preferred one into the drawing
+        const b = { x: q.X + q.dx + rel.x, y: q.Y + q.dy + rel.y, w: rel.w, h: rel.h, wt: 10 };
+        const nx = Math.min(Math.max(b.x, 1), Math.max(1, W - 1 - b.w)), ny = Math.min(Math.max(b.y, 1), Math.max(1, H - 1 - b.h));
+        best = [q.dx + nx - b.x, q.dy + ny - b.y, { x: nx, y: ny, w: b.w, h: b.h, wt: 10 }];
+      }
+      q.t.setAttribute("x", (q.X + best[0]).toFixed(1));
+      q.t.setAttribute("y", (q.Y + best[1]).toFixed(1));
+      add(best[2]);
+    });
+    queue = [];
   }
 
   // ------------------------------------------------------------------ render one frame
@@ -259,7 +361,7 @@
       const c = pointEls[p];
       if (ok && x !== null && y !== null) {
         c.setAttribute("cx", x); c.setAttribute("cy", y); show(c, true);
-        if (names) placeText(pointLabels[p], x, y, 6, -6); else show(pointLabels[p], false);
+        if (names) placeText(pointLabels[p], x, y, 6, -6, 0); else show(pointLabels[p], false);
       } else { show(c, false); show(pointLabels[p], false); }
     });
     // links
@@ -298,16 +400,18 @@
       if (names) {
         const [cx, cy, anchor] = labelAnchor(lk, parts, xy, k);
         linkLabels[lk.name].setAttribute("text-anchor", anchor || "start");
-        placeText(linkLabels[lk.name], cx, cy, anchor ? -4 : 8, anchor ? -4 : 16);
+        placeText(linkLabels[lk.name], cx, cy, anchor ? -4 : 8, anchor ? -4 : 16, 1);
       } else show(linkLabels[lk.name], false);
     });
     if (inputMark) {
       const [x, y] = P(pivotName, k);
-      if (ok && x !== null) { inputMark.setAttribute("cx", x); inputMark.setAttribute("cy", y); show(inputMark, true); } else show(inputMark, false);
+      [inputMark, inputHit].forEach((e) => {
+        if (ok && x !== null) { e.setAttribute("cx", x); e.setAttribute("cy", y); show(e, true); } else show(e, false);
+      });
     }
     gearLabels.forEach(({ g, t }) => {
       const [x, y] = P(g.centre, k);
-      if (ok && names) placeText(t, x + g.r * 0.5, y - g.r * 0.866, 4, 14); else show(t, false);
+      if (ok && names) placeText(t, x + g.r * 0.5, y - g.r * 0.866, 4, 14, 2); else show(t, false);
     });
     // arrows: one scale for every point and frame
     const vOn = $("show-velocity").checked, aOn = $("show-acceleration").checked;
@@ -328,11 +432,14 @@
         const e = icEls[pair];
         if (ok && cx !== null && cy !== null) { e.setAttribute("cx", cx); e.setAttribute("cy", cy); show(e, true); }
         else show(e, false);
-        if (icOn && ok && cx !== null && cy !== null) placeText(icLabels[pair], cx, cy, 5, 14); else show(icLabels[pair], false);
+        if (icOn && ok && cx !== null && cy !== null) placeText(icLabels[pair], cx, cy, 5, 14, 3); else show(icLabels[pair], false);
       });
       gCentres.style.display = icOn ? "" : "none";
       drawKennedy();
     }
+    const dots = [];
+    if (ok) D.points.forEach((p) => { const [x, y] = P(p, k); if (x !== null && y !== null) dots.push(toScreen(x, y)); });
+    layoutLabels(dots);
     readout();
     plotCursor();
     scheduleUrl();
@@ -405,13 +512,13 @@
     const k = st.frame;
     const th = inputAngle(k) * DEG;
     const inp = D.inputs[0];
-    let html = `${inp.label}: θ = ${th.toFixed(2)}°`;
+    let html = `${esc(inp.label)}: θ = ${th.toFixed(2)}°`;
     if (D.period) html += ` · t = ${(D.period * k / N).toFixed(4)} s`;
     html += ` · frame ${k}/${N}`;
     D.inputs.slice(1).forEach((p, i) => {
       let v = p.start;
       if (D.grid && i === 0) v = D.grid.values[st.grid];
-      html += p.kind === "link" ? ` · ${p.label} = ${(v * DEG).toFixed(2)}°` : ` · ${p.label} = ${fmt(v)} ${U}`;
+      html += p.kind === "link" ? ` · ${esc(p.label)} = ${(v * DEG).toFixed(2)}°` : ` · ${esc(p.label)} = ${fmt(v)} ${esc(U)}`;
     });
     if (!closedAt(k)) html += ' · <span class="warn">not assembled</span>';
     $("readout").innerHTML = html;
@@ -419,13 +526,13 @@
   }
   function legend() {
     const parts = [];
-    if (pivotName) parts.push(`<span class="ring"></span>input: ${D.inputs[0].label} (thick, drag it)`);
+    if (pivotName) parts.push(`<span class="ring"></span>input: ${esc(D.inputs[0].label)} (thick, drag it)`);
     if ($("show-velocity").checked && D.vscale > 0)
-      parts.push(`<span class="key" style="border-color:#0b6e4f"></span>velocity: 1 ${U} of arrow = ${fmt(1 / D.vscale, 4)} ${velUnit}`);
+      parts.push(`<span class="key" style="border-color:#0b6e4f"></span>velocity: 1 ${esc(U)} of arrow = ${fmt(1 / D.vscale, 4)} ${esc(velUnit)}`);
     if ($("show-acceleration").checked && D.ascale > 0)
-      parts.push(`<span class="key" style="border-color:#a23b72"></span>acceleration: 1 ${U} of arrow = ${fmt(1 / D.ascale, 4)} ${accUnit}`);
+      parts.push(`<span class="key" style="border-color:#a23b72"></span>acceleration: 1 ${esc(U)} of arrow = ${fmt(1 / D.ascale, 4)} ${esc(accUnit)}`);
     if (IC && $("show-centres").checked)
-      parts.push("instant centres ij: " + IC.links.map((n, i) => `${i + 1} ${n}`).join(", "));
+      parts.push("instant centres ij: " + IC.links.map((n, i) => `${i + 1} ${esc(n)}`).join(", "));
     $("legend").innerHTML = parts.join("<br>");
   }
   function applyToggles() {
@@ -474,6 +581,15 @@
     for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) out.push(v);
     return out;
   }
+  // an axis tick: the decimals its step needs (2.5 -> "2.5", 1000 -> "1000"); very large or small
+  // values to 6 significant digits
+  function tickLabel(v, step) {
+    if (Math.abs(v) < 1e-9 * step) return "0";
+    const a = Math.max(Math.abs(v), step);
+    if (a >= 1e7 || a < 1e-4) return fmt(v, 6);
+    const dec = Math.min(12, Math.max(0, Math.ceil(-Math.log10(step)) + 1));
+    return fmt(Number(v.toFixed(dec)), 15);
+  }
   function drawPlot() {
     while (plot.firstChild) plot.removeChild(plot.firstChild);
     const q = quantities.find((x) => x.id === qsel.value);
@@ -488,13 +604,16 @@
     const x0 = xs[0], x1 = xs[0] + 360;
     const X = (v) => PM.l + (W - PM.l - PM.r) * (v - x0) / (x1 - x0);
     const Y = (v) => PM.t + (H - PM.t - PM.b) * (hi - v) / (hi - lo);
-    niceTicks(lo, hi, 4).forEach((v) => {
+    const yt = niceTicks(lo, hi, 4), xt = niceTicks(x0, x1, 8);
+    yt.forEach((v) => {
       el("line", { class: "grid", x1: PM.l, x2: W - PM.r, y1: Y(v), y2: Y(v) }, plot);
-      const t = el("text", { x: PM.l - 4, y: Y(v) + 4, "text-anchor": "end" }, plot); t.textContent = fmt(v, 4);
+      const t = el("text", { class: "ytick", x: PM.l - 4, y: Y(v) + 4, "text-anchor": "end", "data-value": v }, plot);
+      t.textContent = tickLabel(v, yt.length > 1 ? yt[1] - yt[0] : Math.abs(v) || 1);
     });
-    niceTicks(x0, x1, 8).forEach((v) => {
+    xt.forEach((v) => {
       el("line", { class: "grid", y1: PM.t, y2: H - PM.b, x1: X(v), x2: X(v) }, plot);
-      const t = el("text", { x: X(v), y: H - PM.b + 14, "text-anchor": "middle" }, plot); t.textContent = fmt(v, 4);
+      const t = el("text", { class: "xtick", x: X(v), y: H - PM.b + 14, "text-anchor": "middle", "data-value": v }, plot);
+      t.textContent = tickLabel(v, xt.length > 1 ? xt[1] - xt[0] : Math.abs(v) || 1);
     });
     el("line", { class: "axis", x1: PM.l, x2: W - PM.r, y1: H - PM.b, y2: H - PM.b }, plot);
     el("line", { class: "axis", x1: PM.l, x2: PM.l, y1: PM.t, y2: H - PM.b }, plot);
@@ -507,7 +626,7 @@
     el("path", { class: "curve", d: d }, plot);
     const cursor = el("line", { class: "cursor", y1: PM.t, y2: H - PM.b }, plot);
     const hover = el("line", { class: "hover", y1: PM.t, y2: H - PM.b }, plot);
-    const htext = el("text", { y: PM.t + 12 }, plot);
+    const htext = el("text", { class: "hover-text", y: PM.t + 12 }, plot);
     show(hover, false); show(htext, false);
     plotState = { q, xs, ys, X, Y, W, cursor, hover, htext };
     plotCursor();
@@ -580,6 +699,18 @@
   $("step-back").addEventListener("click", () => { setPlaying(false); setFrame(st.frame - 1); });
   $("speed").addEventListener("change", () => { st.speed = Number($("speed").value); });
   $("fit").addEventListener("click", fit);
+  // narrow windows: the check boxes are a menu under the "show" button
+  $("options-button").addEventListener("click", (evt) => {
+    evt.stopPropagation();
+    const open = $("toolbar").classList.toggle("open");
+    $("options-button").setAttribute("aria-expanded", open ? "true" : "false");
+  });
+  document.addEventListener("click", (evt) => {
+    if ($("toolbar").classList.contains("open") && !$("options").contains(evt.target)) {
+      $("toolbar").classList.remove("open");
+      $("options-button").setAttribute("aria-expanded", "false");
+    }
+  });
   const frameInput = $("frame");
   frameInput.max = N - 1;
   frameInput.addEventListener("input", () => setFrame(Number(frameInput.value)));
@@ -611,18 +742,21 @@
     st.s *= f; st.tx = sx - st.s * wx; st.ty = sy + st.s * wy;
     applyView();
   }, { passive: false });
-  function inputAbsAngle(k) {
-    const lk = D.links.find((l) => l.name === inputLink);
-    const v = at(S.phi[inputLink], k);
-    return v === null ? null : v + lk.angle0;
+  // the pointer's angle about the input's pivot (null within a few pixels of it: no direction there)
+  function pointerAngle(evt) {
+    const [wx, wy] = toWorld(evt);
+    const [px, py] = P(pivotName, st.frame);
+    if (px === null || py === null) return null;
+    const dx = wx - px, dy = wy - py;
+    return Math.hypot(dx, dy) * st.s < 6 ? null : Math.atan2(dy, dx);
   }
+  // dragging the input is relative: the input turns by the change of the pointer's angle about the pivot
+  // since the grab (from wherever it starts, the pivot included), one frame per 360/N degrees
   view.addEventListener("pointerdown", (evt) => {
     const grab = evt.target.closest && evt.target.closest(".grab");
     view.setPointerCapture(evt.pointerId);
-    if (grab && inputLink && closedAt(st.frame)) {
-      const [wx, wy] = toWorld(evt);
-      const [px, py] = P(pivotName, st.frame);
-      st.drag = { mode: "input", off: Math.atan2(wy - py, wx - px) - inputAbsAngle(st.frame) };
+    if (grab && inputLink && pivotName) {
+      st.drag = { mode: "input", k0: st.frame, a: pointerAngle(evt), turn: 0 };
       setPlaying(false);
     } else {
       st.drag = { mode: "pan", x: evt.clientX, y: evt.clientY };
@@ -638,17 +772,12 @@
       applyView();
       return;
     }
-    const [wx, wy] = toWorld(evt);
-    const [px, py] = P(pivotName, st.frame);
-    const target = Math.atan2(wy - py, wx - px) - d.off;
-    let best = st.frame, bestd = Infinity;
-    for (let k = 0; k < N; k++) {
-      const a = inputAbsAngle(k);
-      if (a === null || !closedAt(k)) continue;
-      const dd = Math.abs(Math.atan2(Math.sin(a - target), Math.cos(a - target)));
-      if (dd < bestd) { bestd = dd; best = k; }
-    }
-    if (best !== st.frame) setFrame(best);
+    const a = pointerAngle(evt);
+    if (a === null) return;
+    if (d.a !== null) d.turn += Math.atan2(Math.sin(a - d.a), Math.cos(a - d.a));
+    d.a = a;
+    const k = d.k0 + Math.round(d.turn * N / (2 * Math.PI));
+    if (((k % N) + N) % N !== st.frame) setFrame(k);
   });
   function endDrag(evt) {
     if (st.drag) { st.drag = null; view.style.cursor = ""; try { view.releasePointerCapture(evt.pointerId); } catch (e) { /* released */ } }
@@ -677,29 +806,63 @@
     clone.insertBefore(style, clone.firstChild);
     download(`${base}_frame${st.frame}.svg`, new XMLSerializer().serializeToString(clone), "image/svg+xml");
   });
-  function frameRows() {
-    const k = st.frame, rows = [["quantity", "value", "unit"]];
-    rows.push(["frame", k, ""]);
-    rows.push([`input ${D.inputs[0].label}`, inputAngle(k) * DEG, "deg"]);
-    if (D.period) rows.push(["time", D.period * k / N, "s"]);
-    if (D.grid) rows.push([`input ${D.inputs[1].label}`, D.inputs[1].kind === "link" ? D.grid.values[st.grid] * DEG : D.grid.values[st.grid], D.inputs[1].kind === "link" ? "deg" : U]);
-    rows.push(["assembled", closedAt(k) ? 1 : 0, ""]);
-    D.points.forEach((p) => { rows.push([`${p} x`, at(S.x[p], k), U]); rows.push([`${p} y`, at(S.y[p], k), U]); });
-    quantities.filter((q) => !/^(x|y):/.test(q.id)).forEach((q) => {
-      const m = q.label.match(/^(.*) \((.*)\)$/);
-      rows.push([m ? m[1] : q.label, q.get(k), m ? m[2] : ""]);
+  // the whole cycle shown (every frame, at the chosen value of the second input) as CSV: one row per
+  // frame, columns named as `gearlever mechanism analyze` names them; a cell is empty where there is no
+  // value (the frame does not assemble, a centre at infinity)
+  function cycleCsv() {
+    const u = rated ? { v: "_s", a: "_s2", w: "rad_s", al: "rad_s2" }
+      : { v: "_per_" + D.inputs[0].label, a: "_per_" + D.inputs[0].label + "_sq", w: "per_" + D.inputs[0].label, al: "per_" + D.inputs[0].label + "_sq" };
+    const cols = [];
+    const col = (name, get) => cols.push({ name: name, get: get });
+    col("frame", (k) => k);
+    col(`input_${D.inputs[0].label}_deg`, (k) => inputAngle(k) * DEG);
+    if (D.period) col("time_s", (k) => D.period * k / N);
+    D.inputs.slice(1).forEach((p, i) => {
+      const v = D.grid && i === 0 ? D.grid.values[st.grid] : p.start;
+      col(p.kind === "link" ? `input_${p.label}_deg` : `input_${p.label}_${U}`, () => (p.kind === "link" ? v * DEG : v));
     });
-    if (IC) IC.pairs.forEach((pair) => { const c = icAt(pair, k); rows.push([`centre ${pair} x`, c && c.p ? c.p[0] : null, U]); rows.push([`centre ${pair} y`, c && c.p ? c.p[1] : null, U]); });
-    const cell = (v) => { if (v === null || v === undefined || (typeof v === "number" && !isFinite(v))) return "nan"; const s = String(v); return /[",\n]/.test(s) ? '"' + s.replace(/"/g, '""') + '"' : s; };
-    return rows.map((r) => r.map(cell).join(",")).join("\n") + "\n";
+    col("closed", (k) => (closedAt(k) ? 1 : 0));
+    const ifClosed = (f) => (k) => (closedAt(k) ? f(k) : null);
+    D.links.forEach((lk) => {
+      col(`${lk.name}_angle_deg`, ifClosed((k) => { const v = at(S.phi[lk.name], k); return v === null ? null : (v + lk.angle0) * DEG; }));
+      col(`omega_${lk.name}_${u.w}`, ifClosed((k) => at(S.w[lk.name], k)));
+      col(`alpha_${lk.name}_${u.al}`, ifClosed((k) => at(S.al[lk.name], k)));
+    });
+    D.sliders.forEach((sl) => {
+      col(`${sl.name}_s_${U}`, ifClosed((k) => at(S.s[sl.name], k)));
+      col(`v_${sl.name}_${U}${u.v}`, ifClosed((k) => at(S.sv[sl.name], k)));
+      col(`a_${sl.name}_${U}${u.a}`, ifClosed((k) => at(S.sa[sl.name], k)));
+    });
+    D.points.forEach((p) => {
+      col(`${p}_x_${U}`, ifClosed((k) => at(S.x[p], k)));
+      col(`${p}_y_${U}`, ifClosed((k) => at(S.y[p], k)));
+      col(`v_${p}_x_${U}${u.v}`, ifClosed((k) => at(S.vx[p], k)));
+      col(`v_${p}_y_${U}${u.v}`, ifClosed((k) => at(S.vy[p], k)));
+      col(`a_${p}_x_${U}${u.a}`, ifClosed((k) => at(S.ax[p], k)));
+      col(`a_${p}_y_${U}${u.a}`, ifClosed((k) => at(S.ay[p], k)));
+    });
+    if (IC) IC.pairs.forEach((pair) => {
+      col(`ic_${pair}_x_${U}`, ifClosed((k) => { const c = icAt(pair, k); return c && c.p ? c.p[0] : null; }));
+      col(`ic_${pair}_y_${U}`, ifClosed((k) => { const c = icAt(pair, k); return c && c.p ? c.p[1] : null; }));
+    });
+    const cell = (v) => {
+      if (v === null || v === undefined) return "";
+      if (typeof v === "number") return isFinite(v) ? String(Number(v.toPrecision(9))) : "";
+      const t = String(v);
+      return /[",\r\n]/.test(t) ? '"' + t.replace(/"/g, '""') + '"' : t;
+    };
+    const lines = [cols.map((c) => cell(c.name)).join(",")];
+    for (let k = 0; k < N; k++) lines.push(cols.map((c) => cell(c.get(k))).join(","));
+    return lines.join("\n") + "\n";
   }
-  $("export-csv").addEventListener("click", () => download(`${base}_frame${st.frame}.csv`, frameRows(), "text/csv"));
+  $("export-csv").addEventListener("click", () => download(`${base}${D.grid ? "_" + st.grid : ""}_cycle.csv`, cycleCsv(), "text/csv"));
 
   // ------------------------------------------------------------------ start
   const note = [];
   if (D.grid) note.push(`Two or more inputs: the first (${D.inputs[0].label}) turns over the frames; the slider "${D.inputs[1].label}" chooses one of ${D.grid.values.length} precomputed values of the second` + (D.inputs.length > 2 ? "; further inputs stay at their start values." : "."));
   note.push(rated ? `Velocities and accelerations at ${D.inputs.map((p) => p.label + " " + fmt(p.rate * (p.kind === "link" ? 30 / Math.PI : 60), 6) + (p.kind === "link" ? " rpm" : " " + U + "/min")).join(", ")}, constant speed.` : `Velocities and accelerations are analogues per radian of ${D.inputs[0].label} (no --rpm given).`);
-  note.push("Drag the input link to move it; drag the background to pan, wheel to zoom; space plays, arrows step.");
+  if (D.centres_capped) note.push(`Instant centres are shown for models of at most ${D.centres_max} bodies.`);
+  note.push("Drag the input link, its gear or its dashed ring to turn it; drag the background to pan, wheel to zoom; space plays, arrows step.");
   $("note").textContent = note.join(" ");
   buildPaths();
   const params = new URLSearchParams(window.location.search);
@@ -711,5 +874,7 @@
   applyToggles();
   drawPlot();
   if (params.get("play") === "1") setPlaying(true);
+  // for tests and scripts: the number formatter of the axes, the hover and the legend, and the CSV text
+  window.gearlever = { fmt: fmt, tickLabel: tickLabel, cycleCsv: cycleCsv };
   document.body.setAttribute("data-ready", "1");
 })();
