@@ -105,6 +105,9 @@ def register(sub) -> None:
     from gearlever.cli._synthesize_path import register_path
 
     register_path(ss)
+    from gearlever.cli.synthesize_law import register_law
+
+    register_law(ss)
 
 
 def _read_csv(path: str, flag: str, columns: tuple) -> dict:

@@ -1,0 +1,27 @@
+"""Law synthesis: a linkage or geared linkage whose output follows a motion law over the whole cycle.
+
+- :mod:`~gearlever.synthesis.law._core`: the sampled target
+  (:class:`LawTarget`, :func:`law_target`), the kind interface
+  (:class:`LawKind`) and registry (:data:`KINDS`), the objective and the
+  minimax polish (:class:`LawProblem`).
+- one module per kind, each registering itself:
+  :mod:`~gearlever.synthesis.law.fourbar` (crank-rocker, rocker output),
+  :mod:`~gearlever.synthesis.law.slider_crank` (offset slider output),
+  :mod:`~gearlever.synthesis.law.geared_fourbar` (coupler gear driving an
+  output gear), :mod:`~gearlever.synthesis.law.sixbar_dwell` (a dyad on a
+  circular arc of a coupler curve).
+- :mod:`~gearlever.synthesis.law.driver`: seeded starts on dask over the
+  registry, :class:`LawSynthesis`.
+- :mod:`~gearlever.synthesis.law.measure`: the law a mechanism model
+  produces, segments fitted (the inverse use), and the report of a synthesis.
+
+Numeric core: may import numpy, scipy, :mod:`gearlever.synthesis`,
+:mod:`gearlever.mechanism`, :mod:`gearlever.laws`, :mod:`gearlever.errors`;
+never pandas or matplotlib.
+"""
+
+from gearlever.synthesis.law import fourbar, geared_fourbar, sixbar_dwell, slider_crank  # noqa: F401 (the kinds)
+from gearlever.synthesis.law._core import KINDS, LawKind, LawProblem, LawTarget, law_target
+from gearlever.synthesis.law.driver import LawSynthesis, synthesize_law
+
+__all__ = ["KINDS", "LawKind", "LawProblem", "LawSynthesis", "LawTarget", "law_target", "synthesize_law"]

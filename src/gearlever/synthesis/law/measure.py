@@ -1,0 +1,287 @@
+"""The law a mechanism produces (the inverse use), its segments, and the report of a law synthesis.
+
+:func:`mechanism_law` solves a model with the mechanism engine over one
+turn of its (single, link) input, counter-clockwise from the sketch, and
+returns the output link's rotation (or the output slider's travel) and its
+velocity and acceleration analogues; :func:`fit_segments` splits it into
+dwells (speed below a threshold), rises and returns; :func:`law_report`
+measures a :class:`~gearlever.synthesis.law.driver.LawSynthesis` against
+its law.
+
+Numeric core: numpy, :mod:`gearlever.mechanism` and :mod:`gearlever.cams` (the cam comparison).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearlever._result import Result
+from gearlever.errors import GearleverError
+
+__all__ = ["MechanismLaw", "mechanism_law", "fit_segments", "law_report", "cam_comparison", "DWELL_THRESHOLD"]
+
+#: A dwell: the output's speed analogue below this fraction of its peak.
+DWELL_THRESHOLD = 0.01
+#: Shortest dwell reported (degrees of input).
+MIN_DWELL_DEG = 10.0
+
+
+@dataclass(frozen=True)
+class MechanismLaw(Result):
+    """The output of a mechanism over one input turn.
+
+    Attributes
+    ----------
+    theta : ndarray (N,)
+        Input rotation from the sketch, radians.
+    s, v, a : ndarray (N,)
+        Output rotation (radians) or travel from the sketch, and its
+        velocity and acceleration analogues (per radian of input).
+    output : str
+        The output link (or slider) name.
+    kind : {"angle", "displacement"}
+    closed : ndarray (N,) of bool
+    net : float
+        Output change over the whole turn (0 when it returns).
+    """
+
+    theta: np.ndarray
+    s: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    output: str
+    kind: str
+    closed: np.ndarray
+    net: float = 0.0
+
+
+def mechanism_law(mech, output: str, samples: int = 3600) -> MechanismLaw:
+    """Solve ``mech`` (a :class:`~gearlever.mechanism.Mechanism`) over one ccw turn of its input; read ``output``.
+
+    ``output`` names a link (its rotation) or a slider (its travel).  The
+    mechanism must have one input, a link.
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> m = Mechanism.from_dict({
+    ...     "points": {"O2": [0, 0], "O4": [4, 0], "A": [1, 0], "B": [4.5, 2.8]},
+    ...     "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"], "output": ["O4", "B"]},
+    ...     "inputs": [{"link": "crank"}]})
+    >>> r = mechanism_law(m, "output", 3600)
+    >>> bool(r.closed.all()), round(float(np.degrees(np.ptp(r.s))), 3)  # the rocker's swing by the cosine law
+    (True, 46.918)
+    """
+    model = mech.model
+    if len(model.inputs) != 1 or model.inputs[0].kind != "link":
+        raise GearleverError("the mechanism must have one input, a link, to be turned through one cycle")
+    samples = int(samples)
+    if not 8 <= samples <= 100_000:
+        raise GearleverError(f"samples must be 8..100000, got {samples}")
+    spec = model.inputs[0]
+    sliders = {s.name: s for s in model.sliders}
+    if output in sliders:
+        kind = "displacement"
+    elif output in model.links and output != "ground":
+        kind = "angle"
+    else:
+        names = sorted(set([k for k in model.links if k != "ground"] + list(sliders)))
+        raise GearleverError(f"output {output!r} is not a moving link or slider of the model ({', '.join(names)})")
+    q0 = model.links[spec.name].angle0
+    if spec.relative_to is not None:
+        q0 -= model.links[spec.relative_to].angle0
+    theta = np.linspace(0.0, 2 * math.pi, samples, endpoint=False)
+    res = mech.solve((q0 + np.append(theta, 2 * math.pi))[:, None])
+    if kind == "angle":
+        s = res.angle[output] - model.links[output].angle0
+        v, a = res.omega[output], res.alpha[output]
+    else:
+        s, v, a = res.displacement[output], res.slider_velocity[output], res.slider_acceleration[output]
+    net = float(s[-1] - s[0])
+    net = 0.0 if abs(net) <= 1e-9 * max(1.0, float(np.ptp(s))) else net
+    return MechanismLaw(theta, s[:-1], v[:-1], a[:-1], output, kind, res.closed[:-1] & res.closed[-1], net)
+
+
+def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD, min_dwell_deg: float = MIN_DWELL_DEG) -> list:
+    """Dwells, rises and returns of a periodic output over one turn.
+
+    A sample dwells when ``|v|`` is below ``threshold`` times the peak
+    ``|v|``; runs of samples of one class (dwell, rise ``v > 0``, return
+    ``v < 0``) are the segments, joined across the end of the turn; a
+    dwell shorter than ``min_dwell_deg`` (a reversal's stationary point) is
+    counted with the motion around it.
+
+    Returns
+    -------
+    list of dict
+        ``motion, from_deg, to_deg, rise, excursion`` per segment (output units), the one holding input 0
+        first (``from_deg > to_deg`` when it wraps).
+
+    Examples
+    --------
+    >>> th = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+    >>> s = np.where(th < np.pi, 0.0, 1 - np.cos(2 * th))
+    >>> [g["motion"] for g in fit_segments(th, s, np.gradient(s, th))]
+    ['dwell', 'rise', 'return']
+    """
+    theta, s, v = (np.asarray(x, dtype=float) for x in (theta, s, v))
+    vmax = float(np.max(np.abs(v))) if v.size else 0.0
+    cls = np.where(np.abs(v) <= threshold * vmax, 0, np.where(v > 0, 1, -1)) if vmax > 0 else np.zeros(v.size, int)
+    n = cls.size
+    width = max(1, int(math.ceil(math.radians(min_dwell_deg) / (2 * math.pi / max(n, 1)))))
+    runs = _runs(cls)
+    for st, ln in runs:
+        if cls[st] == 0 and ln < width and ln < n:
+            idx = (st + np.arange(ln)) % n
+            cls[idx] = np.where(v[idx] >= 0, 1, -1)
+    # start at a change of class so that no run wraps
+    change = np.flatnonzero(cls != np.roll(cls, 1))
+    if change.size == 0:
+        return [{"motion": "dwell" if cls[0] == 0 else "rise", "from_deg": 0.0, "to_deg": 360.0, "rise": 0.0}]
+    start = int(change[0])
+    order = (np.arange(n) + start) % n
+    out = []
+    i = 0
+    names = {0: "dwell", 1: "rise", -1: "return"}
+    step = 2 * math.pi / n
+    while i < n:
+        j = i
+        while j + 1 < n and cls[order[j + 1]] == cls[order[i]]:
+            j += 1
+        idx = order[i : j + 1]
+        end = order[(j + 1) % n]
+        rise = float(s[end] - s[idx[0]])
+        out.append(
+            {
+                "motion": names[int(cls[idx[0]])],
+                "from_deg": round(math.degrees(theta[idx[0]]), 9),
+                "to_deg": round(math.degrees(theta[idx[-1]] + step), 9) % 360.0 or 360.0,
+                "rise": rise,
+                "excursion": float(np.ptp(s[idx])),
+            }
+        )
+        i = j + 1
+    # the segment holding input 0 first (it may start before 360 and wrap)
+    return sorted(out, key=lambda g: -1.0 if g["from_deg"] > g["to_deg"] else g["from_deg"])
+
+
+def _runs(cls) -> list:
+    """(start, length) of the runs of equal values of a periodic class array."""
+    n = cls.size
+    change = np.flatnonzero(cls != np.roll(cls, 1))
+    if change.size == 0:
+        return [(0, n)]
+    ends = np.append(change[1:], change[0] + n)
+    return [(int(a), int(b - a)) for a, b in zip(change, ends)]
+
+
+def law_report(res, *, degrees: bool = True) -> dict:
+    """Strict-JSON-ready measures of a :class:`~gearlever.synthesis.law.driver.LawSynthesis` against its law.
+
+    Error (max, RMS, per segment), dwell excursion per dwell segment (the
+    achieved output's range over the segment), peak velocity and
+    acceleration analogues achieved against wanted, transmission angle
+    range, the design's details.
+    """
+    t = res.target
+    ang = t.output == "angle"
+    conv = math.degrees if ang else float
+    unit = "_deg" if ang else ""
+    th, err, ach = res.theta, res.error, res.achieved
+    n = th.size
+    h = 2 * math.pi / n
+    drift = ach - t.net * th / (2 * math.pi)
+    va = (np.roll(drift, -1) - np.roll(drift, 1)) / (2 * h) + t.net / (2 * math.pi)
+    aa = (np.roll(drift, -1) - 2 * drift + np.roll(drift, 1)) / (h * h)
+    seg = np.clip(np.searchsorted(t.breaks, th, side="right") - 1, 0, len(t.motions) - 1)
+    wv = np.interp(th, t.theta, t.v, period=2 * math.pi)
+    wa = np.interp(th, t.theta, t.a, period=2 * math.pi)
+    segments = []
+    for k, motion in enumerate(t.motions):
+        m = seg == k
+        if not m.any():
+            continue
+        rec = {
+            "segment": k + 1,
+            "motion": motion,
+            "from_deg": math.degrees(t.breaks[k]),
+            "to_deg": math.degrees(t.breaks[k + 1]),
+            f"error_max{unit}": conv(float(np.max(np.abs(err[m])))),
+        }
+        if motion == "dwell":
+            rec[f"dwell_excursion{unit}"] = conv(float(np.ptp(ach[m])))
+        segments.append(rec)
+    mn, mx = res.transmission_range
+    return {
+        "kind": res.kind,
+        "feasible": res.feasible,
+        f"error_max{unit}": conv(float(np.max(np.abs(err)))),
+        f"error_rms{unit}": conv(float(np.sqrt(np.mean(err**2)))),
+        "objective_weighted_max" + unit: conv(res.objective),
+        "segments": segments,
+        f"peak_velocity{unit}_per_rad": {
+            "achieved": conv(float(np.max(np.abs(va)))),
+            "wanted": conv(float(np.max(np.abs(wv)))),
+        },
+        f"peak_acceleration{unit}_per_rad2": {
+            "achieved": conv(float(np.max(np.abs(aa)))),
+            "wanted": conv(float(np.max(np.abs(wa)))),
+        },
+        "transmission_deg": [math.degrees(mn), math.degrees(mx)],
+        "design": res.details,
+        "output_offset" + unit: conv(res.offset),
+        "output_at_input_0" + unit: conv(float(ach[0])),
+        "evaluations": res.evaluations,
+        "seed": res.seed,
+        "starts": res.starts,
+        "types_tried": {k: (None if v is None else conv(v)) for k, v in res.tried.items()},
+        "samples": int(n),
+    }
+
+
+#: The default cam of the comparison: a roller follower sized for this largest pressure angle (deg), with
+#: arm :data:`~gearlever.synthesis.law.fourbar.SIZE`, pivot at twice the arm and a roller of a tenth of it
+#: (oscillating, for an angle law), or a roller of a fifth of the stroke (translating, for a displacement law).
+CAM_PRESSURE_ANGLE_DEG = 30.0
+
+
+def cam_comparison(law) -> dict:
+    """The cam giving ``law`` with the default roller follower: its size, pressure angle and curvature.
+
+    A cam meets its law exactly (its profile is computed from it), so the
+    comparison with a linkage is of size, pressure angle (against the
+    linkage's transmission angle: ``90 deg - pressure angle``) and curvature.
+    Returns ``{"available": False, "note": ...}`` when the cam cannot be
+    made (a law that does not return to its start, no base radius meeting
+    the pressure angle).
+    """
+    from gearlever.cams import design_cam, size_base_radius
+    from gearlever.synthesis.law.fourbar import SIZE
+
+    pmax = math.radians(CAM_PRESSURE_ANGLE_DEG)
+    if law.output == "angle":
+        follower = "oscillating-roller"
+        dims = {"roller_radius": SIZE / 10, "arm": SIZE, "pivot_distance": 2 * SIZE}
+    else:
+        follower = "translating-roller"
+        dims = {"roller_radius": law.scale / 5}
+    try:
+        rb = size_base_radius(law, follower, max_pressure_angle=pmax, **dims)
+        cam = design_cam(law, follower, base_radius=rb, **dims)
+    except GearleverError as exc:
+        return {"available": False, "follower": follower, "note": str(exc)}
+    return {
+        "available": True,
+        "follower": follower,
+        **{k: float(v) for k, v in dims.items()},
+        "base_radius": float(cam.base_radius),
+        "pressure_angle_max_deg": math.degrees(cam.pressure_angle_max),
+        "transmission_min_deg": 90.0 - math.degrees(cam.pressure_angle_max),
+        "curvature_radius_min": float(cam.curvature_radius_min),
+        "undercut": bool(cam.undercut),
+        "error_max": 0.0,
+        "note": f"sized for a largest pressure angle of {CAM_PRESSURE_ANGLE_DEG:g} deg; a cam meets its law exactly",
+    }
