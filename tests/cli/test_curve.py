@@ -1,0 +1,94 @@
+"""CLI: gearlever curve score; the model written for a linkage traces the simulated curve under mechanism analyze."""
+
+import csv
+import io
+import json
+
+import numpy as np
+import pytest
+
+from gearlever.cli import main
+from gearlever.curves.links import linkage_from_dict, solve_plan
+from gearlever.curves.model import linkage_toml
+from gearlever.curves.score import hypervolume
+from gearlever.curves.simulate import simulate
+
+SIXBAR = {
+    "x0": [[0, 0], [0.3, 0.2], [2, 0], [1.5, 1.5], [3, 1], [2.5, 2.5], [1.0, 2.2]],
+    "edges": [[0, 1], [1, 3], [2, 3], [3, 5], [4, 5], [1, 6], [3, 6], [2, 4]],
+    "fixed_joints": [0, 2, 4],
+    "motor": [0, 1],
+    "target_joint": 6,
+}
+
+
+def _circle_csv(path, r=0.36055512754639896):
+    t = np.linspace(0, 2 * np.pi, 120, endpoint=False)
+    path.write_text("x,y\n" + "".join(f"{r * np.cos(a) + 4},{r * np.sin(a)}\n" for a in t))
+
+
+def test_score_rows_and_hypervolume(tmp_path, capsys):
+    a, b = tmp_path / "a.links.json", tmp_path / "b.links.json"
+    a.write_text(json.dumps({**SIXBAR, "target_joint": 1}))  # crank tip: a circle of the crank's radius
+    b.write_text(json.dumps(SIXBAR))
+    tgt = tmp_path / "t.csv"
+    _circle_csv(tgt)
+    assert main(["curve", "score", str(a), str(b), "--target", str(tgt), "--format", "json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    rows = r["rows"]
+    assert rows[0]["distance"] == pytest.approx(0.0, abs=0.05)  # target sampled differently: resampling only
+    lk = linkage_from_dict(SIXBAR)
+    mat = 2 * sum(np.hypot(*(lk.x0[i] - lk.x0[j])) for i, j in lk.edges)
+    assert rows[1]["material"] == pytest.approx(mat, rel=1e-9)
+    assert rows[1]["joints"] == 7 and rows[1]["links"] == 8
+    feas = [x for x in rows if x["feasible"]]
+    expect = hypervolume([[x["distance"], x["material"]] for x in feas])
+    assert r["hypervolume"] == pytest.approx(expect)
+
+
+@pytest.mark.parametrize(
+    "edit, needle",
+    [
+        ({"motor": [1, 0]}, "motor"),
+        ({"edges": [[0, 1], [1, 9]]}, "edges[1]"),
+        ({"fixed_joints": [0]}, "edges"),
+    ],
+)
+def test_score_refuses_a_malformed_design_in_one_line(tmp_path, capsys, edit, needle):
+    p = tmp_path / "bad.links.json"
+    p.write_text(json.dumps({**SIXBAR, **edit}))
+    tgt = tmp_path / "t.csv"
+    _circle_csv(tgt)
+    assert main(["curve", "score", str(p), "--target", str(tgt)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "bad.links.json" in err and needle in err
+
+
+@pytest.mark.parametrize(
+    "text, needle",
+    [
+        ("x,y\n" + "1,2\n" * 30, "distinct"),
+        ("x,y\n" + "".join(f"{i},{2 * i}\n" for i in range(30)), "line"),
+        ("x,y\n" + "".join(f"{i},{i * i}\n" for i in range(30)) + "nan,1\n", "not finite"),
+        ("a,b\n1,2\n", "header"),
+    ],
+)
+def test_score_refuses_a_bad_target(tmp_path, capsys, text, needle):
+    p = tmp_path / "d.links.json"
+    p.write_text(json.dumps(SIXBAR))
+    tgt = tmp_path / "t.csv"
+    tgt.write_text(text)
+    assert main(["curve", "score", str(p), "--target", str(tgt)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "--target" in err and needle in err
+
+
+def test_written_model_traces_the_simulated_curve_under_mechanism_analyze(tmp_path, capsys):
+    lk = linkage_from_dict(SIXBAR)
+    m = tmp_path / "m.toml"
+    m.write_text(linkage_toml(lk))
+    assert main(["mechanism", "analyze", str(m), "--points", "4", "--input", "0", "270"]) == 0
+    rows = list(csv.DictReader(io.StringIO(capsys.readouterr().out)))
+    x = simulate(lk.x0[None], solve_plan(lk), thetas=np.radians([0, 90, 180, 270]))[0, 6]
+    got = np.array([[float(r["P_x_len"]), float(r["P_y_len"])] for r in rows])
+    np.testing.assert_allclose(got, x, atol=1e-8)
