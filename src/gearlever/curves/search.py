@@ -258,7 +258,7 @@ def retrieve(library: Library, target, starts: int = STARTS, shortlist: int = 40
         scored.append((float(d[0]), int(e), topo, x0))
     scored.sort(key=lambda s: (s[0], s[1]))
     out, seen = [], set()
-    for d, e, topo, x0 in scored:
+    for d, _e, topo, x0 in scored:
         key = (topo.key(), round(d, 6))
         if key in seen or not math.isfinite(d):
             continue
@@ -312,6 +312,48 @@ def _target(target) -> _Target:
     return _Target((t[:, 0] + 1j * t[:, 1]) / s, s, np.asarray(target, dtype=float))
 
 
+def _residuals(topo: Topology, tc, tz, rot, wk, material_weight: float):
+    """Residuals and Jacobian of one refinement round (alignment fixed): weighted gaps, then sqrt(w) x material."""
+    N = topo.n
+    sw = np.sqrt(wk)
+    lam = math.sqrt(material_weight)
+
+    def fun(p):
+        x = p.reshape(N, 2)
+        c = simulate(x[None], topo.plan)[0, topo.target]
+        if not np.isfinite(c).all():
+            return np.full(2 * len(sw) + (1 if lam else 0), 10.0)
+        cz = c[:, 0] + 1j * c[:, 1]
+        cz = cz - (wk * cz).sum()
+        r = sw * (rot * cz / tc.scale - tz)
+        out = np.concatenate([r.real, r.imag])
+        if lam:
+            out = np.append(out, lam * material(x[None], topo.edges)[0])
+        return out
+
+    def jac(p):
+        x = p.reshape(N, 2)
+        c, J = simulate_jacobian(x[None], topo.plan, joints=[topo.target])
+        J = J[0, 0]  # (T, 2, 2N)
+        if not np.isfinite(J).all():
+            return np.zeros((2 * len(sw) + (1 if lam else 0), 2 * N))
+        Jz = J[:, 0] + 1j * J[:, 1]
+        Jz = Jz - (wk[:, None] * Jz).sum(0)
+        R = sw[:, None] * rot * Jz / tc.scale
+        out = np.concatenate([R.real, R.imag])
+        if lam:
+            e = topo.edges
+            d = x[e[:, 0]] - x[e[:, 1]]
+            L = np.hypot(d[:, 0], d[:, 1])
+            g = np.zeros((N, 2))
+            np.add.at(g, e[:, 0], 2 * d / L[:, None])
+            np.add.at(g, e[:, 1], -2 * d / L[:, None])
+            out = np.vstack([out, lam * g.reshape(1, -1)])
+        return out
+
+    return fun, jac
+
+
 def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material_weight: float = 0.0):
     """Least-squares refinement of the distance of one sketch (analytic Jacobian); returns (x0, d, m, evals).
 
@@ -333,42 +375,7 @@ def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material
     for _ in range(rounds):
         curve = simulate(best[None], topo.plan)[0, topo.target]
         tz, rot, wk = _aligned_targets(topo, best, tc, curve)
-        sw = np.sqrt(wk)
-        lam = math.sqrt(material_weight)
-
-        def fun(p):
-            x = p.reshape(N, 2)
-            c = simulate(x[None], topo.plan)[0, topo.target]
-            if not np.isfinite(c).all():
-                return np.full(2 * len(sw) + (1 if lam else 0), 10.0)
-            cz = c[:, 0] + 1j * c[:, 1]
-            cz = cz - (wk * cz).sum()
-            r = sw * (rot * cz / tc.scale - tz)
-            out = np.concatenate([r.real, r.imag])
-            if lam:
-                out = np.append(out, lam * material(x[None], topo.edges)[0])
-            return out
-
-        def jac(p):
-            x = p.reshape(N, 2)
-            c, J = simulate_jacobian(x[None], topo.plan, joints=[topo.target])
-            J = J[0, 0]  # (T, 2, 2N)
-            if not np.isfinite(J).all():
-                return np.zeros((2 * len(sw) + (1 if lam else 0), 2 * N))
-            Jz = J[:, 0] + 1j * J[:, 1]
-            Jz = Jz - (wk[:, None] * Jz).sum(0)
-            R = sw[:, None] * rot * Jz / tc.scale
-            out = np.concatenate([R.real, R.imag])
-            if lam:
-                e = topo.edges
-                d = x[e[:, 0]] - x[e[:, 1]]
-                L = np.hypot(d[:, 0], d[:, 1])
-                g = np.zeros((N, 2))
-                np.add.at(g, e[:, 0], 2 * d / L[:, None])
-                np.add.at(g, e[:, 1], -2 * d / L[:, None])
-                out = np.vstack([out, lam * g.reshape(1, -1)])
-            return out
-
+        fun, jac = _residuals(topo, tc, tz, rot, wk, material_weight)
         try:
             res = least_squares(fun, best.ravel(), jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
         except (ValueError, np.linalg.LinAlgError):
@@ -378,7 +385,7 @@ def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material
         d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw, keep=None))
         evals += 1
         cost0 = 0.5 * float((fun(best.ravel()) ** 2).sum())
-        better = d < best_d - 1e-9 if not lam else (math.isfinite(d) and res.cost < cost0 - 1e-12)
+        better = d < best_d - 1e-9 if not material_weight else (math.isfinite(d) and res.cost < cost0 - 1e-12)
         if better:
             best, best_d, best_m = cand, d, m
         else:
