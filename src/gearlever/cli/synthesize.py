@@ -92,6 +92,9 @@ def register(sub) -> None:
     from gearlever.cli._synthesize_path import register_path
 
     register_path(ss)
+    from gearlever.cli._synthesize_curve import register_curve
+
+    register_curve(ss)
 
 
 def _read_csv(path: str, flag: str, columns: tuple) -> dict:
