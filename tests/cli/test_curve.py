@@ -92,3 +92,69 @@ def test_written_model_traces_the_simulated_curve_under_mechanism_analyze(tmp_pa
     x = simulate(lk.x0[None], solve_plan(lk), thetas=np.radians([0, 90, 180, 270]))[0, 6]
     got = np.array([[float(r["P_x_len"]), float(r["P_y_len"])] for r in rows])
     np.testing.assert_allclose(got, x, atol=1e-8)
+
+
+@pytest.fixture
+def small(monkeypatch):
+    from gearlever.curves import search as S
+
+    monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
+    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
+    monkeypatch.setattr(S, "STARTS", 2)
+    monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
+
+
+def _egg_csv(path):
+    t = np.linspace(0, 2 * np.pi, 100, endpoint=False)
+    path.write_text("x,y\n" + "".join(f"{0.3 * np.cos(a) * (1 + 0.2 * np.sin(a))},{0.24 * np.sin(a)}\n" for a in t))
+
+
+def test_synthesize_curve_writes_models_links_and_front_that_score_the_same(tmp_path, capsys, small):
+    tgt, out, rep = tmp_path / "egg.csv", tmp_path / "designs", tmp_path / "r.json"
+    _egg_csv(tgt)
+    argv = ["synthesize", "curve", str(tgt), "--out", str(out), "--budget", "1000", "--designs", "4"]
+    assert main([*argv, "--report", str(rep), "--seed", "2"]) == 0
+    assert "designs on the front" in capsys.readouterr().out
+    rows = list(csv.DictReader(io.StringIO((out / "pareto.csv").read_text())))
+    assert 1 <= len(rows) <= 4
+    r = json.loads(rep.read_text())
+    assert r["designs"] == len(rows) and r["budget"] == 1000
+    links = [str(out / f"{row['design']}.links.json") for row in rows]
+    assert main(["curve", "score", *links, "--target", str(tgt), "--format", "json"]) == 0
+    scored = json.loads(capsys.readouterr().out)
+    for row, s in zip(rows, scored["rows"]):
+        assert s["distance"] == pytest.approx(float(row["distance"]), rel=1e-9)
+        assert s["material"] == pytest.approx(float(row["material"]), rel=1e-9)
+        assert s["feasible"]
+    assert scored["hypervolume"] == pytest.approx(r["hypervolume"], rel=1e-9)
+    assert main(["mechanism", "analyze", str(out / "0001.toml"), "--points", "3"]) == 0
+    assert "P_x_len" in capsys.readouterr().out.splitlines()[0]
+
+
+@pytest.mark.parametrize(
+    "extra, needle",
+    [
+        (["--max-joints", "3"], "--max-joints"),
+        (["--max-joints", "21"], "--max-joints"),
+        (["--budget", "10"], "--budget"),
+        (["--budget", "100000000"], "--budget"),
+        (["--time", "0.1"], "--time"),
+        (["--budget", "2000", "--time", "5"], "--time"),
+        (["--figure", "f.svg"], "--figure"),
+    ],
+)
+def test_synthesize_curve_refuses_bad_flags_in_one_line(tmp_path, capsys, extra, needle):
+    tgt = tmp_path / "egg.csv"
+    _egg_csv(tgt)
+    assert main(["synthesize", "curve", str(tgt), "--out", str(tmp_path / "o"), *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and needle in err
+    assert not (tmp_path / "o").exists()
+
+
+def test_synthesize_curve_refuses_a_single_repeated_point(tmp_path, capsys):
+    tgt = tmp_path / "p.csv"
+    tgt.write_text("x,y\n" + "1,1\n" * 50)
+    assert main(["synthesize", "curve", str(tgt), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "TARGET" in err and "distinct" in err

@@ -53,6 +53,13 @@ class Linkage:
     motor : tuple of int
         (fixed pivot, crank tip).
     target_joint : int
+
+    Examples
+    --------
+    >>> lk = linkage_from_dict({"x0": [[0, 0], [0, 1], [3, 0], [2, 2]],
+    ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]})
+    >>> lk.n_joints, lk.motor, lk.as_dict()["target_joint"]
+    (4, (0, 1), 3)
     """
 
     x0: np.ndarray
@@ -206,7 +213,17 @@ def linkage_to_dict(lk: Linkage) -> dict:
 
 
 def read_linkage(path, what: str = "DESIGN") -> Linkage:
-    """Read and validate a ``.links.json`` file; refusals name the file and the key."""
+    """Read and validate a ``.links.json`` file; refusals name the file and the key.
+
+    Examples
+    --------
+    >>> import json, pathlib, tempfile
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "d.links.json"
+    >>> _ = p.write_text(json.dumps({"x0": [[0, 0], [0, 1], [3, 0], [2, 2]],
+    ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]}))
+    >>> read_linkage(p).target_joint
+    3
+    """
     from gearlever._io import read_text_capped
 
     text = read_text_capped(path, what)

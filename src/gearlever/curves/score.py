@@ -204,7 +204,13 @@ def material(x0s, edges) -> np.ndarray:
 
 
 def feasible(distances, materials, joints) -> np.ndarray:
-    """The challenge's feasibility: distance < 0.75, material < 10, at most 20 joints."""
+    """The challenge's feasibility: distance < 0.75, material < 10, at most 20 joints.
+
+    Examples
+    --------
+    >>> feasible([0.5, 0.5, 0.8], [9.0, 10.0, 1.0], [20, 5, 5]).tolist()
+    [True, False, False]
+    """
     d, m, j = (np.asarray(v) for v in (distances, materials, joints))
     return (d < MAX_DISTANCE) & (m < MAX_MATERIAL) & (j <= MAX_JOINTS)
 

@@ -620,7 +620,7 @@ def synthesize_curve(
         raise GearleverError(f"budget must be 1000 to {MAX_BUDGET}, got {budget}")
     if time_limit is not None and not 1.0 <= float(time_limit) <= MAX_TIME:
         raise GearleverError(f"time_limit must be 1 to {MAX_TIME:g} seconds, got {time_limit}")
-    lib = build_library(0, max_joints=max_joints)
+    lib = build_library(0, LIBRARY_TOPOLOGIES, LIBRARY_SKETCHES, max_joints=max_joints)
     starts = retrieve(lib, target, STARTS)
     if not starts:
         raise GearleverError("target: no library mechanism traces a curve of this kind")

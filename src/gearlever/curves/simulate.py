@@ -73,6 +73,16 @@ def simulate(x0s, plan, steps: int = STEPS, thetas=None) -> np.ndarray:
     Notes
     -----
     See the module docstring (law of cosines per dyad, branch of the sketch).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gearlever.curves.links import linkage_from_dict, solve_plan
+    >>> lk = linkage_from_dict({"x0": [[0, 0], [1, 0], [4, 0], [3, 3]],
+    ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]})
+    >>> x = simulate(lk.x0[None], solve_plan(lk), steps=5)
+    >>> np.round(x[0, 1, :, 0], 6).tolist()  # crank tip x at 0, 90, 180, 270, 360 degrees
+    [1.0, 0.0, -1.0, -0.0, 1.0]
     """
     x0s = np.asarray(x0s, dtype=float)
     th = crank_angles(steps) if thetas is None else np.asarray(thetas, dtype=float)
@@ -123,6 +133,15 @@ def simulate_jacobian(x0s, plan, steps: int = STEPS, thetas=None, joints=None):
     tip's ``dr = (x_tip - x_pivot) / r . (d x_tip - d x_pivot)``; the branch
     signs are piecewise constant.  Checked against finite differences in the
     tests.
+
+    Examples
+    --------
+    >>> from gearlever.curves.links import linkage_from_dict, solve_plan
+    >>> lk = linkage_from_dict({"x0": [[0, 0], [1, 0], [4, 0], [3, 3]],
+    ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]})
+    >>> x, J = simulate_jacobian(lk.x0[None], solve_plan(lk), steps=10, joints=[3])
+    >>> J.shape
+    (1, 1, 10, 2, 8)
     """
     x0s = np.asarray(x0s, dtype=float)
     th = crank_angles(steps) if thetas is None else np.asarray(thetas, dtype=float)
