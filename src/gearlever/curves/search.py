@@ -80,6 +80,8 @@ KEEP = 12
 POPULATION = 40
 #: Scaled copies of each front member.
 SCALES = np.linspace(0.9, 0.99, 10)
+#: Front members (closest first) polished by a longer refinement.
+POLISH = 3
 #: Material weights of the refinement chain.
 LAMBDAS = np.geomspace(1e-3, 0.3, 10)
 #: Caps.
@@ -474,7 +476,7 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list:
     topo = _topology(s["n"], s["edges"], s["fixed"], s["motor"], s["target"])
     x0 = np.asarray(s["x0"], dtype=float)
     used = 0
-    x0, d, m, e = refine(topo, x0, tc)
+    x0, d, m, e = refine(topo, x0, tc, rounds=6, nfev=40)
     used += e
     cands = [(topo, x0, d)]
     for t2, x2 in _moves(rng, topo, x0, spec["max_joints"]):
@@ -500,6 +502,17 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list:
     Xall = np.concatenate([X, np.array(chain)])
     d, m = evaluate(topo, Xall, target, keep=None)
     front = _nondominated(d, m)
+    # polish the closest designs: more rounds of the distance-only refinement
+    polished = []
+    for i in front[:POLISH]:
+        if deadline is not None and time.monotonic() > deadline:
+            break
+        xp, dp, mp, _ = refine(topo, Xall[i], tc, rounds=8, nfev=60)
+        polished.append(xp)
+    if polished:
+        Xall = np.concatenate([Xall, np.array(polished)])
+        d, m = evaluate(topo, Xall, target, keep=None)
+        front = _nondominated(d, m)
     for i in front:
         designs.append((float(d[i]), float(m[i]), Xall[i]))
         for sc in SCALES:
