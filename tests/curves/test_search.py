@@ -62,12 +62,17 @@ def small(monkeypatch):
     monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
 
 
-def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers(small):
+def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers_and_on_a_cluster(small):
     t = np.linspace(0, 2 * np.pi, 120)
     egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
     a = S.synthesize_curve(egg, budget=1000, seed=3, workers=1)
     b = S.synthesize_curve(egg, budget=1000, seed=3, workers=2)
     assert json.dumps(a.as_dict()) == json.dumps(b.as_dict())
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as c:
+        on_cluster = S.synthesize_curve(egg, budget=1000, seed=3, scheduler=c.scheduler_address)
+    assert json.dumps(on_cluster.as_dict()) == json.dumps(a.as_dict())
+    assert [lk.x0.tolist() for lk in on_cluster.designs] == [lk.x0.tolist() for lk in a.designs]
     assert [lk.x0.tolist() for lk in a.designs] == [lk.x0.tolist() for lk in b.designs]
     assert len(a.designs) >= 1 and a.hypervolume > 0
     for lk, d, m in zip(a.designs, a.distance, a.material):
