@@ -5,7 +5,8 @@ Three parts, each printed as a table:
 1. **Own suite** (free to ship: every curve is made here): curves traced by
    known mechanisms of 7, 9 and 11 joints (random dyadic linkages of fixed
    seeds; exact recovery means a best distance below 0.01) and closed shapes
-   (egg, kidney, figure-eight, D, bean).  Per curve: hypervolume against
+   (egg, kidney, figure-eight, D, bean), all at the RMS radius of the
+   challenge's targets (0.191).  Per curve: hypervolume against
    (0.75, 10), best distance, least material, designs, seconds.
 2. **The MIT 2.156 challenge's six curves**, only with ``--challenge DIR``
    (a clone of ``ahnobari/2155-Optimization-Challenge-Problem``: the
@@ -48,20 +49,33 @@ def known_mechanism(n_dyads: int, seed: int):
         ok = np.isfinite(simulate(x0, topo.plan)).all(axis=(1, 2, 3))
         if ok.any():
             x = x0[np.flatnonzero(ok)[0]]
+            c = simulate(x[None], topo.plan)[0, topo.target]
+            x = x * (RMS / np.sqrt(((c - c.mean(0)) ** 2).sum(-1).mean()))  # scaled to the suite's size
             return topo, x, simulate(x[None], topo.plan)[0, topo.target]
+
+
+#: RMS radius of every suite curve: that of the challenge's six targets (material is absolute, so size matters).
+RMS = 0.191
+
+
+def _sized(curve):
+    c = np.asarray(curve, dtype=float)
+    c = c - c.mean(0)
+    return c * (RMS / np.sqrt((c**2).sum(-1).mean()))
 
 
 def shapes() -> dict:
     t = np.linspace(0, 2 * np.pi, 240, endpoint=False)
     c, s = np.cos(t), np.sin(t)
     d = np.stack([np.where(c > 0.3, 0.3, c), s], -1)  # a D: a circle with a flat side
-    return {
+    curves = {
         "egg": np.stack([c * (1 + 0.25 * s), 0.8 * s], -1),
         "kidney": np.stack([c + 0.35 * np.cos(2 * t), s + 0.1 * np.sin(3 * t)], -1),
         "figure-eight": np.stack([s, s * c], -1),
         "D": d,
         "bean": np.stack([c * (1.2 + 0.3 * c), s * (0.8 - 0.35 * c * c)], -1),
     }
+    return {k: _sized(v) for k, v in curves.items()}
 
 
 def run(name, curve, budget, seed=0):

@@ -101,6 +101,7 @@ def small(monkeypatch):
     monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
     monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
     monkeypatch.setattr(S, "STARTS", 2)
+    monkeypatch.setattr(S, "PRESELECT", 4)
     monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
 
 

@@ -72,7 +72,8 @@ LIBRARY_TOPOLOGIES = 48
 LIBRARY_SKETCHES = 300
 #: Fourier harmonics of the descriptor.
 HARMONICS = 12
-#: Starts taken from the retrieval.
+#: Retrieved entries refined briefly, and the best of them kept as starts.
+PRESELECT = 24
 STARTS = 8
 #: Alignments kept by the search's fast distance.
 KEEP = 12
@@ -80,6 +81,10 @@ KEEP = 12
 POPULATION = 40
 #: Scaled copies of each front member.
 SCALES = np.linspace(0.9, 0.99, 10)
+#: Least material weight of a refinement (a barrier against sketches growing without bound), and the most a
+#: distance-only refinement may multiply the material by.
+MATERIAL_FLOOR = 1e-7
+MAX_GROWTH = 3.0
 #: Front members (closest first) polished by a longer refinement.
 POLISH = 3
 #: Material weights of the refinement chain.
@@ -369,6 +374,7 @@ def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material
     tc = target if isinstance(target, _Target) else _target(target)
     x0 = np.asarray(x0, dtype=float)
     best_d, best_m = (float(v[0]) for v in evaluate(topo, x0[None], tc.raw, keep=None))
+    m_start = best_m
     evals = 1
     if not math.isfinite(best_d):
         return x0, best_d, best_m, evals
@@ -377,7 +383,7 @@ def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material
     for _ in range(rounds):
         curve = simulate(best[None], topo.plan)[0, topo.target]
         tz, rot, wk = _aligned_targets(topo, best, tc, curve)
-        fun, jac = _residuals(topo, tc, tz, rot, wk, material_weight)
+        fun, jac = _residuals(topo, tc, tz, rot, wk, max(material_weight, MATERIAL_FLOOR))
         try:
             res = least_squares(fun, best.ravel(), jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
         except (ValueError, np.linalg.LinAlgError):
@@ -387,7 +393,10 @@ def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material
         d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw, keep=None))
         evals += 1
         cost0 = 0.5 * float((fun(best.ravel()) ** 2).sum())
-        better = d < best_d - 1e-9 if not material_weight else (math.isfinite(d) and res.cost < cost0 - 1e-12)
+        if not material_weight:
+            better = d < best_d - 1e-9 and m <= MAX_GROWTH * m_start
+        else:
+            better = math.isfinite(d) and res.cost < cost0 - 1e-12
         if better:
             best, best_d, best_m = cand, d, m
         else:
@@ -529,6 +538,20 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list:
     return [(dd, mm, td, xx.tolist()) for dd, mm, xx in designs if math.isfinite(dd)]
 
 
+def _pick_starts(refined, count: int) -> list:
+    """Half the starts by the area a design alone dominates (distance and material), half by distance."""
+    ok = [r for r in refined if math.isfinite(r[0])]
+    by_area = sorted(ok, key=lambda r: (-max(0.0, MAX_DISTANCE - r[0]) * max(0.0, MAX_MATERIAL - r[1]), r[0], r[2]))
+    by_distance = sorted(ok, key=lambda r: (r[0], r[2]))
+    out, seen = [], set()
+    for a, b in zip(by_area, by_distance):
+        for r in (a, b):
+            if r[2] not in seen and len(out) < count:
+                seen.add(r[2])
+                out.append((r[3], r[4]))
+    return out
+
+
 def _nondominated(d, m) -> np.ndarray:
     order = np.lexsort((m, d))
     out, best = [], math.inf
@@ -634,9 +657,16 @@ def synthesize_curve(
     if time_limit is not None and not 1.0 <= float(time_limit) <= MAX_TIME:
         raise GearleverError(f"time_limit must be 1 to {MAX_TIME:g} seconds, got {time_limit}")
     lib = build_library(0, LIBRARY_TOPOLOGIES, LIBRARY_SKETCHES, max_joints=max_joints)
-    starts = retrieve(lib, target, STARTS)
-    if not starts:
+    shortlist = retrieve(lib, target, PRESELECT)
+    if not shortlist:
         raise GearleverError("target: no library mechanism traces a curve of this kind")
+    # a short refinement of every retrieved entry; the best refined ones are the starts
+    tc = _target(target)
+    refined = []
+    for n, (topo, x0) in enumerate(shortlist):
+        x1, d1, m1, _ = refine(topo, x0, tc, rounds=3, nfev=15)
+        refined.append((d1, m1, n, topo, x1))
+    starts = _pick_starts(refined, STARTS)
     total = budget if budget is not None else 10**6
     evals = max(POPULATION * 2, total // len(starts))
     spec = {
