@@ -159,3 +159,12 @@ def test_synthesize_curve_refuses_a_single_repeated_point(tmp_path, capsys):
     assert main(["synthesize", "curve", str(tgt), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "TARGET" in err and "distinct" in err
+
+
+def test_synthesize_curve_with_time_stops_on_the_clock(tmp_path, capsys, small):
+    tgt, out, rep = tmp_path / "egg.csv", tmp_path / "designs", tmp_path / "r.json"
+    _egg_csv(tgt)
+    assert main(["synthesize", "curve", str(tgt), "--out", str(out), "--time", "3", "--report", str(rep)]) == 0
+    r = json.loads(rep.read_text())
+    assert r["budget"] is None and r["designs"] >= 1
+    assert (out / "pareto.csv").exists()

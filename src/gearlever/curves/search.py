@@ -466,9 +466,13 @@ def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
     )
     from pymoo.optimize import minimize
 
-    res = minimize(
-        _P(lo, hi), algo, get_termination("n_gen", gens), seed=int(seed % (2**31)), verbose=False, save_history=False
-    )
+    term = get_termination("n_gen", gens)
+    if deadline is not None:
+        from pymoo.termination.collection import TerminationCollection
+        from pymoo.termination.max_time import TimeBasedTermination
+
+        term = TerminationCollection(term, TimeBasedTermination(max(1e-3, deadline - time.monotonic())))
+    res = minimize(_P(lo, hi), algo, term, seed=int(seed % (2**31)), verbose=False, save_history=False)
     pop = res.pop
     return pop.get("X").reshape(-1, N, 2), pop.get("F")
 
@@ -664,6 +668,8 @@ def synthesize_curve(
     tc = _target(target)
     refined = []
     for n, (topo, x0) in enumerate(shortlist):
+        if refined and time_limit is not None and time.monotonic() > t0 + 0.5 * float(time_limit):
+            break
         x1, d1, m1, _ = refine(topo, x0, tc, rounds=3, nfev=15)
         refined.append((d1, m1, n, topo, x1))
     starts = _pick_starts(refined, STARTS)
