@@ -77,6 +77,8 @@ PRESELECT = 24
 STARTS = 8
 #: Alignments kept by the search's fast distance.
 KEEP = 12
+#: Variants of the add-a-dyad topology move tried per start.
+ADD_MOVES = 1
 #: NSGA-II population.
 POPULATION = 40
 #: Scaled copies of each front member.
@@ -411,7 +413,7 @@ def _moves(rng, topo: Topology, x0, max_joints: int):
     for k in range(topo.n):
         if k != topo.target and k not in fixed and k != topo.motor[1]:
             out.append((_topology(topo.n, topo.edges, topo.fixed, topo.motor, k), x0))
-    if topo.n + 1 <= max_joints:
+    for _ in range(ADD_MOVES if topo.n + 1 <= max_joints else 0):
         k = topo.n
         others = [j for j in range(topo.n) if j != topo.target]
         j = int(rng.choice(others))
