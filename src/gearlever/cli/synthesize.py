@@ -109,6 +109,10 @@ def register(sub) -> None:
 
     register_law(ss)
 
+    from gearlever.cli._synthesize_curve import register_curve
+
+    register_curve(ss)
+
 
 def _read_csv(path: str, flag: str, columns: tuple) -> dict:
     """Numeric columns of a CSV file (header row), every error naming the file, row and column."""

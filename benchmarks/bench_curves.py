@@ -1,0 +1,197 @@
+"""Benchmark: curve synthesis (hypervolume and time per target) and the batched dyadic simulator's speed.
+
+Three parts, each printed as a table:
+
+1. **Own suite** (free to ship: every curve is made here): curves traced by
+   known mechanisms of 7, 9 and 11 joints (random dyadic linkages of fixed
+   seeds; exact recovery means a best distance below 0.01) and closed shapes
+   (egg, kidney, figure-eight, D, bean), all at the RMS radius of the
+   challenge's targets (0.191).  Per curve: hypervolume against
+   (0.75, 10), best distance, least material, designs, seconds.
+2. **The MIT 2.156 challenge's six curves**, only with ``--challenge DIR``
+   (a clone of ``ahnobari/2155-Optimization-Challenge-Problem``: the
+   repository has no licence, so its data is read from there and never
+   copied): our hypervolume per curve beside the published NSGA-II starter
+   baseline (mean 1.339) and the best student result (4.856).
+3. **Simulator speed**: mechanisms x steps per second of
+   :func:`gearlever.curves.simulate.simulate` on a batch of 12-joint
+   linkages, against the challenge's JAX solver (``--challenge DIR`` and
+   ``jax`` installed: the bench extra) jit-compiled on CPU on the same
+   mechanisms, in the same process; ratio = JAX time / ours.
+
+Usage::
+
+    python benchmarks/bench_curves.py [--budget 20000] [--challenge DIR] [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import time
+from pathlib import Path
+
+import numpy as np
+
+from gearlever.curves import search as S
+from gearlever.curves.simulate import simulate
+
+PUBLISHED_BASELINE = [2.08, 1.63, 1.29, 1.39, 0.86, 0.79]  # mean 1.339 (challenge starter notebook, NSGA-II)
+BEST_STUDENT = 4.856
+
+
+def known_mechanism(n_dyads: int, seed: int):
+    """A random dyadic linkage that turns fully (fixed seed) and the curve of its traced joint."""
+    rng = np.random.default_rng(seed)
+    while True:
+        topo = S.random_topology(rng, n_dyads, 2)
+        x0 = S.random_sketches(rng, topo, 400)
+        ok = np.isfinite(simulate(x0, topo.plan)).all(axis=(1, 2, 3))
+        if ok.any():
+            x = x0[np.flatnonzero(ok)[0]]
+            c = simulate(x[None], topo.plan)[0, topo.target]
+            x = x * (RMS / np.sqrt(((c - c.mean(0)) ** 2).sum(-1).mean()))  # scaled to the suite's size
+            return topo, x, simulate(x[None], topo.plan)[0, topo.target]
+
+
+#: RMS radius of every suite curve: that of the challenge's six targets (material is absolute, so size matters).
+RMS = 0.191
+
+
+def _sized(curve):
+    c = np.asarray(curve, dtype=float)
+    c = c - c.mean(0)
+    return c * (RMS / np.sqrt((c**2).sum(-1).mean()))
+
+
+def shapes() -> dict:
+    t = np.linspace(0, 2 * np.pi, 240, endpoint=False)
+    c, s = np.cos(t), np.sin(t)
+    d = np.stack([np.where(c > 0.3, 0.3, c), s], -1)  # a D: a circle with a flat side
+    curves = {
+        "egg": np.stack([c * (1 + 0.25 * s), 0.8 * s], -1),
+        "kidney": np.stack([c + 0.35 * np.cos(2 * t), s + 0.1 * np.sin(3 * t)], -1),
+        "figure-eight": np.stack([s, s * c], -1),
+        "D": d,
+        "bean": np.stack([c * (1.2 + 0.3 * c), s * (0.8 - 0.35 * c * c)], -1),
+    }
+    return {k: _sized(v) for k, v in curves.items()}
+
+
+def run(name, curve, budget, seed=0):
+    t0 = time.perf_counter()
+    r = S.synthesize_curve(curve, budget=budget, seed=seed, workers=1)
+    dt = time.perf_counter() - t0
+    best = float(r.distance[0]) if len(r.designs) else float("nan")
+    least = float(r.material.min()) if len(r.designs) else float("nan")
+    print(f"| {name} | {r.hypervolume:.3f} | {best:.4f} | {least:.3f} | {len(r.designs)} | {dt:.0f} |", flush=True)
+    return r.hypervolume, best, dt
+
+
+def suite(budget, quick):
+    print("\n| curve | hypervolume | best distance | least material | designs | seconds |")
+    print("|---|---|---|---|---|---|")
+    for n_dyads, seed in ((4, 11), (6, 12), (8, 13)):
+        topo, _, curve = known_mechanism(n_dyads, seed)
+        _, best, _ = run(f"known {topo.n}-joint linkage", curve, budget)
+        print(f"| (exact recovery, distance < 0.01: {'yes' if best < 0.01 else 'no'}) ||||||")
+        if quick:
+            break
+    for name, curve in shapes().items():
+        run(name, curve, budget)
+        if quick:
+            break
+
+
+def challenge(dirpath, budget):
+    targets = np.load(Path(dirpath) / "target_curves.npy")
+    print("\n| challenge curve | our hypervolume | published baseline | best published (mean) | seconds |")
+    print("|---|---|---|---|---|")
+    hvs = []
+    for i, t in enumerate(targets):
+        t0 = time.perf_counter()
+        r = S.synthesize_curve(t, budget=budget, seed=0, workers=1)
+        dt = time.perf_counter() - t0
+        hvs.append(r.hypervolume)
+        print(
+            f"| {i + 1} | {r.hypervolume:.3f} | {PUBLISHED_BASELINE[i]:.2f} | {BEST_STUDENT} | {dt:.0f} |", flush=True
+        )
+    print(f"| mean | {np.mean(hvs):.3f} | 1.339 | {BEST_STUDENT} | |")
+
+
+def _jax_solver(dirpath):
+    path = Path(dirpath) / "LINKS" / "Kinematics" / "_solvers" / "_JAX.py"
+    spec = importlib.util.spec_from_file_location("links_jax_solver", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.solve_rev_vectorized_batch
+
+
+def speed(dirpath, batch=1000, repeats=5):
+    rng = np.random.default_rng(7)
+    topo = S.random_topology(rng, 9, 2)  # 12 joints: pivot, tip, one more pivot, nine dyads
+    x0 = S.random_sketches(rng, topo, batch)
+    steps = 200
+    simulate(x0, topo.plan)
+    t_ours = min(_timed(lambda: simulate(x0, topo.plan)) for _ in range(repeats))
+    rate = batch * steps / t_ours
+    print(
+        f"\nsimulator: {batch} mechanisms of {topo.n} joints x {steps} steps: ours {t_ours * 1e3:.1f} ms "
+        f"({rate:.3g} mechanism-steps/s)"
+    )
+    if dirpath is None:
+        return
+    try:
+        import jax
+        import jax.numpy as jnp
+    except ImportError:
+        print("jax not installed: no comparison (pip install jax)")
+        return
+    solve = jax.jit(_jax_solver(dirpath))
+    order = topo.plan.order
+    for size in (topo.n, 20):  # as sorted for the solver; 20 = the challenge's padded size
+        xs = np.zeros((batch, size, 2))
+        xs[:, : topo.n] = x0[:, order]
+        A = np.zeros((batch, size, size))
+        inv = np.argsort(order)
+        for i, j in topo.edges:
+            A[:, inv[i], inv[j]] = A[:, inv[j], inv[i]] = 1.0
+        types = np.zeros((batch, size, 1))
+        types[:, inv[topo.fixed], 0] = 1.0
+        types[:, topo.n :, 0] = 1.0
+        th = np.linspace(0, 2 * np.pi, steps)
+        args = [jnp.asarray(a) for a in (A, xs, types, th)]
+        out = solve(*args).block_until_ready()
+        t_jax = min(_timed(lambda: solve(*args).block_until_ready()) for _ in range(repeats))  # noqa: B023
+        ours = simulate(x0, topo.plan)[:, order]
+        ok = np.isfinite(ours).all(axis=(1, 2, 3))
+        err = float(np.nanmax(np.abs(np.asarray(out)[ok, : topo.n] - ours[ok])))
+        print(
+            f"  challenge JAX solver (jit, CPU, {out.dtype}, padded to {size} joints): {t_jax * 1e3:.1f} ms; "
+            f"ratio JAX / ours = {t_jax / t_ours:.2f}; max position difference {err:.2g}"
+        )
+
+
+def _timed(fn):
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--budget", type=int, default=20_000)
+    ap.add_argument("--challenge", default=None, help="clone of ahnobari/2155-Optimization-Challenge-Problem")
+    ap.add_argument("--quick", action="store_true", help="one known mechanism and one shape")
+    ap.add_argument("--part", choices=("all", "suite", "challenge", "speed"), default="all")
+    a = ap.parse_args()
+    if a.part in ("all", "speed"):
+        speed(a.challenge)
+    if a.part in ("all", "suite"):
+        suite(a.budget, a.quick)
+    if a.part in ("all", "challenge") and a.challenge is not None:
+        challenge(a.challenge, a.budget)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,37 @@
+"""Topology synthesis of linkages for a traced curve, scored like the MIT 2.156 linkage challenge.
+
+What lives here:
+
+* :mod:`~gearlever.curves.links`: the challenge's form of a planar revolute
+  linkage (``x0``, ``edges``, ``fixed_joints``, ``motor``, ``target_joint``),
+  read and validated from ``.links.json``, and its dyadic solve plan.
+* :mod:`~gearlever.curves.simulate`: a batched simulator of many dyadic
+  linkages over a crank turn in one array pass, with the analytic Jacobian of
+  the joint paths with respect to the sketch positions.
+* :mod:`~gearlever.curves.score`: the challenge's curve distance, material,
+  feasibility and the exact 2-D hypervolume.
+* :mod:`~gearlever.curves.search`: the synthesis (library of four-, six- and
+  eight-bar topologies, retrieval over pre-simulated mechanisms, NSGA-II from
+  pymoo, least-squares refinement) and the writer of gearlever models.
+
+May import numpy, scipy, pymoo, dask and :mod:`gearlever.errors`,
+:mod:`gearlever._io`, :mod:`gearlever.synthesis._model` (model text); never
+matplotlib, pandas or the CLI.  Figures are in :mod:`gearlever.plotting.curves`.
+"""
+
+from gearlever.curves.links import Linkage, linkage_from_dict, read_linkage, solve_plan
+from gearlever.curves.score import distance, feasible, hypervolume, material
+from gearlever.curves.simulate import simulate, simulate_jacobian
+
+__all__ = [
+    "Linkage",
+    "distance",
+    "feasible",
+    "hypervolume",
+    "linkage_from_dict",
+    "material",
+    "read_linkage",
+    "simulate",
+    "simulate_jacobian",
+    "solve_plan",
+]

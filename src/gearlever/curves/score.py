@@ -1,0 +1,240 @@
+"""The challenge's scores: curve distance, material, feasibility and the 2-D hypervolume.
+
+Notes
+-----
+Definitions of the MIT 2.156 linkage synthesis challenge (A. H. Nobari,
+F. Ahmed et al., repository ``ahnobari/2155-Optimization-Challenge-Problem``,
+``LINKS.Geometry`` and ``LINKS.Optimization``), implemented from their
+description:
+
+* both curves are resampled by arc length to 200 points along the polyline
+  of their points in order (the first point kept; a traced curve runs over
+  the whole turn, 0 to 2 pi inclusive), then centred on their mean;
+* both are divided by the target's RMS radius ``sqrt(mean |t_k|^2)`` (so the
+  design's size counts);
+* over every cyclic shift of the design's points, in both directions, the
+  rotation that best maps them onto the target (least squares,
+  ``theta = arg sum t_k conj(c_k)`` in complex notation) is applied and the
+  distance is ``2 pi`` times the mean point gap ``|t_k - R c_k|``; the
+  smallest over the 400 alignments is the distance; a design that locks
+  scores infinity;
+* material is twice the total length of the links (the challenge sums the
+  symmetric matrix of link lengths);
+* feasible: distance < 0.75, material < 10 and at most 20 joints;
+* the hypervolume of a set of designs is the area dominated by its feasible
+  points and bounded by the reference point (0.75, 10).
+
+>>> import numpy as np
+>>> t = np.linspace(0, 2 * np.pi, 200)
+>>> circle = np.stack([np.cos(t), np.sin(t)], -1)
+>>> round(float(distance(circle[None] * 1.0, circle)[0]), 6)
+0.0
+>>> hypervolume([[0.25, 5.0]])
+2.5
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from gearlever.errors import GearleverError
+
+__all__ = [
+    "MAX_DISTANCE",
+    "MAX_JOINTS",
+    "MAX_MATERIAL",
+    "REFERENCE",
+    "RESOLUTION",
+    "distance",
+    "feasible",
+    "hypervolume",
+    "material",
+    "normalise",
+    "resample",
+]
+
+#: Points of the resampled curves.
+RESOLUTION = 200
+#: Feasibility bounds and hypervolume reference point of the challenge.
+MAX_DISTANCE = 0.75
+MAX_MATERIAL = 10.0
+MAX_JOINTS = 20
+REFERENCE = (MAX_DISTANCE, MAX_MATERIAL)
+
+
+def resample(curves, n: int = RESOLUTION) -> np.ndarray:
+    """Resample polylines by arc length to ``n`` points from the first point to the last.
+
+    Parameters
+    ----------
+    curves : array_like, shape (B, M, 2)
+
+    Returns
+    -------
+    ndarray, shape (B, n, 2)
+        NaN for a curve of zero length or with NaN points.
+
+    Examples
+    --------
+    >>> resample([[[0, 0], [1, 0], [3, 0]]], 5)[0, :, 0].tolist()
+    [0.0, 0.75, 1.5, 2.25, 3.0]
+    """
+    c = np.asarray(curves, dtype=float)
+    B, M, _ = c.shape
+    seg = np.hypot(*np.diff(c, axis=1).transpose(2, 0, 1))
+    cum = np.concatenate([np.zeros((B, 1)), np.cumsum(seg, 1)], 1)
+    total = cum[:, -1:]
+    ok = np.isfinite(cum).all(1) & (total[:, 0] > 0)
+    out = np.full((B, n, 2), np.nan)
+    if not ok.any():
+        return out
+    c, cum, total = c[ok], cum[ok], total[ok]
+    f = cum / total  # (b, M) from 0 to 1, non-decreasing
+    b = f.shape[0]
+    s = np.linspace(0.0, 1.0, n)
+    # one searchsorted over all rows at once: row r is shifted by 2 r (its fractions stay in [2 r, 2 r + 1])
+    off = 2.0 * np.arange(b)[:, None]
+    hi = np.searchsorted((f + off).ravel(), (s[None, :] + off).ravel(), side="right").reshape(b, n)
+    hi -= (np.arange(b) * M)[:, None]
+    hi = np.clip(hi, 1, M - 1)
+    lo = hi - 1
+    f_lo, f_hi = np.take_along_axis(f, lo, 1), np.take_along_axis(f, hi, 1)
+    span = f_hi - f_lo
+    w = np.clip(np.divide(s[None, :] - f_lo, span, out=np.zeros_like(span), where=span > 0), 0.0, 1.0)
+    p_lo = np.take_along_axis(c, lo[..., None], 1)
+    p_hi = np.take_along_axis(c, hi[..., None], 1)
+    out[ok] = p_lo + w[..., None] * (p_hi - p_lo)
+    return out
+
+
+def normalise(curves, target, n: int = RESOLUTION):
+    """Resampled, centred designs and target, divided by the target's RMS radius: complex arrays (B, n), (n,)."""
+    t = resample(np.asarray(target, dtype=float)[None], n)[0]
+    t = t - t.mean(0)
+    scale = np.sqrt((t**2).sum(-1).mean())
+    c = resample(curves, n)
+    c = c - c.mean(1, keepdims=True)
+    return (c[..., 0] + 1j * c[..., 1]) / scale, (t[:, 0] + 1j * t[:, 1]) / scale
+
+
+def _alignment_indices(n: int) -> np.ndarray:
+    k = np.arange(n)
+    fwd = (k[None, :] + k[:, None]) % n
+    rev = (k[:, None] - k[None, :]) % n
+    return np.concatenate([fwd, rev])  # (2n, n)
+
+
+def _exact(c, t, chunk: int = 16) -> np.ndarray:
+    n = t.shape[0]
+    idx = _alignment_indices(n)
+    out = np.empty(c.shape[0])
+    for a in range(0, c.shape[0], chunk):
+        C = c[a : a + chunk][:, idx]  # (b, 2n, n)
+        z = (t * np.conj(C)).sum(-1)
+        rot = np.exp(1j * np.angle(z))
+        gap = np.abs(t - rot[..., None] * C).mean(-1)
+        out[a : a + chunk] = gap.min(-1)
+    return out
+
+
+def _fast(c, t, keep: int) -> np.ndarray:
+    """Exact gap over the ``keep`` alignments of least squared gap (found by FFT correlation)."""
+    n = t.shape[0]
+    Fc, Ft = np.fft.fft(c, axis=-1), np.fft.fft(t)
+    fwd = np.abs(np.fft.ifft(Fc * np.conj(Ft), axis=-1))  # |sum_k c_{k+s} conj(t_k)|
+    rev = np.abs(np.fft.ifft(Ft * np.fft.fft(np.conj(c), axis=-1), axis=-1))  # |sum_k t_k conj(c_{s-k})|
+    score = np.concatenate([fwd, rev], -1)
+    best = np.argsort(-score, axis=-1, kind="stable")[:, :keep]  # (B, keep)
+    idx = _alignment_indices(n)[best]  # (B, keep, n)
+    C = np.take_along_axis(c[:, None, :], idx, axis=-1)
+    z = (t * np.conj(C)).sum(-1)
+    rot = np.exp(1j * np.angle(z))
+    return np.abs(t - rot[..., None] * C).mean(-1).min(-1)
+
+
+def distance(curves, target, *, keep: int | None = None) -> np.ndarray:
+    """The challenge's distance of traced curves to a target curve (see the module Notes).
+
+    Parameters
+    ----------
+    curves : array_like, shape (B, M, 2)
+        Traced curves (NaN where a design locks: distance infinity).
+    target : array_like, shape (K, 2)
+    keep : int, optional
+        Search only the ``keep`` alignments of least squared gap (found by FFT
+        correlation) instead of all 400: the search's fast mode, an upper
+        bound of the exact distance, equal to it when the best alignment is
+        among them.
+
+    Returns
+    -------
+    ndarray, shape (B,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2 * np.pi, 200)
+    >>> circle = np.stack([np.cos(t), np.sin(t)], -1)
+    >>> float(distance(2 * circle[None], circle)[0]) > 6  # twice as large: gap 1 everywhere, times 2 pi
+    True
+    """
+    c, tn = normalise(curves, target)
+    if not np.all(np.isfinite(tn)):
+        raise GearleverError("target must be a curve of non-zero length and size")
+    ok = np.isfinite(c).all(-1)
+    out = np.full(c.shape[0], np.inf)
+    if ok.any():
+        cc = c[ok]
+        d = _exact(cc, tn) if keep is None else _fast(cc, tn, keep)
+        out[ok] = 2.0 * np.pi * d
+    return out
+
+
+def material(x0s, edges) -> np.ndarray:
+    """Twice the total link length of each sketch (the challenge's material), shape (B,).
+
+    Examples
+    --------
+    >>> float(material([[[0, 0], [3, 0], [3, 4]]], [[0, 1], [1, 2], [0, 2]])[0])
+    24.0
+    """
+    x = np.asarray(x0s, dtype=float)
+    e = np.asarray(edges, dtype=int).reshape(-1, 2)
+    return 2.0 * np.hypot(*(x[:, e[:, 0]] - x[:, e[:, 1]]).transpose(2, 0, 1)).sum(-1)
+
+
+def feasible(distances, materials, joints) -> np.ndarray:
+    """The challenge's feasibility: distance < 0.75, material < 10, at most 20 joints.
+
+    Examples
+    --------
+    >>> feasible([0.5, 0.5, 0.8], [9.0, 10.0, 1.0], [20, 5, 5]).tolist()
+    [True, False, False]
+    """
+    d, m, j = (np.asarray(v) for v in (distances, materials, joints))
+    return (d < MAX_DISTANCE) & (m < MAX_MATERIAL) & (j <= MAX_JOINTS)
+
+
+def hypervolume(points, reference=REFERENCE) -> float:
+    """Exact area dominated by 2-D points (both minimised) and bounded by ``reference``.
+
+    Points not strictly better than the reference in both objectives add
+    nothing.  A sorted sweep: O(n log n).
+
+    Examples
+    --------
+    >>> hypervolume([[0.5, 5.0], [0.25, 8.0], [0.6, 9.0]], reference=(1.0, 10.0))
+    3.0
+    """
+    F = np.asarray(points, dtype=float).reshape(-1, 2)
+    r1, r2 = (float(v) for v in reference)
+    F = F[np.isfinite(F).all(1) & (F[:, 0] < r1) & (F[:, 1] < r2)]
+    if F.size == 0:
+        return 0.0
+    F = F[np.lexsort((F[:, 1], F[:, 0]))]
+    area, level = 0.0, r2
+    for f1, f2 in F:
+        if f2 < level:
+            area += (r1 - f1) * (level - f2)
+            level = f2
+    return float(area)

@@ -1,0 +1,735 @@
+"""Topology synthesis for a traced curve: library, retrieval, NSGA-II, least-squares refinement, scaled copies.
+
+The search, in order (every step seeded from ``numpy.random.default_rng``
+with the user's seed, so a fixed ``budget`` gives the same designs on any
+machine and any number of workers):
+
+1. **Library** (:func:`build_library`): random dyadic topologies of four-,
+   six- and eight-bar size (one to :data:`MAX_LIBRARY_DYADS` dyads on a crank
+   and two or three ground pivots), each with random sketches, simulated in
+   one batch per topology; every moving joint of a sketch that turns fully is
+   a library curve, with the sketch *pruned* to the joints the traced joint
+   needs (less material).  Descriptor: the magnitudes of the Fourier
+   coefficients of the curve resampled by arc length and scaled to unit RMS
+   radius, symmetrised in ``k, -k`` (invariant to rotation, start point,
+   direction and size).
+2. **Retrieval** (:func:`retrieve`): the nearest library curves to the
+   target's descriptor, re-ranked by the challenge's distance after scaling
+   each sketch so its curve has the target's RMS radius; the best
+   :data:`STARTS` distinct ones are the starts.
+3. **Per start** (:func:`run_start`): least-squares refinement of the
+   distance (:func:`refine`: Gauss-Newton / trust region of
+   :func:`scipy.optimize.least_squares` on the analytic Jacobian of
+   :func:`~gearlever.curves.simulate.simulate_jacobian`, against the
+   target's points at the current best alignment), topology moves (another
+   traced joint, one more dyad on the traced joint), then NSGA-II of pymoo
+   (Deb et al. 2002) over the joint positions with distance and material as
+   objectives and the challenge's bounds as constraints, seeded with the
+   refined sketch; then the front members are refined again and, because
+   size counts in the distance, each is offered in scaled copies (a smaller
+   copy has less material and more distance).
+4. **Front**: the non-dominated feasible designs of every start, at most
+   ``designs`` of them (chosen evenly along the front when there are more).
+
+Notes
+-----
+Scores as :mod:`gearlever.curves.score`.  NSGA-II: K. Deb, A. Pratap,
+S. Agarwal, T. Meyarivan, "A fast and elitist multiobjective genetic
+algorithm: NSGA-II", IEEE Trans. Evol. Comput. 6(2), 2002; pymoo: J. Blank,
+K. Deb, "pymoo: Multi-objective optimization in Python", IEEE Access 8, 2020.
+Retrieval over pre-simulated mechanisms follows the idea of LInK (A. H.
+Nobari, A. Srivastava, D. Gutfreund, K. Xu, F. Ahmed, 2024) with a
+hand-made descriptor in place of a learned one.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from gearlever.curves.links import Linkage, SolvePlan, linkage_from_dict
+from gearlever.curves.score import MAX_DISTANCE, MAX_MATERIAL, RESOLUTION, distance, hypervolume, material, resample
+from gearlever.curves.simulate import simulate, simulate_jacobian
+from gearlever.errors import GearleverError
+
+__all__ = [
+    "CurveSynthesis",
+    "Topology",
+    "build_library",
+    "refine",
+    "retrieve",
+    "run_start",
+    "synthesize_curve",
+]
+
+#: Most dyads of a library topology (eight joints beyond the crank: up to 12 joints).
+MAX_LIBRARY_DYADS = 8
+#: Library topologies and sketches per topology (built at run time with a fixed seed).
+LIBRARY_TOPOLOGIES = 48
+LIBRARY_SKETCHES = 300
+#: Fourier harmonics of the descriptor.
+HARMONICS = 12
+#: Retrieved entries refined briefly, and the best of them kept as starts.
+PRESELECT = 24
+STARTS = 8
+#: Alignments kept by the search's fast distance.
+KEEP = 12
+#: Variants of the add-a-dyad topology move tried per start.
+ADD_MOVES = 1
+#: NSGA-II population.
+POPULATION = 40
+#: Scaled copies of each front member.
+SCALES = np.linspace(0.9, 0.99, 10)
+#: Least material weight of a refinement (a barrier against sketches growing without bound), and the most a
+#: distance-only refinement may multiply the material by.
+MATERIAL_FLOOR = 1e-7
+MAX_GROWTH = 3.0
+#: Front members (closest first) polished by a longer refinement.
+POLISH = 3
+#: Material weights of the refinement chain.
+LAMBDAS = np.geomspace(1e-3, 0.3, 10)
+#: Caps.
+MAX_BUDGET = 10**7
+MAX_DESIGNS = 1000
+MAX_TIME = 86_400.0
+
+
+@dataclass(frozen=True, eq=False)
+class Topology:
+    """A dyadic topology: joints, edges, fixed joints, motor, traced joint and its solve plan."""
+
+    n: int
+    edges: np.ndarray
+    fixed: np.ndarray
+    motor: tuple
+    target: int
+    plan: SolvePlan
+
+    def linkage(self, x0) -> Linkage:
+        return Linkage(np.asarray(x0, dtype=float) + 0.0, self.edges, self.fixed, self.motor, self.target)
+
+    def key(self) -> tuple:
+        return (self.n, tuple(map(tuple, self.edges.tolist())), tuple(self.fixed.tolist()), self.motor, self.target)
+
+
+def _topology(n, edges, fixed, motor, target) -> Topology:
+    from gearlever.curves.links import _plan
+
+    edges = np.asarray(edges, dtype=int).reshape(-1, 2)
+    fixed = np.asarray(sorted(set(int(f) for f in fixed)), dtype=int)
+    plan = _plan(n, edges, fixed, int(motor[0]), int(motor[1]))
+    return Topology(n, edges, fixed, (int(motor[0]), int(motor[1])), int(target), plan)
+
+
+def random_topology(rng, n_dyads: int, n_fixed: int) -> Topology:
+    """A random dyadic topology: joint 0 the motor pivot, 1 the crank tip, then other fixed joints, then dyads."""
+    fixed = list(range(2, 1 + n_fixed)) + [0]
+    edges = [[0, 1]]
+    n = 1 + n_fixed
+    moving = [1]
+    for _ in range(n_dyads):
+        k = n
+        while True:
+            i, j = sorted(rng.choice(n, 2, replace=False).tolist())
+            if (i in fixed and j in fixed) or {i, j} == {0, 1}:
+                continue
+            # prefer parents among the newest moving joints: deeper chains
+            break
+        edges += [[i, k], [j, k]]
+        moving.append(k)
+        n += 1
+    return _topology(n, edges, fixed, (0, 1), n - 1)
+
+
+def prune(topo: Topology, target: int) -> tuple[Topology, np.ndarray]:
+    """The topology reduced to the joints ``target`` needs, and the kept joint indices (old numbering)."""
+    parents = {int(k): (int(i), int(j)) for k, i, j, _ in topo.plan.dyads}
+    need = {topo.motor[0], topo.motor[1], target}
+    stack = [target]
+    while stack:
+        for p in parents.get(stack.pop(), ()):
+            if p not in need or p in parents:
+                stack.append(p)
+            need.add(p)
+    keep = np.array(sorted(need), dtype=int)
+    new = {int(o): n for n, o in enumerate(keep)}
+    edges = [[new[int(i)], new[int(j)]] for i, j in topo.edges if int(i) in new and int(j) in new]
+    # fixed-fixed edges carry no motion: drop them
+    fixed = [new[int(f)] for f in topo.fixed if int(f) in new]
+    fs = set(fixed)
+    edges = [e for e in edges if not (e[0] in fs and e[1] in fs)]
+    return _topology(len(keep), edges, fixed, (new[topo.motor[0]], new[topo.motor[1]]), new[target]), keep
+
+
+def random_sketches(rng, topo: Topology, count: int) -> np.ndarray:
+    """Random sketches: joints uniform in the unit square around the origin, a short crank."""
+    x = rng.uniform(-1.0, 1.0, (count, topo.n, 2))
+    r = rng.uniform(0.05, 0.5, count)
+    a = rng.uniform(0.0, 2 * math.pi, count)
+    p, t = topo.motor
+    x[:, t, 0] = x[:, p, 0] + r * np.cos(a)
+    x[:, t, 1] = x[:, p, 1] + r * np.sin(a)
+    return x
+
+
+def descriptor(curves, harmonics: int = HARMONICS) -> np.ndarray:
+    """Rotation-, start-, direction- and size-invariant Fourier descriptor of curves (B, M, 2) -> (B, 2 H)."""
+    c = resample(curves, 64)
+    z = c[..., 0] + 1j * c[..., 1]
+    z = z[:, :-1] - z[:, :-1].mean(1, keepdims=True)
+    rms = np.sqrt((np.abs(z) ** 2).mean(1, keepdims=True))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        C = np.abs(np.fft.fft(z / rms, axis=1)) / z.shape[1]
+    k = np.arange(1, harmonics + 1)
+    a, b = C[:, k], C[:, -k]
+    return np.concatenate([a + b, np.abs(a - b)], 1)
+
+
+@dataclass(frozen=True, eq=False)
+class Library:
+    """Pre-simulated curves: topology per entry, its sketch, descriptor and the curve's RMS radius."""
+
+    topologies: list
+    entry_topology: np.ndarray
+    sketches: list
+    descriptors: np.ndarray
+    rms: np.ndarray
+
+
+def build_library(
+    seed: int = 0, topologies: int = LIBRARY_TOPOLOGIES, sketches: int = LIBRARY_SKETCHES, max_joints: int = 20
+) -> Library:
+    """Random topologies x random sketches, simulated in batches; each turning moving joint is an entry."""
+    rng = np.random.default_rng([seed, 271828])
+    topos, ent_t, ent_x, descs, rmss = [], [], [], [], []
+    cache = {}
+    for n in range(topologies):
+        n_dyads = 1 + n % MAX_LIBRARY_DYADS
+        n_fixed = 2 + (n // MAX_LIBRARY_DYADS) % 2
+        if 1 + n_fixed + n_dyads > max_joints:
+            continue
+        topo = random_topology(rng, n_dyads, n_fixed)
+        x0 = random_sketches(rng, topo, sketches)
+        x = simulate(x0, topo.plan, steps=100)
+        turns = np.isfinite(x).all(axis=(1, 2, 3))
+        if not turns.any():
+            continue
+        xs, xt = x0[turns], x[turns]
+        for target in range(topo.n):
+            if target in set(topo.fixed.tolist()) or target == topo.motor[1] and n_dyads > 1:
+                continue
+            sub, keep = prune(topo, target)
+            if sub.n > max_joints:
+                continue
+            key = sub.key()
+            if key not in cache:
+                cache[key] = len(topos)
+                topos.append(sub)
+            curves = xt[:, target]
+            d = descriptor(curves)
+            ok = np.isfinite(d).all(1)
+            c = curves[ok] - curves[ok].mean(1, keepdims=True)
+            rmss.append(np.sqrt((c**2).sum(-1).mean(1)))
+            descs.append(d[ok])
+            ent_t.append(np.full(ok.sum(), cache[key]))
+            ent_x.extend(xs[ok][:, keep])
+    return Library(topos, np.concatenate(ent_t), ent_x, np.concatenate(descs), np.concatenate(rmss))
+
+
+def _target_rms(target) -> float:
+    t = resample(np.asarray(target, dtype=float)[None], RESOLUTION)[0]
+    t = t - t.mean(0)
+    return float(np.sqrt((t**2).sum(-1).mean()))
+
+
+def evaluate(topo: Topology, x0s, target, keep: int | None = KEEP):
+    """Distance (fast mode unless ``keep`` is None) and material of sketches of one topology."""
+    x0s = np.asarray(x0s, dtype=float)
+    x = simulate(x0s, topo.plan)
+    d = distance(x[:, topo.target], target, keep=keep)
+    return d, material(x0s, topo.edges)
+
+
+def retrieve(library: Library, target, starts: int = STARTS, shortlist: int = 400):
+    """The ``starts`` best library entries for ``target``: (topology, sketch scaled to the target's size)."""
+    td = descriptor(np.asarray(target, dtype=float)[None])[0]
+    dist = np.linalg.norm(library.descriptors - td, axis=1)
+    order = np.argsort(dist, kind="stable")[:shortlist]
+    trms = _target_rms(target)
+    scored = []
+    for e in order:
+        topo = library.topologies[int(library.entry_topology[e])]
+        x0 = library.sketches[e] * (trms / library.rms[e])
+        d, m = evaluate(topo, x0[None], target, keep=None)
+        scored.append((float(d[0]), int(e), topo, x0))
+    scored.sort(key=lambda s: (s[0], s[1]))
+    out, seen = [], set()
+    for d, _e, topo, x0 in scored:
+        key = (topo.key(), round(d, 6))
+        if key in seen or not math.isfinite(d):
+            continue
+        seen.add(key)
+        out.append((topo, x0))
+        if len(out) == starts:
+            break
+    return out
+
+
+def _aligned_targets(topo, x0, target_c, curve):
+    """Target point matched to each time step of ``curve`` at the best alignment, the rotation and weights."""
+    from gearlever.curves.score import _alignment_indices
+
+    n = target_c.z.shape[0]
+    seg = np.hypot(*np.diff(curve, axis=0).T)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    f = cum / cum[-1]
+    c = resample(curve[None], n)[0]
+    c = c - c.mean(0)
+    cz = (c[:, 0] + 1j * c[:, 1]) / target_c.scale
+    idx = _alignment_indices(n)
+    C = cz[idx]
+    z = (target_c.z * np.conj(C)).sum(-1)
+    rot = np.exp(1j * np.angle(z))
+    gap = np.abs(target_c.z - rot[:, None] * C).mean(-1)
+    a = int(np.argmin(gap))
+    m = f * (n - 1)
+    pos = (m - a) % n if a < n else (a - n - m) % n
+    lo = np.floor(pos).astype(int) % n
+    w = pos - np.floor(pos)
+    tz = target_c.z[lo] * (1 - w) + target_c.z[(lo + 1) % n] * w
+    wk = np.zeros_like(f)
+    wk[:-1] += seg / 2
+    wk[1:] += seg / 2
+    wk /= wk.sum()
+    return tz, rot[a], wk
+
+
+@dataclass(frozen=True)
+class _Target:
+    z: np.ndarray
+    scale: float
+    raw: np.ndarray
+
+
+def _target(target) -> _Target:
+    t = resample(np.asarray(target, dtype=float)[None], RESOLUTION)[0]
+    t = t - t.mean(0)
+    s = float(np.sqrt((t**2).sum(-1).mean()))
+    return _Target((t[:, 0] + 1j * t[:, 1]) / s, s, np.asarray(target, dtype=float))
+
+
+def _residuals(topo: Topology, tc, tz, rot, wk, material_weight: float):
+    """Residuals and Jacobian of one refinement round (alignment fixed): weighted gaps, then sqrt(w) x material."""
+    N = topo.n
+    sw = np.sqrt(wk)
+    lam = math.sqrt(material_weight)
+
+    def fun(p):
+        x = p.reshape(N, 2)
+        c = simulate(x[None], topo.plan)[0, topo.target]
+        if not np.isfinite(c).all():
+            return np.full(2 * len(sw) + (1 if lam else 0), 10.0)
+        cz = c[:, 0] + 1j * c[:, 1]
+        cz = cz - (wk * cz).sum()
+        r = sw * (rot * cz / tc.scale - tz)
+        out = np.concatenate([r.real, r.imag])
+        if lam:
+            out = np.append(out, lam * material(x[None], topo.edges)[0])
+        return out
+
+    def jac(p):
+        x = p.reshape(N, 2)
+        c, J = simulate_jacobian(x[None], topo.plan, joints=[topo.target])
+        J = J[0, 0]  # (T, 2, 2N)
+        if not np.isfinite(J).all():
+            return np.zeros((2 * len(sw) + (1 if lam else 0), 2 * N))
+        Jz = J[:, 0] + 1j * J[:, 1]
+        Jz = Jz - (wk[:, None] * Jz).sum(0)
+        R = sw[:, None] * rot * Jz / tc.scale
+        out = np.concatenate([R.real, R.imag])
+        if lam:
+            e = topo.edges
+            d = x[e[:, 0]] - x[e[:, 1]]
+            L = np.hypot(d[:, 0], d[:, 1])
+            g = np.zeros((N, 2))
+            np.add.at(g, e[:, 0], 2 * d / L[:, None])
+            np.add.at(g, e[:, 1], -2 * d / L[:, None])
+            out = np.vstack([out, lam * g.reshape(1, -1)])
+        return out
+
+    return fun, jac
+
+
+def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material_weight: float = 0.0):
+    """Least-squares refinement of the distance of one sketch (analytic Jacobian); returns (x0, d, m, evals).
+
+    Each round fixes the best alignment (cyclic shift, direction, rotation) of
+    the current curve and solves the weighted least-squares problem of the
+    gaps between the time samples and their matched target points; a round
+    is kept only if the challenge's distance decreases.
+    """
+    from scipy.optimize import least_squares
+
+    tc = target if isinstance(target, _Target) else _target(target)
+    x0 = np.asarray(x0, dtype=float)
+    best_d, best_m = (float(v[0]) for v in evaluate(topo, x0[None], tc.raw, keep=None))
+    m_start = best_m
+    evals = 1
+    if not math.isfinite(best_d):
+        return x0, best_d, best_m, evals
+    best = x0
+    N = topo.n
+    for _ in range(rounds):
+        curve = simulate(best[None], topo.plan)[0, topo.target]
+        tz, rot, wk = _aligned_targets(topo, best, tc, curve)
+        fun, jac = _residuals(topo, tc, tz, rot, wk, max(material_weight, MATERIAL_FLOOR))
+        try:
+            res = least_squares(fun, best.ravel(), jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
+        except (ValueError, np.linalg.LinAlgError):
+            break
+        evals += int(res.nfev) + int(res.njev or 0)
+        cand = res.x.reshape(N, 2)
+        d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw, keep=None))
+        evals += 1
+        cost0 = 0.5 * float((fun(best.ravel()) ** 2).sum())
+        if not material_weight:
+            better = d < best_d - 1e-9 and m <= MAX_GROWTH * m_start
+        else:
+            better = math.isfinite(d) and res.cost < cost0 - 1e-12
+        if better:
+            best, best_d, best_m = cand, d, m
+        else:
+            break
+    return best, best_d, best_m, evals
+
+
+def _moves(rng, topo: Topology, x0, max_joints: int):
+    """Topology moves of a design: another traced joint, one more dyad on the traced joint (x0 extended)."""
+    out = []
+    fixed = set(topo.fixed.tolist())
+    for k in range(topo.n):
+        if k != topo.target and k not in fixed and k != topo.motor[1]:
+            out.append((_topology(topo.n, topo.edges, topo.fixed, topo.motor, k), x0))
+    for _ in range(ADD_MOVES if topo.n + 1 <= max_joints else 0):
+        k = topo.n
+        others = [j for j in range(topo.n) if j != topo.target]
+        j = int(rng.choice(others))
+        edges = np.vstack([topo.edges, [[topo.target, k], [j, k]]])
+        size = np.ptp(x0, axis=0).max()
+        new = x0[topo.target] + rng.normal(0.0, 0.3 * size, 2)
+        x1 = np.vstack([x0, new])
+        try:
+            out.append((_topology(k + 1, edges, topo.fixed, topo.motor, k), x1))
+        except GearleverError:
+            pass
+    return out
+
+
+def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
+    """NSGA-II (pymoo) over the joint positions of one topology, seeded around ``x0``; returns (X, F)."""
+    from pymoo.algorithms.moo.nsga2 import NSGA2
+    from pymoo.core.problem import Problem
+    from pymoo.operators.crossover.sbx import SBX
+    from pymoo.operators.mutation.pm import PolynomialMutation
+    from pymoo.termination import get_termination
+
+    N = topo.n
+    lo = hi = None
+
+    class _P(Problem):
+        def __init__(self, lo, hi):
+            super().__init__(n_var=2 * N, n_obj=2, n_ieq_constr=2, xl=lo, xu=hi)
+
+        def _evaluate(self, X, out, *args, **kwargs):
+            d, m = evaluate(topo, X.reshape(-1, N, 2), target)
+            d = np.where(np.isfinite(d), d, 1e6)
+            out["F"] = np.column_stack([d, m])
+            out["G"] = np.column_stack([d - MAX_DISTANCE, m - MAX_MATERIAL])
+
+    rng = np.random.default_rng(seed)
+    seeds = np.asarray(x0, dtype=float).reshape(-1, 2 * N)
+    x0 = seeds[0].reshape(N, 2)
+    size = float(np.ptp(x0, axis=0).max())
+    lo, hi = seeds.min(0) - size, seeds.max(0) + size
+    pick = seeds[np.arange(POPULATION) % len(seeds)]
+    pop = pick + rng.normal(0.0, 0.01 * size, (POPULATION, 2 * N))
+    pop[: len(seeds)] = seeds[:POPULATION]
+    pop = np.clip(pop, lo, hi)
+    gens = max(1, evals // POPULATION)
+    algo = NSGA2(
+        pop_size=POPULATION,
+        sampling=pop,
+        crossover=SBX(prob=0.9, eta=15),
+        mutation=PolynomialMutation(prob=1.0 / (2 * N), eta=20),
+        eliminate_duplicates=True,
+    )
+    from pymoo.optimize import minimize
+
+    term = get_termination("n_gen", gens)
+    if deadline is not None:
+        from pymoo.termination.collection import TerminationCollection
+        from pymoo.termination.max_time import TimeBasedTermination
+
+        term = TerminationCollection(term, TimeBasedTermination(max(1e-3, deadline - time.monotonic())))
+    res = minimize(_P(lo, hi), algo, term, seed=int(seed % (2**31)), verbose=False, save_history=False)
+    pop = res.pop
+    return pop.get("X").reshape(-1, N, 2), pop.get("F")
+
+
+def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list:
+    """One start: refine, topology moves, NSGA-II, refine the front, scaled copies; list of designs.
+
+    A design is ``(distance, material, topology_dict, x0_list)`` with exact distances.
+    """
+    rng = np.random.default_rng([seed, k])
+    target = np.asarray(spec["target"], dtype=float)
+    tc = _target(target)
+    s = spec["starts"][k]
+    topo = _topology(s["n"], s["edges"], s["fixed"], s["motor"], s["target"])
+    x0 = np.asarray(s["x0"], dtype=float)
+    used = 0
+    x0, d, m, e = refine(topo, x0, tc, rounds=6, nfev=40)
+    used += e
+    cands = [(topo, x0, d)]
+    for t2, x2 in _moves(rng, topo, x0, spec["max_joints"]):
+        if deadline is not None and time.monotonic() > deadline:
+            break
+        x2, d2, m2, e2 = refine(t2, x2, tc, rounds=2)
+        used += e2
+        cands.append((t2, x2, d2))
+    cands.sort(key=lambda c: c[2])
+    topo, x0, _ = cands[0]
+    designs = []
+    # material-weighted refinement, continued from one weight to the next: a first front
+    chain = [x0]
+    x = x0
+    for lam in LAMBDAS:
+        if deadline is not None and time.monotonic() > deadline:
+            break
+        x, dl, ml, e = refine(topo, x, tc, rounds=2, material_weight=lam)
+        used += e
+        if math.isfinite(dl):
+            chain.append(x)
+    X, F = _nsga(topo, np.array(chain), target, max(POPULATION, evals - used), int(rng.integers(2**31)), deadline)
+    Xall = np.concatenate([X, np.array(chain)])
+    d, m = evaluate(topo, Xall, target, keep=None)
+    front = _nondominated(d, m)
+    # polish the closest designs: more rounds of the distance-only refinement
+    polished = []
+    for i in front[:POLISH]:
+        if deadline is not None and time.monotonic() > deadline:
+            break
+        xp, dp, mp, _ = refine(topo, Xall[i], tc, rounds=8, nfev=60)
+        polished.append(xp)
+    if polished:
+        Xall = np.concatenate([Xall, np.array(polished)])
+        d, m = evaluate(topo, Xall, target, keep=None)
+        front = _nondominated(d, m)
+    for i in front:
+        designs.append((float(d[i]), float(m[i]), Xall[i]))
+        for sc in SCALES:
+            xs = Xall[i] * sc
+            ds, ms = evaluate(topo, xs[None], target, keep=None)
+            designs.append((float(ds[0]), float(ms[0]), xs))
+    td = {
+        "n": topo.n,
+        "edges": topo.edges.tolist(),
+        "fixed": topo.fixed.tolist(),
+        "motor": list(topo.motor),
+        "target": topo.target,
+    }
+    return [(dd, mm, td, xx.tolist()) for dd, mm, xx in designs if math.isfinite(dd)]
+
+
+def _pick_starts(refined, count: int) -> list:
+    """Half the starts by the area a design alone dominates (distance and material), half by distance."""
+    ok = [r for r in refined if math.isfinite(r[0])]
+    by_area = sorted(ok, key=lambda r: (-max(0.0, MAX_DISTANCE - r[0]) * max(0.0, MAX_MATERIAL - r[1]), r[0], r[2]))
+    by_distance = sorted(ok, key=lambda r: (r[0], r[2]))
+    out, seen = [], set()
+    for a, b in zip(by_area, by_distance):
+        for r in (a, b):
+            if r[2] not in seen and len(out) < count:
+                seen.add(r[2])
+                out.append((r[3], r[4]))
+    return out
+
+
+def _nondominated(d, m) -> np.ndarray:
+    order = np.lexsort((m, d))
+    out, best = [], math.inf
+    for i in order:
+        if math.isfinite(d[i]) and m[i] < best:
+            out.append(int(i))
+            best = m[i]
+    return np.array(out, dtype=int)
+
+
+def _chunk(spec, seed, ks, evals, method):
+    deadline = spec.get("deadline")
+    out = []
+    for k in ks:
+        for dd, mm, td, xx in run_start(spec, seed, k, evals, deadline):
+            out.append((dd, k, mm, td, xx))
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class CurveSynthesis:
+    """Result of :func:`synthesize_curve`: the Pareto designs (distance ascending) and the run's facts."""
+
+    designs: tuple
+    distance: np.ndarray
+    material: np.ndarray
+    hypervolume: float
+    evaluations: int
+    seed: int
+    starts: int
+    library_size: int
+    seconds: float = field(default=0.0)
+
+    def as_dict(self) -> dict:
+        return {
+            "hypervolume": self.hypervolume,
+            "reference": [MAX_DISTANCE, MAX_MATERIAL],
+            "designs": len(self.designs),
+            "evaluations": self.evaluations,
+            "seed": self.seed,
+            "starts": self.starts,
+            "library_size": self.library_size,
+            "best_distance": float(self.distance[0]) if len(self.designs) else None,
+            "least_material": float(self.material.min()) if len(self.designs) else None,
+            "front": [
+                {"distance": float(d), "material": float(m), "joints": lk.n_joints, "links": len(lk.edges)}
+                for d, m, lk in zip(self.distance, self.material, self.designs)
+            ],
+        }
+
+
+def synthesize_curve(
+    target,
+    *,
+    max_joints: int = 20,
+    designs: int = MAX_DESIGNS,
+    budget: int | None = 20_000,
+    time_limit: float | None = None,
+    seed: int = 0,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress=None,
+) -> CurveSynthesis:
+    """Linkages (topology and dimensions) whose traced joint follows ``target``, on the distance-material front.
+
+    Parameters
+    ----------
+    target : array_like, shape (K, 2)
+        Target curve (checked by :func:`gearlever.curves.targets.check_target`).
+    max_joints : int
+        4 to 20.
+    designs : int
+        Most designs returned (1 to 1000).
+    budget : int, optional
+        Evaluations of the search after retrieval (reproducible).
+    time_limit : float, optional
+        Seconds: the search stops on the clock (not reproducible).
+    seed : int
+    workers, scheduler
+        Local threads, or the address of a dask.distributed scheduler.
+    progress : callable, optional
+        ``progress(label, done, total)``.
+
+    Returns
+    -------
+    CurveSynthesis
+
+    Notes
+    -----
+    The steps and their sources are in the module docstring.
+    """
+    from gearlever.curves.targets import check_target
+    from gearlever.synthesis._dask import run_starts
+
+    t0 = time.monotonic()
+    target = check_target(target)
+    if not 4 <= int(max_joints) <= 20:
+        raise GearleverError(f"max_joints must be 4 to 20, got {max_joints}")
+    if not 1 <= int(designs) <= MAX_DESIGNS:
+        raise GearleverError(f"designs must be 1 to {MAX_DESIGNS}, got {designs}")
+    if budget is not None and not 1000 <= int(budget) <= MAX_BUDGET:
+        raise GearleverError(f"budget must be 1000 to {MAX_BUDGET}, got {budget}")
+    if time_limit is not None and not 1.0 <= float(time_limit) <= MAX_TIME:
+        raise GearleverError(f"time_limit must be 1 to {MAX_TIME:g} seconds, got {time_limit}")
+    lib = build_library(0, LIBRARY_TOPOLOGIES, LIBRARY_SKETCHES, max_joints=max_joints)
+    shortlist = retrieve(lib, target, PRESELECT)
+    if not shortlist:
+        raise GearleverError("target: no library mechanism traces a curve of this kind")
+    # a short refinement of every retrieved entry; the best refined ones are the starts
+    tc = _target(target)
+    refined = []
+    for n, (topo, x0) in enumerate(shortlist):
+        if refined and time_limit is not None and time.monotonic() > t0 + 0.5 * float(time_limit):
+            break
+        x1, d1, m1, _ = refine(topo, x0, tc, rounds=3, nfev=15)
+        refined.append((d1, m1, n, topo, x1))
+    starts = _pick_starts(refined, STARTS)
+    total = budget if budget is not None else 10**6
+    evals = max(POPULATION * 2, total // len(starts))
+    spec = {
+        "target": target.tolist(),
+        "max_joints": int(max_joints),
+        "starts": [
+            {
+                "n": t.n,
+                "edges": t.edges.tolist(),
+                "fixed": t.fixed.tolist(),
+                "motor": list(t.motor),
+                "target": t.target,
+                "x0": x.tolist(),
+            }
+            for t, x in starts
+        ],
+        "deadline": None if time_limit is None else t0 + float(time_limit),
+    }
+    res = run_starts(
+        spec, seed, len(starts), evals, "nsga2", workers=workers, scheduler=scheduler, progress=progress, fn=_chunk
+    )
+    # every design, exact distance; the non-dominated feasible ones, evenly thinned to `designs`
+    dd = np.array([r[0] for r in res])
+    mm = np.array([r[2] for r in res])
+    feas = (dd < MAX_DISTANCE) & (mm < MAX_MATERIAL)
+    idx = np.flatnonzero(feas)
+    front = idx[_nondominated(dd[idx], mm[idx])] if idx.size else idx
+    if front.size > designs:
+        pick = np.unique(np.round(np.linspace(0, front.size - 1, designs)).astype(int))
+        front = front[pick]
+    out = []
+    for i in front:
+        _, _, _, td, xx = res[i]
+        out.append(
+            linkage_from_dict(
+                {
+                    "x0": xx,
+                    "edges": td["edges"],
+                    "fixed_joints": td["fixed"],
+                    "motor": td["motor"],
+                    "target_joint": td["target"],
+                }
+            )
+        )
+    dist = dd[front]
+    mat = mm[front]
+    hv = hypervolume(np.column_stack([dist, mat])) if front.size else 0.0
+    return CurveSynthesis(
+        tuple(out),
+        dist,
+        mat,
+        hv,
+        int(total),
+        int(seed),
+        len(starts),
+        int(lib.descriptors.shape[0]),
+        time.monotonic() - t0,
+    )

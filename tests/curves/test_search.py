@@ -1,0 +1,99 @@
+"""Curve synthesis: refinement recovers a known linkage, retrieval descriptor invariances, pruning, determinism."""
+
+import json
+
+import numpy as np
+import pytest
+
+from gearlever.curves import search as S
+from gearlever.curves.links import solve_plan
+from gearlever.curves.score import distance, material
+from gearlever.curves.simulate import simulate
+
+
+def _turning(n_dyads, seed=5):
+    rng = np.random.default_rng(seed)
+    while True:
+        topo = S.random_topology(rng, n_dyads, 2)
+        x0 = S.random_sketches(rng, topo, 200)
+        ok = np.isfinite(simulate(x0, topo.plan, steps=100)).all(axis=(1, 2, 3))
+        if ok.any():
+            return topo, x0[np.flatnonzero(ok)[0]]
+
+
+def test_refine_recovers_a_known_seven_joint_linkage_from_a_perturbed_sketch():
+    topo, x_true = _turning(4)
+    assert topo.n == 7
+    target = simulate(x_true[None], topo.plan)[0, topo.target]
+    rng = np.random.default_rng(0)
+    x0 = x_true + 0.01 * rng.standard_normal(x_true.shape)
+    d0 = distance(simulate(x0[None], topo.plan)[:, topo.target], target)[0]
+    x, d, m, evals = S.refine(topo, x0, target, rounds=6, nfev=40)
+    assert d0 > 0.02 and d < 0.01 and d < d0
+    assert m == pytest.approx(material(x[None], topo.edges)[0])
+
+
+def test_descriptor_is_invariant_to_rotation_start_direction_and_size():
+    t = np.linspace(0, 2 * np.pi, 300)
+    kidney = np.stack([np.cos(t) + 0.4 * np.cos(2 * t), np.sin(t) + 0.1 * np.sin(3 * t)], -1)
+    c, s = np.cos(0.8), np.sin(0.8)
+    copies = [kidney @ np.array([[c, -s], [s, c]]).T * 3 + 5, np.roll(kidney[:-1], 70, 0)[::-1], 0.2 * kidney]
+    d0 = S.descriptor(kidney[None])[0]
+    for cp in copies:
+        np.testing.assert_allclose(S.descriptor(cp[None])[0], d0, atol=2e-3)
+    egg = np.stack([np.cos(t) * (1 + 0.2 * np.sin(t)), 0.8 * np.sin(t)], -1)
+    assert np.abs(S.descriptor(egg[None])[0] - d0).max() > 0.02
+
+
+def test_prune_keeps_only_the_joints_the_traced_joint_needs():
+    topo, x0 = _turning(4)
+    sub, keep = S.prune(topo, 3)
+    assert sub.n < topo.n and 3 in keep and 0 in keep and 1 in keep
+    full = simulate(x0[None], topo.plan)[0, 3]
+    pruned = simulate(x0[keep][None], sub.plan)[0, sub.target]
+    np.testing.assert_allclose(pruned, full, atol=1e-12)
+
+
+@pytest.fixture
+def small(monkeypatch):
+    monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
+    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
+    monkeypatch.setattr(S, "STARTS", 2)
+    monkeypatch.setattr(S, "PRESELECT", 4)
+    monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
+
+
+def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers_and_on_a_cluster(small):
+    t = np.linspace(0, 2 * np.pi, 120)
+    egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
+    a = S.synthesize_curve(egg, budget=1000, seed=3, workers=1)
+    b = S.synthesize_curve(egg, budget=1000, seed=3, workers=2)
+    assert json.dumps(a.as_dict()) == json.dumps(b.as_dict())
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as c:
+        on_cluster = S.synthesize_curve(egg, budget=1000, seed=3, scheduler=c.scheduler_address)
+    assert json.dumps(on_cluster.as_dict()) == json.dumps(a.as_dict())
+    assert [lk.x0.tolist() for lk in on_cluster.designs] == [lk.x0.tolist() for lk in a.designs]
+    assert [lk.x0.tolist() for lk in a.designs] == [lk.x0.tolist() for lk in b.designs]
+    assert len(a.designs) >= 1 and a.hypervolume > 0
+    for lk, d, m in zip(a.designs, a.distance, a.material):
+        assert d < 0.75 and m < 10 and lk.n_joints <= 20
+        x = simulate(lk.x0[None], solve_plan(lk))[:, lk.target_joint]
+        assert distance(x, egg)[0] == pytest.approx(d, rel=1e-12)
+        assert material(lk.x0[None], lk.edges)[0] == pytest.approx(m, rel=1e-12)
+    assert np.all(np.diff(a.distance) > 0) and np.all(np.diff(a.material) < 0)  # a front
+
+
+@pytest.mark.parametrize(
+    "kw, needle",
+    [
+        ({"max_joints": 3}, "max_joints"),
+        ({"budget": 10}, "budget"),
+        ({"designs": 0}, "designs"),
+        ({"time_limit": 0.1}, "time_limit"),
+    ],
+)
+def test_bad_arguments_are_refused_naming_them(kw, needle):
+    t = np.linspace(0, 2 * np.pi, 50)
+    with pytest.raises(ValueError, match=f"^{needle}"):
+        S.synthesize_curve(np.stack([np.cos(t), np.sin(t)], -1), **kw)
