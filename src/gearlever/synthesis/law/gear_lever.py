@@ -66,7 +66,25 @@ SLIDE_ROWS = 9
 
 @register
 class GearLeverLaw(LawKind):
-    """Gear-lever differential (ZRDPM) at one slide setting, output the driven gear 8 (module docstring)."""
+    """Gear-lever differential (ZRDPM) at one slide setting, output the driven gear 8 (module docstring).
+
+    Notes
+    -----
+    Driven gear by Willis' equation, ``theta8 = (1 + z9/z8) theta1 - (z9/z8)
+    phi9`` (Alimukhamedov et al. 2020, eqs. 2-4); the lever angle
+    ``theta1`` by the closed forms of the crank-rocker and of the dyad
+    ``D E O1``.
+
+    Examples
+    --------
+    >>> from gearlever.synthesis.law import law_target
+    >>> th = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+    >>> kind = GearLeverLaw(law_target(th, np.zeros(36)))
+    >>> z = np.array([0.3627, 1.0966, 0.6747, 0.4434, 0.5598, 2.8402, 0.624, 1.5799, 31, 91, -1.0, -1.0])
+    >>> G, ok = kind.generate(z[None, :], th)
+    >>> bool(ok[0]), kind.variant, round(float(np.degrees(np.ptp(G))), 3)
+    (True, 'held', 10.273)
+    """
 
     name = "gear-lever"
     outputs = ("angle",)
