@@ -85,10 +85,12 @@ def test_complex_step_jacobian_matches_central_differences(target):
         assert np.abs(fd - J[:, j]).max() < 1e-6 * max(1.0, np.abs(J[:, j]).max()), n
 
 
-def test_polish_from_a_perturbed_gear_lever_recovers_it_to_1e_9():
-    kind, z0 = _z(HELD)
+@pytest.mark.parametrize("target", [HELD, DRIVEN], ids=["held", "driven"])
+def test_polish_from_a_perturbed_gear_lever_recovers_it_to_1e_9(target):
+    kind, z0 = _z(target)
     G, _ = kind.generate(z0[None, :], TH)
-    pb = LawProblem("gear-lever", law_target(TH, G[0] - G[0, 0]), 0.0)
+    pb = LawProblem("gear-lever", law_target(TH, G[0] - G[0, 0], net=target.net), 0.0)
+    assert pb.kind.variant == kind.variant
     z1 = z0 + np.array([0.002, -0.002, 0.002, 0.0015, 0.0015, -0.0015, 0.0015, -0.0015, 0, 0, 0, 0])
     # the six-bar's law is nearly blind to one combination of its lengths (the Jacobian's smallest singular
     # value is ~5e-6 of its largest), so the law is recovered to 1e-9 while the lengths are to ~1e-4
