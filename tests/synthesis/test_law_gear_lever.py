@@ -37,7 +37,9 @@ def test_closed_form_matches_the_mechanism_engine_on_the_written_model(target):
     kind, z = _z(target)
     G, ok = kind.generate(z[None, :], TH)
     assert ok[0]
-    ml = mechanism_law(Mechanism.from_dict(kind.model(z, 0.0)), "output", TH.size)
+    mech = Mechanism.from_dict(kind.model(z, 0.0))  # checks |O1 E| = m (z9 + z8) / 2 (assembly)
+    assert mech.model.module == pytest.approx(2 * SIZE * z[7] / (z[8] + z[9]), rel=1e-12)
+    ml = mechanism_law(mech, "output", TH.size)
     assert ml.closed.all()
     assert np.abs(ml.s - (G[0] - G[0, 0])).max() < 1e-9
     z9, z8 = int(z[8]), int(z[9])

@@ -294,7 +294,11 @@ class GearLeverLaw(LawKind):
             "P": (E[0] + r8 * math.cos(th8), E[1] + r8 * math.sin(th8)),
         }
         return {
-            "mechanism": _mechanism_table(f"law gear-lever differential (ZRDPM, gear 9 {self.variant})", ""),
+            # the module makes the engine check the mesh's assembly constraint |O1 E| = m (z9 + z8) / 2
+            "mechanism": {
+                **_mechanism_table(f"law gear-lever differential (ZRDPM, gear 9 {self.variant})", ""),
+                "module": 2.0 * S * ell / (z9 + z8),
+            },
             "points": {n: _xy(n, p) for n, p in pts.items()},
             "links": {
                 "ground": ["O1", "O3"],
