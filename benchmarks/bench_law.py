@@ -68,7 +68,7 @@ def evaluation_ratio() -> None:
 
     target = target_of_law(load_law())
     print("== 2. law evaluations per second (360 inputs each): closed form batched vs the engine per model")
-    for kind in ("fourbar", "geared-fourbar", "sixbar-dwell"):
+    for kind in ("fourbar", "geared-fourbar", "sixbar-dwell", "gear-lever"):
         pb = LawProblem(kind, target, 0.0)
         rng = np.random.default_rng(0)
         Z = pb.sample(rng, 4096)
@@ -96,7 +96,7 @@ def evaluation_ratio() -> None:
 def main(argv) -> None:
     quick = "--quick" in argv
     seeds = [int(a) for a in argv if a.isdigit()] or [0]
-    kinds = ["sixbar-dwell"] if quick else ["fourbar", "geared-fourbar", "sixbar-dwell", "auto"]
+    kinds = ["sixbar-dwell"] if quick else ["fourbar", "geared-fourbar", "sixbar-dwell", "gear-lever", "auto"]
     dwell_benchmark(seeds, kinds)
     evaluation_ratio()
 

@@ -148,7 +148,7 @@ def test_mechanism_law_refuses_an_unknown_output(tmp_path, run):
     assert code == 2 and "--output" in err and "rockr" in err
 
 
-@pytest.mark.parametrize("kind", ["fourbar", "geared-fourbar", "sixbar-dwell"])
+@pytest.mark.parametrize("kind", ["fourbar", "geared-fourbar", "sixbar-dwell", "gear-lever"])
 def test_the_written_model_opens_in_analyze_draw_view_and_forces(tmp_path, run, kind):
     law = tmp_path / "law.toml"
     law.write_text(DWELL)
@@ -171,7 +171,7 @@ def test_auto_tries_every_angle_kind_and_ranks_them(tmp_path, run):
     assert code == 0, err
     r = json.loads(rep.read_text())
     tried = r["types_tried"]
-    assert set(tried) == {"fourbar", "slider-crank", "geared-fourbar", "sixbar-dwell"}
+    assert set(tried) == {"fourbar", "slider-crank", "geared-fourbar", "sixbar-dwell", "gear-lever"}
     assert tried["slider-crank"] is None  # an angle law: no slider
     best = min(v for v in tried.values() if v is not None)
     assert tried[r["kind"]] == best and "tried" in text
@@ -194,3 +194,31 @@ def test_an_unreachable_scheduler_is_refused_naming_the_flag(tmp_path, run):
         "synthesize", "law", law, "--type", "fourbar", "--out", out, "--budget", 200, "--scheduler", "tcp://127.0.0.1:9"
     )
     assert code == 2 and "--scheduler" in err and len(err.strip().splitlines()) == 1 and not out.exists()
+
+
+def test_gear_lever_report_has_teeth_module_and_the_slide_sweep(tmp_path, run):
+    law = tmp_path / "law.toml"
+    law.write_text(DWELL)
+    out, rep = tmp_path / "m.toml", tmp_path / "r.json"
+    code, text, err = run(
+        "synthesize", "law", law, "--type", "gear-lever", "--out", out, "--report", rep, "--budget", 600
+    )
+    assert code == 0, err
+    r = json.loads(rep.read_text())
+    d = r["design"]
+    assert d["variant"] == "held" and all(17 <= z <= 120 for z in d["teeth"].values())
+    rows = d["slide_range"]
+    assert [x["centre_distance"] for x in rows] == pytest.approx(np.linspace(90, 110, 9).tolist())
+    mid = rows[4]
+    assert mid["feasible"] and mid["error_max_deg"] == pytest.approx(r["error_max_deg"], rel=0.05)
+    assert "slide (err max)" in text and "teeth" in text
+    m = tomllib.loads(out.read_text())
+    assert m["gears"]["g9"]["link"] == "ground" and m["meshes"][0]["carrier"] == "lever"
+
+
+def test_gear_lever_refuses_a_net_rotation_no_teeth_give(tmp_path, run):
+    law = tmp_path / "law.toml"
+    law.write_text('[law]\noutput = "angle"\nunits = "deg"\n[[law.segment]]\nto = 360\nmotion = "linear"\nrise = 360\n')
+    code, _, err = run("synthesize", "law", law, "--type", "gear-lever", "--out", tmp_path / "m.toml")
+    assert code == 2 and "LAW" in err and "z9/z8" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "m.toml").exists()

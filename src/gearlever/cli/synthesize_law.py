@@ -2,7 +2,7 @@
 
 Registered on the ``synthesize`` sub-parsers by :func:`register_law`::
 
-    gearlever synthesize law LAW.toml --type fourbar|slider-crank|geared-fourbar|sixbar-dwell|auto
+    gearlever synthesize law LAW.toml --type fourbar|slider-crank|geared-fourbar|sixbar-dwell|gear-lever|auto
         --out MODEL.toml [--report R.json] [--figure F.png] [--seed N] [--budget EVALS]
         [--workers N | --scheduler ADDRESS] [--min-transmission DEG] [--teeth ZMIN ZMAX]
 
@@ -213,6 +213,13 @@ def _run(args) -> int:
     teeth = res.details.get("teeth")
     if teeth:
         lines.append("teeth            " + ", ".join(f"{k} {v}" for k, v in teeth.items()))
+    slide = rep["design"].get("slide_range")
+    if slide:  # the gear-lever's adjusting slide: the law at other settings of the centre distance
+        cells = [
+            f"{r['centre_distance']:.4g}: " + (f"{r['error_max' + unit]:.3g}{u}" if r["feasible"] else "no assembly")
+            for r in slide
+        ]
+        lines.append("slide (err max)  " + ", ".join(cells))
     lines += [
         f"evaluations      {rep['evaluations']} (seed {args.seed}, {rep['starts']} starts)",
         f"model            {args.out} (output link 'output')",

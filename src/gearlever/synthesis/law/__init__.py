@@ -9,7 +9,8 @@
   :mod:`~gearlever.synthesis.law.slider_crank` (offset slider output),
   :mod:`~gearlever.synthesis.law.geared_fourbar` (coupler gear driving an
   output gear), :mod:`~gearlever.synthesis.law.sixbar_dwell` (a dyad on a
-  circular arc of a coupler curve).
+  circular arc of a coupler curve), :mod:`~gearlever.synthesis.law.gear_lever`
+  (the ZRDPM gear-lever differential, its carrier swung by a linkage).
 - :mod:`~gearlever.synthesis.law.driver`: seeded starts on dask over the
   registry, :class:`LawSynthesis`.
 - :mod:`~gearlever.synthesis.law.measure`: the law a mechanism model
@@ -20,7 +21,13 @@ Numeric core: may import numpy, scipy, :mod:`gearlever.synthesis`,
 never pandas or matplotlib.
 """
 
-from gearlever.synthesis.law import fourbar, geared_fourbar, sixbar_dwell, slider_crank  # noqa: F401 (the kinds)
+from gearlever.synthesis.law import (  # noqa: F401 (the kinds)
+    fourbar,
+    gear_lever,
+    geared_fourbar,
+    sixbar_dwell,
+    slider_crank,
+)
 from gearlever.synthesis.law._core import KINDS, LawKind, LawProblem, LawTarget, law_target
 from gearlever.synthesis.law.driver import LawSynthesis, synthesize_law
 
