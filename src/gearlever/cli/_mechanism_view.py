@@ -10,7 +10,8 @@ stay at their sketch values (or ``--input``; degrees for a link, length for a
 slider); for two or more inputs the page offers
 :data:`gearlever.plotting.viewer.GRID_STEPS` values of the second.  With
 ``--rpm`` (one per input, ``NAME=VALUE``; a bare value for a one-input model)
-the page shows time and velocities per second.  Caps (refused before anything is
+the page shows time and velocities per second.  Given a CAM.toml (written by
+``gearlever cam design``) it writes the cam page of ``gearlever cam view``.  Caps (refused before anything is
 solved, exit 2): ``--frames`` at most :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`,
 frames x grid values x moving links at most :data:`~gearlever.plotting.viewer.MAX_VIEW_WORK`,
 a page of at most :data:`~gearlever.plotting.viewer.MAX_PAGE_BYTES` bytes, at most
@@ -55,6 +56,13 @@ def register_view(ms) -> None:
 def _view(args) -> int:
     if Path(args.out).suffix.lower() not in (".html", ".htm"):
         raise GearleverError(f"--out must end with .html, got {args.out!r}")
+    if _is_cam_file(args.model):
+        if args.rpm or args.input:
+            raise GearleverError(f"{'--rpm' if args.rpm else '--input'} does not apply to a cam file ({args.model})")
+        from gearlever.cli.cam import cam_page
+
+        emit(cam_page(args.model, args.frames), args.out)
+        return 0
     from gearlever.cli.mechanism import _load
     from gearlever.plotting.viewer import viewer_html
 
@@ -84,3 +92,16 @@ def _view(args) -> int:
         raise GearleverError(text) from None
     emit(page, args.out)
     return 0
+
+
+def _is_cam_file(path: str) -> bool:
+    """True for a CAM.toml of ``gearlever cam design`` (a ``[cam]`` table and no ``[points]``)."""
+    import tomllib
+
+    from gearlever._io import read_text_capped
+
+    try:
+        data = tomllib.loads(read_text_capped(path, "MODEL"))
+    except (GearleverError, tomllib.TOMLDecodeError):
+        return False  # the model loader names the problem
+    return isinstance(data.get("cam"), dict) and "points" not in data

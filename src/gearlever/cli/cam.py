@@ -6,6 +6,7 @@
         [--base-radius R] [--roller-radius r] [--offset e] [--arm L --pivot-distance D]
         [--max-pressure-angle DEG] [--min-curvature-radius RHO] [--rpm N] [--points N]
         --out CAM.toml [--profile P.csv|P.svg|P.dxf] [--report R.json] [--figure F.png]
+    gearlever cam view CAM.toml --out PAGE.html [--frames N]
 
 Without ``--base-radius`` the base circle is sized: the smallest meeting
 ``--max-pressure-angle`` and/or ``--min-curvature-radius``.  With both, the
@@ -14,6 +15,10 @@ breaks one (the line gives the smallest base radius meeting it).  The search
 samples at most :data:`SIZING_POINTS` cam angles, so a design at a finer
 ``--points`` may show the bound passed by its sampling (1e-6 deg on the lift law).  Every file
 is written atomically; every refusal is one line naming the file, segment or flag.
+
+``cam view`` writes the interactive page of the cam turning with its follower
+(:func:`gearlever.plotting.cam_viewer.cam_viewer_html`); ``gearlever mechanism
+view CAM.toml`` does the same.
 """
 
 from __future__ import annotations
@@ -38,6 +43,8 @@ from gearlever.errors import GearleverError
 MAX_POINTS = 1_000_000
 #: Most points the base-circle search evaluates per candidate radius (it tries about 130 radii).
 SIZING_POINTS = 36_000
+#: Largest ``--frames`` of ``cam view`` (same as :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`).
+MAX_VIEW_FRAMES = 3600
 #: Profile file kinds by suffix.
 PROFILE_SUFFIXES = (".csv", ".svg", ".dxf")
 
@@ -82,6 +89,21 @@ def register(sub) -> None:
     d.add_argument("--report", default=None, metavar="R.json", help="JSON report")
     d.add_argument("--figure", default=None, metavar="F.png", help="SVAJ diagrams and the profile")
     d.set_defaults(func=_design)
+    v = ss.add_parser(
+        "view",
+        help="interactive HTML page (one self-contained file) of the cam turning with its follower",
+        description="Write one HTML page that animates CAM.toml (written by gearlever cam design): the cam "
+        "turning counterclockwise, the follower at the law's output, the output and pressure angle plotted.",
+    )
+    v.add_argument("cam", metavar="CAM.toml", help="cam file written by gearlever cam design")
+    v.add_argument("--out", required=True, help="output page (.html)")
+    v.add_argument(
+        "--frames",
+        type=capped_int(MAX_VIEW_FRAMES, low=2),
+        default=360,
+        help=f"frames over one turn of the cam (default 360, at most {MAX_VIEW_FRAMES})",
+    )
+    v.set_defaults(func=_view)
 
 
 def _rounded(obj, digits: int = 12):
@@ -323,3 +345,29 @@ def _samples_name(law_path: str) -> str:
     from gearlever._io import read_text_capped
 
     return tomllib.loads(read_text_capped(law_path, "LAW"))["law"]["samples"]
+
+
+def cam_page(path: str, frames: int) -> str:
+    """The page of ``cam view`` (and of ``mechanism view`` given a CAM.toml): the design at a multiple of ``frames``."""
+    import tomllib
+
+    from gearlever._io import read_text_capped
+    from gearlever.cams import load_cam
+    from gearlever.plotting.cam_viewer import cam_viewer_html
+
+    try:
+        stored = tomllib.loads(read_text_capped(path, "CAM")).get("cam", {}).get("points", 3600)
+    except tomllib.TOMLDecodeError:
+        stored = 3600  # load_cam names the error
+    stored = stored if isinstance(stored, int) and not isinstance(stored, bool) and stored > 0 else 3600
+    points = frames * max(1, -(-min(stored, 36_000) // frames))
+    cam = load_cam(path, points=points)
+    return cam_viewer_html(cam, frames=frames, name=Path(path).stem)
+
+
+def _view(args) -> int:
+    if Path(args.out).suffix.lower() not in (".html", ".htm"):
+        raise GearleverError(f"--out must end with .html, got {args.out!r}")
+    check_output(args.out)
+    emit(cam_page(args.cam, args.frames), args.out)
+    return 0
