@@ -176,3 +176,55 @@ def test_a_rise_too_narrow_for_the_profile_names_the_points_flag(tmp_path, capsy
     argv = ["cam", "design", str(p), "--follower", "translating-flat", "--out", str(tmp_path / "c.toml"), *extra]
     assert main(argv) == 2
     assert "segment 2 spans 0.2 deg, less than 4 profile steps of 0.1 deg: give more --points than" in _err(capsys)
+
+
+def _cam_file(tmp_path, law, capsys):
+    out = tmp_path / "cam.toml"
+    argv = ["cam", "design", str(law), "--follower", "translating-roller", "--base-radius", "40"]
+    assert main(argv + ["--roller-radius", "8", "--out", str(out)]) == 0
+    capsys.readouterr()
+    return out
+
+
+def _page_data(path):
+    import re
+
+    text = path.read_text(encoding="utf-8")
+    return json.loads(re.search(r'<script id="gl-data" type="application/json">(.*?)</script>', text, re.S).group(1))
+
+
+def test_cam_view_writes_the_page_and_mechanism_view_writes_the_same(tmp_path, law, capsys):
+    from gearlever.cams import load_cam
+
+    cam = _cam_file(tmp_path, law, capsys)
+    a, b = tmp_path / "a.html", tmp_path / "b.html"
+    assert main(["cam", "view", str(cam), "--out", str(a), "--frames", "120"]) == 0
+    assert main(["mechanism", "view", str(cam), "--out", str(b), "--frames", "120"]) == 0
+    assert a.read_text(encoding="utf-8") == b.read_text(encoding="utf-8")
+    d = _page_data(a)
+    assert d["N"] == 120 and d["follower"] == "translating-roller" and d["name"] == "cam"
+    ref = load_cam(cam, points=3600)
+    np.testing.assert_allclose(d["F"]["s"], ref.s[::30], atol=1e-8)
+    np.testing.assert_allclose(d["F"]["phi"], np.degrees(ref.pressure_angle[::30]), atol=1e-8)
+    # frames not dividing the file's points: the page is designed at the next multiple of the frames
+    assert main(["cam", "view", str(cam), "--out", str(a), "--frames", "7"]) == 0
+    d = _page_data(a)
+    assert d["theta"][1] == pytest.approx(2 * math.pi / 7, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (["cam", "view", "{cam}", "--out", "{tmp}/p.png"], "--out must end with .html"),
+        (["cam", "view", "{cam}", "--out", "{tmp}/p.html", "--frames", "1"], "--frames"),
+        (["cam", "view", "{law}", "--out", "{tmp}/p.html"], "a [cam] table is missing"),
+        (["mechanism", "view", "{cam}", "--out", "{tmp}/p.html", "--input", "x=1"], "--input does not apply"),
+        (["mechanism", "view", "{cam}", "--out", "{tmp}/p.html", "--rpm", "60"], "--rpm does not apply"),
+    ],
+)
+def test_cam_view_refusals_are_one_line(tmp_path, law, capsys, argv, words):
+    cam = _cam_file(tmp_path, law, capsys)
+    argv = [a.format(cam=cam, law=law, tmp=tmp_path) for a in argv]
+    assert main(argv) == 2
+    assert words in _err(capsys)
+    assert not (tmp_path / "p.html").exists()
