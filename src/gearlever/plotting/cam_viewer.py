@@ -148,7 +148,7 @@ def cam_viewer_data(design, frames: int = 360, name: str | None = None) -> dict:
         a0 = tip
         a1 = tip + np.array([0.0, stem])
         x = float(tip[0, 0])
-        w = 0.05 * rb
+        w = 0.09 * rb
         y0 = float(np.max(tip[:, 1])) + 0.1 * rb
         guide = {"x": x, "w": w, "y0": y0, "y1": y0 + 0.35 * rb}
         pts.append(a1)
