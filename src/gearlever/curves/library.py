@@ -51,7 +51,7 @@ __all__ = [
 
 #: Format version of a stored library: raised whenever the file layout or the library's construction changes.
 FORMAT = 1
-#: Largest library file read (bytes): the largest library (2 x 10^5 mechanisms) takes some 60 MB.
+#: Largest library file read (bytes): the largest library (2 x 10^5 mechanisms) takes 40 MB.
 MAX_FILE_BYTES = 2**30
 #: File name of a stored library.
 NAME = re.compile(r"curves-library-v(\d+)-size(\d+)-seed(\d+)\.npz")
