@@ -89,3 +89,14 @@ def test_synthesize_curve_refuses_bad_library_flags(tmp_path, capsys, flag, valu
     assert main(["synthesize", "curve", str(tgt), "--out", str(tmp_path / "o"), flag, value]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and flag in err
+
+
+def test_ctrl_c_during_the_build_leaves_no_file_and_no_folder(cache, capsys, monkeypatch):
+    def interrupted(*a, progress=None, **k):
+        progress("library", 1, 2)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(S, "build_library", interrupted)
+    assert main(["curve", "library", "build", "--size", "600"]) == 130
+    assert "\n" not in capsys.readouterr().err.strip()
+    assert not cache.exists()
