@@ -81,6 +81,7 @@ def workdir(tmp_path, monkeypatch):
         shutil.copyfile(example_path(name), folder / name)
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("MPLBACKEND", "Agg")  # what the command line sets; figures are files here
+    monkeypatch.setenv("GEARLEVER_CACHE", str(tmp_path / "cache"))  # curve library build: an empty cache of its own
     return tmp_path
 
 

@@ -33,7 +33,7 @@ MAX_VIEW_FRAMES = 3600
 
 def register_view(ms) -> None:
     v = ms.add_parser("view", help="interactive HTML page (one self-contained file) that animates the model")
-    v.add_argument("model", help="model file (TOML)")
+    v.add_argument("model", help="model file (TOML, or a linkage .links.json)")
     v.add_argument("--out", required=True, help="output page (.html)")
     v.add_argument(
         "--frames",

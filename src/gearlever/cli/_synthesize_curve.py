@@ -4,7 +4,7 @@ Registered on the ``synthesize`` sub-parsers by :func:`register_curve`::
 
     gearlever synthesize curve TARGET.csv --out DIR [--max-joints 20] [--designs 1000]
         [--budget EVALS | --time SECONDS] [--seed N] [--workers N | --scheduler ADDRESS]
-        [--report R.json] [--figure F.png]
+        [--library-size N] [--library-seed S] [--report R.json] [--figure F.png]
 
 TARGET.csv holds ``x,y`` rows of a closed curve (header optional).  DIR
 receives, per design on the distance-material front (at most ``--designs``):
@@ -13,7 +13,10 @@ receives, per design on the distance-material front (at most ``--designs``):
 material, joints, links).  Scores and search: :mod:`gearlever.curves`.
 ``--budget`` (default 20000 evaluations) gives the same designs on any
 machine and any number of workers; ``--time`` stops on the clock and is not
-reproducible.
+reproducible.  The retrieval library (``--library-size`` mechanisms, seed
+``--library-seed``) is loaded from the cache folder when ``gearlever curve
+library build`` stored it there, else built in memory: the same designs
+either way.
 """
 
 from __future__ import annotations
@@ -57,6 +60,17 @@ def register_curve(ss) -> None:
     w = p.add_mutually_exclusive_group()
     w.add_argument("--workers", type=capped_int(MAX_WORKERS), default=None, help="local dask threads")
     w.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a dask.distributed scheduler")
+    from gearlever.curves.search import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
+
+    p.add_argument(
+        "--library-size",
+        type=capped_int(MAX_LIBRARY_SIZE),
+        default=None,
+        metavar="N",
+        help=f"mechanisms of the retrieval library (default {LIBRARY_TOPOLOGIES * LIBRARY_SKETCHES}; read from the "
+        "cache folder when gearlever curve library build stored it)",
+    )
+    p.add_argument("--library-seed", type=capped_int(2**31 - 1, low=0), default=0, metavar="S")
     p.add_argument("--report", default=None, metavar="R.json", help="write a JSON report")
     p.add_argument("--figure", default=None, metavar="F.png", help="write a figure (front, curves, best linkage)")
     p.set_defaults(func=_run)
@@ -97,11 +111,22 @@ def _run(args) -> int:
             workers=args.workers,
             scheduler=args.scheduler,
             progress=bar,
+            library_size=args.library_size,
+            library_seed=args.library_seed,
         )
     except GearleverError as exc:
         from gearlever.cli._common import flagged
 
-        raise flagged(exc, {"scheduler": "--scheduler", "budget": "--budget", "time_limit": "--time"}) from None
+        raise flagged(
+            exc,
+            {
+                "scheduler": "--scheduler",
+                "budget": "--budget",
+                "time_limit": "--time",
+                "library_size": "--library-size",
+                "library_seed": "--library-seed",
+            },
+        ) from None
     finally:
         bar.close()
     out = Path(args.out)

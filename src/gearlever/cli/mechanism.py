@@ -59,18 +59,19 @@ def register(sub) -> None:
     p = sub.add_parser(
         "mechanism",
         help="any planar mechanism of links, pins, sliders and gears from a TOML model file",
-        description="Structure, positions, velocities and accelerations of a mechanism model file (TOML).",
+        description="Structure, positions, velocities and accelerations of a mechanism model file (TOML, or a "
+        "linkage in the MIT 2.156 challenge's form, .links.json).",
     )
     ms = p.add_subparsers(dest="mechanism_command", metavar="ACTION")
     ms.required = True
 
     s = ms.add_parser("structure", help="counts n, P5, P4, formula mobility, dof and redundant constraints")
-    s.add_argument("model", help="model file (TOML)")
+    s.add_argument("model", help="model file (TOML, or a linkage .links.json)")
     s.add_argument("--format", choices=("table", "json"), default="table")
     s.set_defaults(func=_structure)
 
     a = ms.add_parser("analyze", help="positions, velocities and accelerations over a sweep of the inputs")
-    a.add_argument("model", help="model file (TOML)")
+    a.add_argument("model", help="model file (TOML, or a linkage .links.json)")
     _sweep_args(a, points=True)
     a.add_argument(
         "--rpm",
@@ -94,7 +95,7 @@ def register(sub) -> None:
         "pin joints, hatched ground pivots and guides, sliders, gears as pitch circles with their tooth counts, "
         "each input as an arrow, the [[loads]] with their values, gravity, a legend.",
     )
-    d.add_argument("model", help="model file (TOML)")
+    d.add_argument("model", help="model file (TOML, or a linkage .links.json)")
     d.add_argument("--out", required=True, help="output image (.png, .svg or .pdf)")
     _sweep_args(d, points=True)
     add_figure_args(d, DRAWING_SIZE, 120)
@@ -107,7 +108,7 @@ def register(sub) -> None:
         "`mechanism draw` draws (names, inputs, loads, legend), 800 x 600 pixels by default "
         "(--size 8 6 at --dpi 100). `gearlever animate --fourbar ...` is the four-bar shortcut.",
     )
-    g.add_argument("model", help="model file (TOML)")
+    g.add_argument("model", help="model file (TOML, or a linkage .links.json)")
     g.add_argument("--out", required=True, help="output GIF")
     add_animation_args(g)
     _sweep_args(g, points=False)

@@ -13,6 +13,8 @@ What lives here:
 * :mod:`~gearlever.curves.search`: the synthesis (library of four-, six- and
   eight-bar topologies, retrieval over pre-simulated mechanisms, NSGA-II from
   pymoo, least-squares refinement) and the writer of gearlever models.
+* :mod:`~gearlever.curves.library`: the search's retrieval library stored
+  in the user's cache folder (``gearlever curve library build``).
 
 May import numpy, scipy, pymoo, dask and :mod:`gearlever.errors`,
 :mod:`gearlever._io`, :mod:`gearlever.synthesis._model` (model text); never

@@ -58,7 +58,9 @@ from gearlever.errors import GearleverError
 __all__ = [
     "CurveSynthesis",
     "Topology",
+    "Library",
     "build_library",
+    "library_counts",
     "refine",
     "retrieve",
     "run_start",
@@ -70,6 +72,9 @@ MAX_LIBRARY_DYADS = 8
 #: Library topologies and sketches per topology (built at run time with a fixed seed).
 LIBRARY_TOPOLOGIES = 48
 LIBRARY_SKETCHES = 300
+#: Most mechanisms a library may simulate (``--size``): about 1.9 x 10^5 entries, 230 MB of memory at the peak,
+#: 11 s to build, a 40 MB file (measured).
+MAX_LIBRARY_SIZE = 200_000
 #: Fourier harmonics of the descriptor.
 HARMONICS = 12
 #: Retrieved entries refined briefly, and the best of them kept as starts.
@@ -190,29 +195,121 @@ def descriptor(curves, harmonics: int = HARMONICS) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Library:
-    """Pre-simulated curves: topology per entry, its sketch, descriptor and the curve's RMS radius."""
+    """Pre-simulated curves: topology per entry, its sketch, descriptor and the curve's RMS radius.
+
+    Examples
+    --------
+    >>> lib = build_library(0, 4, 30)
+    >>> lib.descriptors.shape[1], len(lib.sketches) == lib.rms.size == lib.entry_topology.size
+    (24, True)
+    >>> four = lib.limited(4)
+    >>> max(four.topologies[t].n for t in four.entry_topology) <= 4 < max(t.n for t in lib.topologies)
+    True
+    """
 
     topologies: list
     entry_topology: np.ndarray
     sketches: list
     descriptors: np.ndarray
     rms: np.ndarray
+    #: Joints of the topology each entry was simulated in (before pruning).
+    source_joints: np.ndarray
+
+    def limited(self, max_joints: int) -> Library:
+        """The entries whose (pruned) linkage has at most ``max_joints`` joints, in the same order.
+
+        Equal, array for array, to :func:`build_library` run with that
+        ``max_joints`` (the random draws do not depend on it).
+        """
+        ok = self.source_joints <= max_joints
+        if ok.all():
+            return self
+        index, topos, ent = {}, [], []
+        for t in self.entry_topology[ok].tolist():  # numbered in the order of their first entry, as built
+            if t not in index:
+                index[t] = len(topos)
+                topos.append(self.topologies[t])
+            ent.append(index[t])
+        keep = np.flatnonzero(ok)
+        return Library(
+            topos,
+            np.array(ent, dtype=self.entry_topology.dtype),
+            [self.sketches[int(e)] for e in keep],
+            self.descriptors[keep],
+            self.rms[keep],
+            self.source_joints[keep],
+        )
+
+
+def library_counts(size: int, sketches: int | None = None) -> list[int]:
+    """Sketches per topology of a library of ``size`` mechanisms: ``sketches`` each (the last one fewer).
+
+    >>> len(library_counts(14400)), library_counts(700, 300)
+    (48, [300, 300, 100])
+    """
+    per = LIBRARY_SKETCHES if sketches is None else int(sketches)
+    size = int(size)
+    if not 1 <= size <= MAX_LIBRARY_SIZE:
+        raise GearleverError(f"library_size must be 1 to {MAX_LIBRARY_SIZE}, got {size}")
+    full, rest = divmod(size, per)
+    return [per] * full + ([rest] if rest else [])
 
 
 def build_library(
-    seed: int = 0, topologies: int = LIBRARY_TOPOLOGIES, sketches: int = LIBRARY_SKETCHES, max_joints: int = 20
+    seed: int = 0,
+    topologies: int | None = None,
+    sketches: int | None = None,
+    max_joints: int = 20,
+    *,
+    size: int | None = None,
+    progress=None,
 ) -> Library:
-    """Random topologies x random sketches, simulated in batches; each turning moving joint is an entry."""
+    """Random topologies x random sketches, simulated in batches; each turning moving joint is an entry.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the library's random draws (the synthesis uses 0).
+    topologies, sketches : int, optional
+        Topologies and sketches per topology (default :data:`LIBRARY_TOPOLOGIES`
+        and :data:`LIBRARY_SKETCHES`).
+    max_joints : int
+        Entries whose pruned linkage has more joints are left out (the
+        random draws are the same: see :meth:`Library.limited`).
+    size : int, optional
+        Mechanisms simulated in all, 1 to :data:`MAX_LIBRARY_SIZE`, in place
+        of ``topologies``: ``sketches`` per topology, the last one fewer
+        (:func:`library_counts`).
+    progress : callable, optional
+        ``progress(label, done, total)`` after each topology.
+
+    Returns
+    -------
+    Library
+
+    Examples
+    --------
+    >>> lib = build_library(0, 2, 50)
+    >>> 0 < lib.rms.size <= 2 * 50 * 3
+    True
+    """
+    per = LIBRARY_SKETCHES if sketches is None else int(sketches)
+    if size is not None:
+        counts = library_counts(size, per)
+    else:
+        counts = [per] * (LIBRARY_TOPOLOGIES if topologies is None else int(topologies))
     rng = np.random.default_rng([seed, 271828])
-    topos, ent_t, ent_x, descs, rmss = [], [], [], [], []
+    topos, ent_t, ent_x, descs, rmss, src = [], [], [], [], [], []
     cache = {}
-    for n in range(topologies):
+    for n, count in enumerate(counts):
         n_dyads = 1 + n % MAX_LIBRARY_DYADS
         n_fixed = 2 + (n // MAX_LIBRARY_DYADS) % 2
-        if 1 + n_fixed + n_dyads > max_joints:
-            continue
         topo = random_topology(rng, n_dyads, n_fixed)
-        x0 = random_sketches(rng, topo, sketches)
+        x0 = random_sketches(rng, topo, count)
+        if progress is not None:
+            progress("library", n + 1, len(counts))
+        if topo.n > max_joints:
+            continue  # drawn all the same, so that a smaller max_joints only leaves entries out
         x = simulate(x0, topo.plan, steps=100)
         turns = np.isfinite(x).all(axis=(1, 2, 3))
         if not turns.any():
@@ -224,19 +321,26 @@ def build_library(
             sub, keep = prune(topo, target)
             if sub.n > max_joints:
                 continue
-            key = sub.key()
-            if key not in cache:
-                cache[key] = len(topos)
-                topos.append(sub)
             curves = xt[:, target]
             d = descriptor(curves)
             ok = np.isfinite(d).all(1)
+            if not ok.any():
+                continue
+            key = sub.key()
+            if key not in cache:  # numbered in the order of their first entry
+                cache[key] = len(topos)
+                topos.append(sub)
             c = curves[ok] - curves[ok].mean(1, keepdims=True)
             rmss.append(np.sqrt((c**2).sum(-1).mean(1)))
             descs.append(d[ok])
             ent_t.append(np.full(ok.sum(), cache[key]))
             ent_x.extend(xs[ok][:, keep])
-    return Library(topos, np.concatenate(ent_t), ent_x, np.concatenate(descs), np.concatenate(rmss))
+            src.append(np.full(ok.sum(), topo.n))
+    if not descs:
+        z = np.zeros(0, dtype=int)
+        return Library([], z, [], np.zeros((0, 2 * HARMONICS)), np.zeros(0), z)
+    ent_t, descs, rmss, src = (np.concatenate(a) for a in (ent_t, descs, rmss, src))
+    return Library(topos, ent_t, ent_x, descs, rmss, src)
 
 
 def _target_rms(target) -> float:
@@ -620,6 +724,9 @@ def synthesize_curve(
     workers: int | None = None,
     scheduler: str | None = None,
     progress=None,
+    library_size: int | None = None,
+    library_seed: int = 0,
+    use_cache: bool = True,
 ) -> CurveSynthesis:
     """Linkages (topology and dimensions) whose traced joint follows ``target``, on the distance-material front.
 
@@ -640,6 +747,16 @@ def synthesize_curve(
         Local threads, or the address of a dask.distributed scheduler.
     progress : callable, optional
         ``progress(label, done, total)``.
+    library_size : int, optional
+        Mechanisms of the retrieval library, 1 to :data:`MAX_LIBRARY_SIZE`
+        (default :data:`LIBRARY_TOPOLOGIES` x :data:`LIBRARY_SKETCHES`).
+    library_seed : int
+        Seed of the library's draws (0 to 2^31 - 1).
+    use_cache : bool
+        Load the library from the user's cache folder when one of this size,
+        seed and format is stored there (:mod:`gearlever.curves.library`);
+        otherwise, or if False, build it in memory.  The designs are the same
+        either way.
 
     Returns
     -------
@@ -649,6 +766,7 @@ def synthesize_curve(
     -----
     The steps and their sources are in the module docstring.
     """
+    from gearlever.curves.library import cached_library
     from gearlever.curves.targets import check_target
     from gearlever.synthesis._dask import run_starts
 
@@ -662,7 +780,18 @@ def synthesize_curve(
         raise GearleverError(f"budget must be 1000 to {MAX_BUDGET}, got {budget}")
     if time_limit is not None and not 1.0 <= float(time_limit) <= MAX_TIME:
         raise GearleverError(f"time_limit must be 1 to {MAX_TIME:g} seconds, got {time_limit}")
-    lib = build_library(0, LIBRARY_TOPOLOGIES, LIBRARY_SKETCHES, max_joints=max_joints)
+    size = LIBRARY_TOPOLOGIES * LIBRARY_SKETCHES if library_size is None else library_size
+    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or not 1 <= size <= MAX_LIBRARY_SIZE:
+        raise GearleverError(f"library_size must be an integer 1 to {MAX_LIBRARY_SIZE}, got {library_size!r}")
+    if isinstance(library_seed, bool) or not isinstance(library_seed, (int, np.integer)):
+        raise GearleverError(f"library_seed must be an integer 0 to 2^31 - 1, got {library_seed!r}")
+    if not 0 <= library_seed < 2**31:
+        raise GearleverError(f"library_seed must be an integer 0 to 2^31 - 1, got {library_seed!r}")
+    lib = cached_library(int(size), int(library_seed)) if use_cache else None
+    if lib is not None:
+        lib = lib.limited(int(max_joints))
+    else:
+        lib = build_library(int(library_seed), max_joints=int(max_joints), size=int(size))
     shortlist = retrieve(lib, target, PRESELECT)
     if not shortlist:
         raise GearleverError("target: no library mechanism traces a curve of this kind")

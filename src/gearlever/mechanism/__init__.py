@@ -15,6 +15,8 @@
 
 Numeric core: may import numpy, :mod:`gearlever.loops`, :mod:`gearlever.gears`,
 :mod:`gearlever.errors`, :mod:`gearlever._validate`; never pandas or matplotlib.
+:meth:`Mechanism.load` imports :mod:`gearlever.curves` inside the call, for a
+``.links.json`` linkage only (never at module level: no import circle).
 """
 
 from gearlever.mechanism.assemble import assemble

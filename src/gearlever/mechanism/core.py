@@ -11,6 +11,51 @@ from gearlever.mechanism.structural import MechanismStructure, analyze_structure
 
 __all__ = ["Mechanism"]
 
+#: File name ending of a linkage in the MIT 2.156 challenge's form.
+LINKS_SUFFIX = ".links.json"
+
+
+def _is_linkage_file(path) -> bool:
+    """Whether ``path`` names a ``.json`` file (a linkage in the challenge's form), not a TOML model."""
+    return str(path).lower().endswith(".json")
+
+
+def _load_linkage(path) -> MechanismModel:
+    """The model of a ``.links.json`` file (or a ``.json`` holding ``x0`` and ``edges``); errors name the file.
+
+    Imported lazily: :mod:`gearlever.curves` imports nothing of the mechanism
+    package at module level and the mechanism package nothing of it.
+    """
+    import json
+    from pathlib import Path
+
+    from gearlever._io import read_text_capped
+    from gearlever.curves.links import linkage_from_dict
+    from gearlever.curves.model import linkage_model
+    from gearlever.errors import GearleverError
+
+    p = Path(path)
+    text = read_text_capped(p, "model file")
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise GearleverError(f"{p}: not JSON ({exc.msg}, line {exc.lineno})") from None
+    except RecursionError:
+        raise GearleverError(f"{p}: JSON nested too deeply") from None
+    linkage = str(p).lower().endswith(LINKS_SUFFIX)
+    if not linkage and not (isinstance(data, dict) and "x0" in data and "edges" in data):
+        raise GearleverError(
+            f"{p}: a .json model must be a linkage in the challenge's form (keys x0, edges, fixed_joints, motor); "
+            "other models are TOML files"
+        )
+    name = p.name[: -len(LINKS_SUFFIX)] if linkage else p.stem
+    if not (name and len(name) <= 200 and name.isprintable()):
+        name = "linkage"
+    try:
+        return model_from_dict(linkage_model(linkage_from_dict(data), name=name))
+    except GearleverError as exc:
+        raise GearleverError(f"{p}: {exc}") from None
+
 
 class Mechanism:
     """A planar mechanism of links, revolute pins, sliders and gears, read from a model.
@@ -44,7 +89,27 @@ class Mechanism:
 
     @classmethod
     def load(cls, path) -> Mechanism:
-        """Read a TOML model file (see :mod:`gearlever.mechanism.model` for the schema)."""
+        """Read a model file: TOML (see :mod:`gearlever.mechanism.model`), or a linkage in the challenge's form.
+
+        A file named ``*.links.json``, or ``*.json`` holding an object with the
+        keys ``x0`` and ``edges``, is a linkage in the MIT 2.156 challenge's
+        form (:func:`gearlever.curves.links.read_linkage`), opened as the
+        model :func:`gearlever.curves.model.linkage_model` writes (fixed
+        joints ``O<i>``, moving joints ``J<i>``, traced joint ``P``, input the
+        crank).  Refusals name the file and the key.
+
+        Examples
+        --------
+        >>> import json, pathlib, tempfile
+        >>> p = pathlib.Path(tempfile.mkdtemp()) / "d.links.json"
+        >>> _ = p.write_text(json.dumps({"x0": [[0, 0], [0, 1], [3, 0], [2, 2]],
+        ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]}))
+        >>> m = Mechanism.load(p)
+        >>> m.name, sorted(m.model.links), m.structure().dof
+        ('d', ['L1', 'L2', 'crank', 'ground'], 1)
+        """
+        if _is_linkage_file(path):
+            return cls(_load_linkage(path))
         return cls(load_model(path))
 
     @classmethod
