@@ -11,6 +11,7 @@ import sys
 import pytest
 
 import gearlever
+from tests._printed import numbers_agree
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
@@ -40,7 +41,7 @@ STEPS = console_steps(CONSOLE_BLOCKS)
 def _matches(shown, printed):
     if shown.endswith(TRUNCATED):
         return printed.startswith(shown[: -len(TRUNCATED)])
-    return printed == shown
+    return numbers_agree(shown, printed)
 
 
 def output_agrees(shown, printed):

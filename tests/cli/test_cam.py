@@ -228,3 +228,22 @@ def test_cam_view_refusals_are_one_line(tmp_path, law, capsys, argv, words):
     assert main(argv) == 2
     assert words in _err(capsys)
     assert not (tmp_path / "p.html").exists()
+
+
+def test_dxf_profile_is_the_same_bytes_under_any_hash_seed(tmp_path):
+    """ezdxf lists the classes of the entity types in use from a set; the writer fixes their order."""
+    import os
+    import subprocess
+    import sys
+
+    law = tmp_path / "law.toml"
+    law.write_text(LAW)
+    out = []
+    for seed in ("1", "2", "3", "4", "5"):
+        dxf = tmp_path / f"p{seed}.dxf"
+        cmd = [sys.executable, "-m", "gearlever", "cam", "design", str(law), "--follower", "translating-roller"]
+        cmd += ["--base-radius", "40", "--roller-radius", "10", "--out", str(tmp_path / f"c{seed}.toml")]
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        subprocess.run(cmd + ["--profile", str(dxf)], check=True, env=env, capture_output=True)
+        out.append(dxf.read_bytes())
+    assert all(o == out[0] for o in out)

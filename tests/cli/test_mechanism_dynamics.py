@@ -28,8 +28,9 @@ def test_forces_csv_matches_the_api_and_virtual_work(capsys):
     mech = Mechanism.load(ENGINE)
     q = np.radians(rows[:, 1])
     d = mech.inverse_dynamics(q, 100 * math.pi, 0.0)
-    assert np.allclose(rows[:, 3], d.input_force[:, 0], rtol=1e-10, atol=1e-9)
-    assert np.allclose(rows[:, 2], 100 * math.pi, rtol=1e-11)
+    # written to 10 digits of the column's largest value (gearlever._format)
+    assert np.allclose(rows[:, 3], d.input_force[:, 0], rtol=0, atol=1e-9 * np.abs(d.input_force[:, 0]).max())
+    assert np.allclose(rows[:, 2], 100 * math.pi, rtol=1e-9)
     assert abs(rows[:, 3].mean()) < 1e-9 * np.abs(rows[:, 3]).max()
 
 

@@ -83,7 +83,8 @@ def test_writes_model_report_and_figure_and_the_model_reproduces_the_law(tmp_pat
     want = load_law(law).evaluate(ml.theta).s
     achieved = ml.s + math.radians(r["output_at_input_0_deg"])  # the model's rotation from its sketch, zeroed
     err_max = float(np.degrees(np.abs(achieved - want).max()))
-    assert err_max == pytest.approx(r["error_max_deg"], abs=1e-6)
+    # the model is written at 10 digits of its size (gearlever._format): its law differs from the design's by less
+    assert err_max == pytest.approx(r["error_max_deg"], abs=1e-5)
 
 
 def test_slider_crank_for_a_stroke_law_and_mechanism_law_reads_it_back(tmp_path, run):

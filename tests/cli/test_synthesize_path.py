@@ -124,13 +124,12 @@ def test_bad_input_one_line_exit_2_naming_the_flag(tmp_path, run, extra, content
 
 
 def test_min_transmission_holds_over_the_whole_turn_of_the_written_model(tmp_path, run):
-    """Without a bound the five points are met by a four-bar whose transmission angle falls to about 20 deg;
-    with --min-transmission 45 the result stays within 45..135 deg (sampled over a turn in the report)
-    and still meets the points."""
+    """With --min-transmission 45 the result stays within 45..135 deg (sampled over a turn in the report)
+    and still meets the points (that the bound is active on these points, exact four-bars existing on both
+    sides of it, is tests/synthesis/test_path.py's: which one an unbounded search lands on is not asked)."""
     pts = tmp_path / "p.csv"
     pts.write_text(POINTS)
-    free, bound = tmp_path / "free.json", tmp_path / "bound.json"
-    assert run(pts, "--out", tmp_path / "a.toml", "--report", free, "--budget", 8000, "--workers", 1)[0] == 0
+    bound = tmp_path / "bound.json"
     code, _, err = run(
         pts,
         "--out",
@@ -148,7 +147,6 @@ def test_min_transmission_holds_over_the_whole_turn_of_the_written_model(tmp_pat
     lo, hi = json.loads(bound.read_text())["transmission_deg"]
     assert 45 <= lo and hi <= 135
     assert json.loads(bound.read_text())["objective"] < 1e-12
-    assert json.loads(free.read_text())["transmission_deg"][0] < 45  # the bound is active on this case
 
 
 def test_missing_points_file_is_refused(tmp_path, run):

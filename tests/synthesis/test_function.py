@@ -58,7 +58,8 @@ def test_log10_three_chebyshev_points_met_exactly_and_structural_error_from_engi
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
     np.testing.assert_allclose(np.degrees(t.input_angle), [49.0192378865, 75.0, 100.9807621135], atol=1e-9)
     r = synthesize_function(t.input_angle, t.output, desired=t.desired)
-    assert np.abs(r.error).max() < 1e-12
+    # the error of the model as written: coordinates at 10 digits of its size (gearlever._format)
+    assert np.abs(r.error).max() < 1e-8
     # the structural error vanishes at the precision points and is the engine's, over the range
     assert 0 < r.structural_error_max < np.radians(0.5)
     at = np.interp(t.input_angle, r.dense_input, np.abs(r.dense_generated - r.dense_desired))
@@ -256,7 +257,7 @@ def test_reversed_slider_crank_crank_is_checked_on_the_written_model():
     np.testing.assert_allclose([r.lengths["crank"], r.lengths["rod"], r.lengths["offset"]], [a, b, e], atol=1e-9)
     err_t, sem, _ = _recompute(r)
     np.testing.assert_allclose(r.error, err_t, atol=1e-9)
-    assert np.abs(r.error).max() < 1e-9
+    assert np.abs(r.error).max() < 1e-8  # the written model: coordinates at 10 digits of its size
     assert r.structural_error_max == pytest.approx(sem, abs=1e-9)
 
 
@@ -388,4 +389,6 @@ def test_slider_crank_pairs_anywhere_are_recovered_and_checked(crank, rod, offse
     err_t, sem, _ = _recompute(r)
     assert np.abs(r.error).max() < 1e-7 * rod and np.abs(err_t).max() < 1e-7 * rod
     assert r.structural_error_max == pytest.approx(sem, abs=RECOMPUTE_TOL * rod)
-    assert r.input_offset % np.pi == pytest.approx(0, abs=1e-9) or r.input_offset % np.pi == pytest.approx(np.pi)
+    assert r.input_offset % np.pi == pytest.approx(0, abs=1e-8) or r.input_offset % np.pi == pytest.approx(
+        np.pi
+    )  # 10 digits written

@@ -385,15 +385,34 @@ def format_number(v, digits: int = 12) -> str:
     return f"{v + 0.0:.{digits}g}"  # + 0.0: no "-0"
 
 
+def _settled_column(col: list, digits: int) -> list:
+    """The floats of one column quantized to ``digits`` of its largest finite magnitude."""
+    from gearlever._format import quantize_in_column
+
+    vals = [abs(float(v)) for v in col if isinstance(v, numbers.Real) and not isinstance(v, bool)]
+    vals = [v for v in vals if math.isfinite(v)]
+    scale = max(vals) if vals else 0.0
+
+    def q(v):
+        if isinstance(v, bool) or not isinstance(v, numbers.Real) or isinstance(v, numbers.Integral):
+            return v
+        return quantize_in_column(v, scale, digits)
+
+    return [q(v) for v in col]
+
+
 def table_text(cols: dict, fmt: str = "csv", meta: dict | None = None, digits: int = 12) -> str:
     """Columns of equal length as CSV (the :mod:`csv` module: fields quoted as needed) or strict JSON.
 
-    ``cols`` maps a column name to a sequence: numbers (written with
-    ``digits`` significant digits), bools (1/0 in CSV) or strings (quoted in
-    CSV when they hold a comma, quote or newline).  JSON is
-    ``{**meta, "rows": [{name: value, ...}, ...]}`` with NaN and infinities
-    as null; JSON numbers are rounded to the same ``digits`` significant
-    digits as CSV.  The one writer of tabular output for every sub-command.
+    ``cols`` maps a column name to a sequence: numbers, bools (1/0 in CSV)
+    or strings (quoted in CSV when they hold a comma, quote or newline).
+    The numbers are written to ``digits`` significant digits, never finer
+    than ``digits + 2`` digits of their column's largest magnitude
+    (:func:`gearlever._format.quantize_in_column`: a value that is zero up to
+    rounding is written 0, the same text on every machine).  JSON
+    is ``{**meta, "rows": [{name: value, ...}, ...]}`` with NaN and
+    infinities as null, the numbers as in the CSV.  The one writer of tabular
+    output for every sub-command.
 
     >>> print(table_text({"x": [0.5, 2.0], "reason": ["", "dead point: a, b"]}))
     x,reason
@@ -408,15 +427,10 @@ def table_text(cols: dict, fmt: str = "csv", meta: dict | None = None, digits: i
     lengths = {len(c) for c in columns}
     if len(lengths) > 1:
         raise GearleverError(f"table columns differ in length: {dict(zip(names, map(len, columns)))}")
+    columns = [_settled_column(c, digits) for c in columns]
     rows = list(zip(*columns)) if columns else []
     if fmt == "json":
-
-        def rounded(v):  # the digits of the CSV: 60 from exact degrees, not 59.99999999999999
-            if isinstance(v, float) and math.isfinite(v):
-                return float(f"{v + 0.0:.{digits}g}")
-            return v
-
-        recs = [dict(zip(names, map(rounded, row))) for row in rows]
+        recs = [dict(zip(names, row)) for row in rows]
         return to_json({**(meta or {}), "rows": recs})
     if fmt != "csv":
         raise GearleverError(f"format must be 'csv' or 'json', got {fmt!r}")

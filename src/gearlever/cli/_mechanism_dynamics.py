@@ -49,6 +49,7 @@ import math
 
 import numpy as np
 
+from gearlever._format import DIGITS_FORCES, DIGITS_SIMULATE
 from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress, table_text
 from gearlever.errors import GearleverError
 
@@ -228,7 +229,7 @@ def _forces(args) -> int:
         "turn_of": names[turning[0]][0],
         "indeterminate": list(d.indeterminate),
     }
-    _write(table_text(force_columns(d, mech, t), args.format, meta), args.out)
+    _write(table_text(force_columns(d, mech, t), args.format, meta, digits=DIGITS_FORCES), args.out)
     return 0
 
 
@@ -311,5 +312,5 @@ def _simulate(args) -> int:
         "units": {"length": L, "mass": "kg", "time": "s", "force": F, "torque": T, "energy": E},
         "torque": {n: given.get(n, 0.0) for n, _ in names},
     }
-    _write(table_text(cols, args.format, meta), args.out)
+    _write(table_text(cols, args.format, meta, digits=DIGITS_SIMULATE), args.out)
     return 0

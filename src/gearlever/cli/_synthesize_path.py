@@ -260,13 +260,14 @@ def _run(args) -> int:
         raise flagged(exc, flags) from None
     finally:
         bar.close()
-    rep = _rounded(res.report())
+    rep = _rounded(res.report(), res.targets)
+    S = float(np.hypot(*np.ptp(res.targets, axis=0))) or 1.0
     rep["time_s"] = round(float(res.seconds), 2)
     if not res.feasible:  # a command writes all its files or none
         raise GearleverError("no buildable linkage meets the constraints: nothing was written")
     comment = (
         f"Synthesized by gearlever synthesize path ({res.kind}, seed {args.seed}, budget {args.budget}); "
-        f"objective {res.objective:.6g}; input at the first target {math.degrees(res.input_angles[0]):.12g} deg"
+        f"objective {_small(rep['objective'], S * S)}; input at the first target {rep['input_deg'][0]:.10g} deg"
     )
     emit(model_toml(res.model(), comment), args.out)
     if args.report is not None:
@@ -279,14 +280,16 @@ def _run(args) -> int:
         ax = path_synthesis_plot(res)
         save(ax.figure, args.figure)
     err = max(rep["per_target_error"]) if rep["per_target_error"] else math.nan
-    tried = ", ".join(f"{k} {v:.6g}" for k, v in rep["types_tried"].items()) if rep["types_tried"] else res.kind
+    tried = (
+        ", ".join(f"{k} {_small(v, S * S)}" for k, v in rep["types_tried"].items()) if rep["types_tried"] else res.kind
+    )
     mu = rep["transmission_deg"]
     emit(
         "\n".join(
             [
                 f"type             {res.kind} (tried: {tried})",
-                f"objective        {rep['objective']:.6g} (sum of squared distances to the targets)",
-                f"target error     max {err:.6g}",
+                f"objective        {_small(rep['objective'], S * S)} (sum of squared distances to the targets)",
+                f"target error     max {_small(err, S)}",
                 f"grashof          {rep['grashof']}; branch {rep['branch']}",
                 f"transmission     {mu[0]:.4g} .. {mu[1]:.4g} deg",
                 f"evaluations      {rep['evaluations']} (seed {rep['seed']})",
@@ -297,12 +300,34 @@ def _run(args) -> int:
     return 0
 
 
-def _rounded(obj, digits: int = 12):
-    """The report with every float at ``digits`` significant digits, so that it is the same text on any machine."""
-    if isinstance(obj, dict):
-        return {k: _rounded(v, digits) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_rounded(v, digits) for v in obj]
-    if isinstance(obj, float) and math.isfinite(obj):
-        return float(f"{obj:.{digits}g}")
-    return obj
+def _rounded(rep: dict, targets) -> dict:
+    """The report at the digits its computation determines (:mod:`gearlever._format`), the same text on any machine.
+
+    Distances at :data:`~gearlever._format.DIGITS_DESIGN` digits of the targets' size ``S``, objectives
+    (sums of squared distances) at as many of ``S**2``, angles of 360 deg, lengths of the longest link:
+    an exact fit is written 0, not its rounding noise.
+    """
+    import numpy as np
+
+    from gearlever._format import DIGITS_DESIGN as D
+    from gearlever._format import rounded
+
+    S = float(np.hypot(*np.ptp(np.asarray(targets, dtype=float), axis=0))) or 1.0
+    out = rounded(rep, D)
+    out["objective"] = rounded(rep["objective"], D, S * S)
+    out["per_target_error"] = rounded(rep["per_target_error"], D, S)
+    out["types_tried"] = {k: rounded(v, D, S * S) for k, v in rep["types_tried"].items()}
+    for key in ("input_deg", "crank_deg_from_ground", "transmission_deg"):
+        out[key] = rounded(rep[key], D, 360.0)
+    links = [abs(float(v)) for v in rep["links"].values() if isinstance(v, (int, float))]
+    out["links"] = rounded(rep["links"], D, max(links) if links else 0.0)
+    return out
+
+
+def _small(v, scale: float) -> str:
+    """A quantized distance or objective as printed: ``below`` its last decade when it is 0."""
+    from gearlever._format import DIGITS_DESIGN, decade_unit
+
+    if v is None:
+        return "none"
+    return f"below {decade_unit(scale, DIGITS_DESIGN):g}" if v == 0 else f"{v:.6g}"

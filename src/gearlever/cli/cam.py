@@ -181,6 +181,19 @@ def _svg_unit(units: str) -> str:
     return units if units in ("mm", "cm", "in") else ""
 
 
+def _fix_class_order(doc) -> None:
+    """The CLASSES section in a fixed order: ezdxf adds the classes of the entity types in use from a set,
+    whose order changes with Python's hash seed; the required ones are kept first, in ezdxf's order."""
+    from ezdxf.sections.classes import REQ_R2004, REQUIRED_CLASSES
+
+    doc.classes.add_required_classes(doc.dxfversion)
+    required = REQUIRED_CLASSES.get(doc.dxfversion, REQ_R2004)
+    items = doc.classes.classes
+    first = [k for k in items if k[0] in required]
+    rest = sorted(k for k in items if k[0] not in required)
+    doc.classes.classes = {k: items[k] for k in first + rest}
+
+
 def _write_dxf(design, path: str) -> None:
     import ezdxf
 
@@ -196,6 +209,7 @@ def _write_dxf(design, path: str) -> None:
         pts = [(float(x), float(y)) for x, y in design.surface]
         msp.add_lwpolyline(pts, close=True, dxfattribs={"layer": "CAM"})
         msp.add_circle((0.0, 0.0), design.base_radius / 50, dxfattribs={"layer": "CENTRE"})
+        _fix_class_order(doc)
         with atomic_path(path) as tmp:
             doc.saveas(tmp)
     finally:

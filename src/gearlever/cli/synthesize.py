@@ -23,6 +23,7 @@ import sys
 import time
 import warnings
 
+from gearlever._format import DIGITS_DESIGN, decade_unit, quantize
 from gearlever.cli._common import (
     FIGURE_SUFFIXES,
     capped_float,
@@ -150,11 +151,18 @@ def _check_outputs(args) -> None:
         check_output_folder(args.all, "--all", create=True)
 
 
-def _r(v, digits=10):
-    """Rounded for byte-identical output (None for NaN)."""
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+def _r(v, digits=DIGITS_DESIGN, scale=0.0):
+    """``v`` at ``digits`` of ``scale`` (of itself when 0): :func:`gearlever._format.quantize`, None for NaN."""
+    if v is None or not math.isfinite(float(v)):
         return None
-    return float(f"{float(v):.{digits}g}")
+    return quantize(float(v), scale, digits)
+
+
+def _bound(v: float, scale: float) -> str:
+    """A quantized error as printed: ``below 1e-10`` of ``scale`` when it is zero at :data:`DIGITS_DESIGN`."""
+    if v == 0:
+        return f"below {decade_unit(scale, DIGITS_DESIGN):g}"
+    return f"{v:.3g}"
 
 
 def _function(args) -> int:
@@ -246,6 +254,8 @@ def _function(args) -> int:
     )
     note = res.proportions()
     warn = f"{note}; {_scale_hint(res, args)}" if note else None
+    out_scale = float(np.ptp([conv(float(v)) for v in res.output])) or 1.0  # errors: at digits of the output range
+    size = max(abs(v) for v in res.lengths.values())  # lengths: at digits of the largest
     rep = {
         "kind": args.kind,
         "objective": (
@@ -255,7 +265,7 @@ def _function(args) -> int:
         )
         + (" (Freudenstein's equation)" if not slider else " (slider-crank loop equation)"),
         "expression": args.expr,
-        "lengths": {k: _r(v) for k, v in res.lengths.items()},
+        "lengths": {k: _r(v, scale=size) for k, v in res.lengths.items()},
         "link_ratio": _r(res.link_ratio, 6),
         "coefficients": [_r(k) for k in res.coefficients],
         "branch": res.branch,
@@ -267,11 +277,11 @@ def _function(args) -> int:
                 "model_input_deg": _r(math.degrees(res.input_angle[j]) + offsets["crank"]),
                 f"output{unit}": _r(conv(res.output[j])),
                 f"generated{unit}": _r(conv(res.generated[j])),
-                f"error{unit}": _r(conv(res.error[j]), 8),
+                f"error{unit}": _r(conv(res.error[j]), scale=out_scale),
             }
             for j in range(res.input_angle.size)
         ],
-        f"max_target_error{unit}": _r(conv(float(np.max(np.abs(res.error)))), 8),
+        f"max_target_error{unit}": _r(conv(float(np.max(np.abs(res.error)))), scale=out_scale),
         f"structural_error_max{unit}": _r(conv(res.structural_error_max), 6),
         f"structural_error_rms{unit}": _r(conv(res.structural_error_rms), 6),
         "structural_error_samples": int(res.dense_input.size),
@@ -291,9 +301,9 @@ def _function(args) -> int:
         model_at += f"; the model's crank angle there: {phi0 + offsets['crank']:.10g} deg"
     lines = [
         f"type             {args.kind} ({rep['objective']})",
-        "lengths          " + ", ".join(f"{k} {v:.10g}" for k, v in L.items()),
+        "lengths          " + ", ".join(f"{k} {_r(v, scale=size):.10g}" for k, v in L.items()),
         f"grashof          {res.grashof}; branch {res.branch}",
-        f"target error     max {rep[f'max_target_error{unit}']:.3g}{' deg' if not slider else ''}",
+        f"target error     max {_bound(rep[f'max_target_error{unit}'], out_scale)}{' deg' if not slider else ''}",
         f"structural error max {rep[f'structural_error_max{unit}']:.6g}, rms {rep[f'structural_error_rms{unit}']:.6g}"
         f"{' deg' if not slider else ''} over {res.dense_input.size} crank angles (engine)",
         f"transmission     {rep['transmission_angle_deg'][0]:.4g} .. {rep['transmission_angle_deg'][1]:.4g} deg",
@@ -397,15 +407,15 @@ def _motion(args) -> int:
     def sol_rec(k, s):
         return {
             "rank": k,
-            "ground_pivots": [[_r(v) for v in s.crank.ground_pivot], [_r(v) for v in s.rocker.ground_pivot]],
-            "moving_pivots": [[_r(v) for v in s.crank.moving_pivot], [_r(v) for v in s.rocker.moving_pivot]],
-            "lengths": {k2: _r(v) for k2, v in s.lengths.items()},
+            "ground_pivots": [[_r(v, scale=s.size) for v in p] for p in (s.crank.ground_pivot, s.rocker.ground_pivot)],
+            "moving_pivots": [[_r(v, scale=s.size) for v in p] for p in (s.crank.moving_pivot, s.rocker.moving_pivot)],
+            "lengths": {k2: _r(v, scale=s.size) for k2, v in s.lengths.items()},
             "grashof": s.grashof,
             "crank_turns": s.crank_turns,
             "input_deg": [_r(math.degrees(q)) for q in s.input_angle],
-            "point_error": [_r(e, 3) for e in s.point_error],
-            "angle_error_deg": [_r(math.degrees(e), 3) for e in s.angle_error],
-            "residual_relative": _r(s.residual, 3),
+            "point_error": [_r(e, scale=s.size) for e in s.point_error],
+            "angle_error_deg": [_r(math.degrees(e), scale=360.0) for e in s.angle_error],
+            "residual_relative": _r(s.residual, scale=1.0),
             "transmission_angle_deg": [
                 _r(math.degrees(s.transmission_angle_min), 6),
                 _r(math.degrees(s.transmission_angle_max), 6),
@@ -443,7 +453,7 @@ def _motion(args) -> int:
         f"B ({b['moving_pivots'][1][0]:.10g}, {b['moving_pivots'][1][1]:.10g})",
         "lengths          " + ", ".join(f"{k} {v:.10g}" for k, v in b["lengths"].items()),
         f"grashof          {best.grashof}; crank turns fully: {'yes' if best.crank_turns else 'no'}",
-        f"residual         {best.residual:.2g} of the size (engine, at every pose)",
+        f"residual         {_bound(b['residual_relative'], 1.0)} of the size (engine, at every pose)",
         f"transmission     {b['transmission_angle_deg'][0]:.4g} .. {b['transmission_angle_deg'][1]:.4g} deg",
         "input at poses   " + ", ".join(f"{v:.8g}" for v in b["input_deg"]) + " deg",
         f"model            {args.out}",

@@ -3,9 +3,9 @@
 The work is partitioned by seed and start, never by worker: start ``k``
 draws from ``numpy.random.default_rng([seed, k])``, a chunk of
 :data:`CHUNK` consecutive starts is one task, and the results are reduced
-deterministically (sorted by objective, then start index).  The answer is
-therefore the same, bit for bit, for any number of workers and on any
-scheduler.
+deterministically (sorted by objective at :data:`TIE_DIGITS` digits, then
+start index).  The answer is therefore the same, bit for bit, for any number
+of workers and on any scheduler.
 """
 
 from __future__ import annotations
@@ -27,8 +27,33 @@ def _chunks(n: int):
     return [list(range(i, min(i + CHUNK, n))) for i in range(0, n, CHUNK)]
 
 
-def _order(results):
-    return sorted(results, key=lambda r: (r[0] if math.isfinite(r[0]) else math.inf, r[1]))
+#: Significant digits at which two starts' objectives are compared; objectives
+#: below :data:`TIE_FLOOR` of the largest finite one are equal (zero).
+TIE_DIGITS = 6
+TIE_FLOOR = 1e-12
+
+
+def _order(results, tie: float | None = None):
+    """Results sorted by objective, then start index; equally good starts keep their index order.
+
+    The last digits of an objective differ between machines (OpenBLAS picks its
+    kernels by CPU): compared at :data:`TIE_DIGITS` digits, and with exact
+    solutions (objectives at rounding level) all equal, the start chosen is
+    the same on every machine.  ``tie``: the objective below which a start
+    is exact (default :data:`TIE_FLOOR` of the largest finite objective).
+    """
+    from gearlever._format import quantize
+
+    fin = [abs(r[0]) for r in results if math.isfinite(r[0])]
+    floor = float(tie) if tie is not None else (TIE_FLOOR * max(fin) if fin else 0.0)
+
+    def key(r):
+        f = r[0]
+        if not math.isfinite(f):
+            return (math.inf, r[1])
+        return (0.0 if abs(f) <= floor else quantize(f, 0.0, TIE_DIGITS), r[1])
+
+    return sorted(results, key=key)
 
 
 #: Address schemes of a dask.distributed scheduler that can be reached from here.
@@ -110,7 +135,9 @@ def _quiet_stop(client) -> None:
         pass
 
 
-def run_starts(spec, seed, n_starts, evals, method="de", *, workers=None, scheduler=None, progress=None, fn=None):
+def run_starts(
+    spec, seed, n_starts, evals, method="de", *, workers=None, scheduler=None, progress=None, fn=None, tie=None
+):
     """Run ``n_starts`` seeded starts in chunks on dask; results sorted by (objective, start).
 
     Parameters
@@ -129,6 +156,9 @@ def run_starts(spec, seed, n_starts, evals, method="de", *, workers=None, schedu
     fn : callable, optional
         Chunk function ``fn(spec, seed, ks, evals, method) -> list`` (default
         :func:`gearlever.synthesis.path.run_chunk`).
+    tie : float, optional
+        Objective at or below which a start counts as exact (see :func:`_order`): exact starts are
+        taken in start order, whatever the last digits of their objectives.
     """
     from gearlever.synthesis._search import STOP
 
@@ -173,4 +203,4 @@ def run_starts(spec, seed, n_starts, evals, method="de", *, workers=None, schedu
         except KeyboardInterrupt:
             STOP.set()  # the worker threads end their searches at the next generation
             raise
-    return _order([r for chunk in out for r in chunk])
+    return _order([r for chunk in out for r in chunk], tie)

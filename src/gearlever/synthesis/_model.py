@@ -14,9 +14,13 @@ from gearlever.errors import GearleverError
 
 __all__ = ["fourbar_model", "model_toml", "slider_crank_model"]
 
-#: Significant digits of coordinates written to a model file: exact to well
-#: below 1e-9 of any mechanism size, and the same text on every machine.
+#: Significant digits of other numbers written to a model file.
 DIGITS = 15
+
+#: Digits of the model's size at which point coordinates are written
+#: (:mod:`gearlever._format`): exact to 1e-9 of the size, which every
+#: synthesis meets, and a coordinate that is zero up to rounding is written 0.
+COORD_DIGITS = 10
 
 
 def _xy(where: str, p) -> list:
@@ -139,6 +143,21 @@ def _key(k: str) -> str:
     return k if k and all(c.isalnum() or c in "_-" for c in k) and k.isascii() else _value(k)
 
 
+def _settled(model: dict) -> dict:
+    """The model with its point coordinates at :data:`COORD_DIGITS` of its size (largest coordinate)."""
+    from gearlever._format import rounded
+
+    pts = model.get("points", {})
+    coords = [abs(float(c)) for p in pts.values() for c in p if isinstance(c, (int, float))]
+    coords = [c for c in coords if math.isfinite(c)]
+    size = max(coords) if coords else 0.0
+    if size == 0.0:
+        return model
+    out = dict(model)
+    out["points"] = {k: rounded([float(c) for c in v], COORD_DIGITS, size) for k, v in pts.items()}
+    return out
+
+
 def model_toml(model: dict, comment: str = "") -> str:
     """TOML text of a model dict (tables in the order of the schema; arrays of tables as ``[[...]]``).
 
@@ -150,6 +169,7 @@ def model_toml(model: dict, comment: str = "") -> str:
     True
     """
     lines = [f"# {c}" for c in comment.splitlines()] if comment else []
+    model = _settled(model)
     for table in ("mechanism", "points", "links", "gears", "masses"):
         if table in model:
             lines += ["", f"[{table}]"] + [f"{_key(k)} = {_value(v)}" for k, v in model[table].items()]

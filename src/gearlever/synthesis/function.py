@@ -243,7 +243,7 @@ class FunctionSynthesis(Result):
         ``"+"``/``"-"`` (slider ahead of or behind the crank pin).
     model : dict
         Model dict assembled at the first target (:mod:`gearlever.synthesis._model`),
-        exactly as :func:`~gearlever.synthesis._model.model_toml` writes it (15 digits).
+        exactly as :func:`~gearlever.synthesis._model.model_toml` writes it (coordinates at 10 digits of the size).
     dense_input, dense_desired, dense_generated : ndarray
         The input range sampled, wanted output and engine output there.
     structural_error_max, structural_error_rms : float

@@ -1079,7 +1079,10 @@ def synthesize_path(
         pk = make_problem(spec)
         starts = n_starts(budget, pk.d)
         per = max(budget // starts, 1)
-        results = run_starts(spec, seed, starts, per, method, workers=workers, scheduler=scheduler, progress=progress)
+        # exact starts (distances below 1e-10 of the targets' size) are equal: the first one is kept
+        results = run_starts(
+            spec, seed, starts, per, method, workers=workers, scheduler=scheduler, progress=progress, tie=1e-20 * S2
+        )
         evals += sum(r[4] for r in results)
         best = results[0]
         if best[2] is None:

@@ -95,6 +95,13 @@ class LawTarget:
         Weight of each sample in the objective (:data:`DWELL_WEIGHT` in dwells, else 1).
     net : float
         Output change over one turn (0 for a returning law).
+
+    Examples
+    --------
+    >>> th = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+    >>> t = law_target(th, 0.3 * np.sin(th))
+    >>> t.s.shape, float(t.net), t.output
+    ((36,), 0.0, 'angle')
     """
 
     theta: np.ndarray
@@ -198,6 +205,13 @@ class LawKind:
     ``lo, hi`` (from the target in ``__init__``), :attr:`fixed` (names held
     in the polish: branch signs, teeth), and implement :meth:`generate`,
     :meth:`transmission` and :meth:`model`.
+
+    Examples
+    --------
+    >>> th = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+    >>> kind = KINDS["fourbar"](law_target(th, 0.3 * np.sin(th)))
+    >>> kind.name, kind.d, kind.outputs
+    ('fourbar', 5, ('angle',))
     """
 
     name = ""
@@ -273,6 +287,13 @@ class LawProblem:
     (the weighted mean); the polish minimizes the weighted *maximum* error by
     Lawson's iteratively reweighted least squares with ``k`` a variable and
     the Jacobian by the complex step.  Infeasible candidates are ``inf``.
+
+    Examples
+    --------
+    >>> th = np.linspace(0, 2 * np.pi, 36, endpoint=False)
+    >>> pb = LawProblem("fourbar", law_target(th, 0.3 * np.sin(th)))
+    >>> pb.d, pb.kind.names[:3]
+    (5, ('b', 'c', 'u2'))
     """
 
     def __init__(self, kind: str, target: LawTarget, min_transmission: float = 0.0, teeth=(17, 120)):

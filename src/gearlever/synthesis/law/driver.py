@@ -151,6 +151,15 @@ class LawSynthesis(Result):
     evaluations, seed, starts : int
     tried : dict
         Kind -> objective (``auto``), None where none was feasible.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gearlever.synthesis.law import law_target
+    >>> th = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    >>> res = synthesize_law(law_target(th, np.radians(20) * np.sin(th)), budget=3000, workers=1)
+    >>> res.kind, res.feasible, res.theta.shape == res.error.shape
+    ('fourbar', True, True)
     """
 
     kind: str
@@ -238,6 +247,15 @@ def synthesize_law(
     budget and the variables, never by the workers), each polished by the
     minimax polish of :class:`~gearlever.synthesis.law._core.LawProblem`;
     starts are reduced by (objective, start index).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gearlever.synthesis.law import law_target
+    >>> th = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    >>> res = synthesize_law(law_target(th, np.radians(20) * np.sin(th)), kind="fourbar", budget=3000, workers=1)
+    >>> bool(np.degrees(np.abs(res.error).max()) < 1.0)
+    True
     """
     from gearlever.synthesis._dask import run_starts
     from gearlever.synthesis.path import n_starts
