@@ -262,3 +262,29 @@ def test_a_rise_narrower_than_four_profile_steps_is_refused_naming_the_segment()
     with pytest.raises(GearleverError, match="segment 1 spans 0.2 deg, less than 4 profile steps"):
         design_cam(lw, "translating-flat", base_radius=30.0, points=3600)
     assert design_cam(lw, "translating-flat", base_radius=300.0, points=72000, allow_undercut=True).theta.size == 72000
+
+
+@pytest.mark.parametrize("e", [0.0, 3.0, -4.0])
+def test_oscillating_flat_pressure_angle_is_the_face_offset_seen_from_the_contact(e):
+    """The contact point moves at right angles to the line from the pivot and pushes along the face's normal,
+    so the pressure angle is the angle between that line and the face: atan(|e| / l), l the distance along the
+    face from the foot of the pivot's perpendicular to the contact (zero for a face through the pivot;
+    Uicker, Pennock and Shigley, *Theory of Machines and Mechanisms*, ch. 6).  The contact is found here as the
+    cam vertex farthest along the face's normal, independently of the design's own contact points."""
+    lw = law("angle", stroke=15.0)
+    rb, D = 25.0, 80.0
+    cam = design_cam(lw, "oscillating-flat", base_radius=rb, pivot_distance=D, offset=e, points=7200)
+    phi = cam.pressure_angle
+    assert np.all(np.abs(phi) < math.pi / 2)
+    g = math.asin((rb + e) / D) + cam.s
+    idx = np.arange(0, cam.theta.size, 90)
+    ell = []
+    for k in idx:
+        n = np.array([math.sin(g[k]), math.cos(g[k])])
+        c = rotate(cam.surface, cam.theta[k])
+        contact = c[np.argmax(c @ n)]
+        r = contact - np.array([D, 0.0])
+        ell.append(abs(r @ np.array([n[1], -n[0]])))
+    want = np.arctan2(abs(e), np.array(ell))
+    np.testing.assert_allclose(np.abs(phi[idx]), want, atol=2e-3)
+    assert cam.pressure_angle_max == pytest.approx(np.abs(phi).max())

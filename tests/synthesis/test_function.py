@@ -205,7 +205,9 @@ def test_any_ranges_give_a_model_whose_structural_error_is_recomputed_or_a_clean
         np.angle(np.exp(1j * (r.error - err_t))) if kind == "fourbar" else r.error - err_t, 0, atol=tol
     )
     if r.exact:
-        assert np.abs(r.error).max() < tol
+        # the written model's coordinates carry 10 digits of its size (gearlever._format): an exact target is
+        # met to about 1e-10 of the size over the shortest link, an angle error growing with the link ratio
+        assert np.abs(r.error).max() < tol + 1e-8 * r.link_ratio
     assert all(v > 0 for k, v in r.lengths.items() if k != "offset")
 
 

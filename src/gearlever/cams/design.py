@@ -267,6 +267,10 @@ def _core(kind, p: FollowerParams, base_radius: float, theta, s, v, a):
         surface = _rot(contact, -theta)
         u = kind.velocity_direction(contact, p)
         phi = np.arctan2(_cross(u, nf), np.sum(u * nf, axis=-1))
+        # the angle between the line of the contact force and the path of the contact point: the face's
+        # normal may point either way along that line (an oscillating face's normal points against its
+        # motion), so the angle is folded into (-90, 90] deg
+        phi = np.where(phi > np.pi / 2, phi - np.pi, np.where(phi <= -np.pi / 2, phi + np.pi, phi))
         folded = (al1 >= 0) | (h <= 0)
         undercut_mask = rho <= 0
         pos = kind.face_position(contact, beta, p)
