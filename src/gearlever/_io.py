@@ -647,3 +647,32 @@ def read_text_capped(path, what: str, cap: int = MAX_INPUT_BYTES) -> str:
         return data.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError:
         raise GearleverError(f"{what} {str(path)!r}: not UTF-8 text") from None
+
+
+def read_json_capped(path, what: str, where: str | None = None):
+    """The JSON value of the input file ``path``, read by :func:`read_text_capped` (``what``, the cap).
+
+    Text that is not JSON, or JSON nested too deeply for Python's parser, is
+    refused with a :class:`~gearlever.errors.GearleverError` whose message
+    starts with ``where`` (default: ``what`` and the path, as the refusals of
+    :func:`read_text_capped`).
+
+    >>> import pathlib, tempfile
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "d.json"
+    >>> _ = p.write_text('{"x0": [[0, 0]],')
+    >>> read_json_capped(p, "DESIGN", where="d.json")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: d.json: not JSON (Expecting property name enclosed in double quotes, line 1)
+    """
+    from gearlever.errors import GearleverError
+
+    if where is None:
+        where = f"{what} {str(path)!r}"
+    text = read_text_capped(path, what)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise GearleverError(f"{where}: not JSON ({exc.msg}, line {exc.lineno})") from None
+    except RecursionError:
+        raise GearleverError(f"{where}: JSON nested too deeply") from None
