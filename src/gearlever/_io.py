@@ -676,3 +676,50 @@ def read_json_capped(path, what: str, where: str | None = None):
         raise GearleverError(f"{where}: not JSON ({exc.msg}, line {exc.lineno})") from None
     except RecursionError:
         raise GearleverError(f"{where}: JSON nested too deeply") from None
+
+
+def did_you_mean(word, names) -> str:
+    """`` (did you mean 'x'?)`` for the name of ``names`` closest to ``word``, or ``""``.
+
+    >>> did_you_mean("segments", ("output", "segment"))
+    " (did you mean 'segment'?)"
+    """
+    import difflib
+
+    close = difflib.get_close_matches(str(word), list(names), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def read_toml_table(path, what: str, table: str, keys, missing: str = "") -> dict:
+    """The table ``[table]`` of the TOML file ``path`` (read by :func:`read_text_capped` as ``what``).
+
+    Refused with a :class:`~gearlever.errors.GearleverError` whose message
+    starts with the path: text that is not TOML, no ``[table]`` table (the
+    message ends with ``missing``, a hint), a key of the table not in ``keys``
+    (with the closest known key).
+
+    >>> import pathlib, tempfile
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "law.toml"
+    >>> _ = p.write_text('[law]\\nsegments = []\\n')
+    >>> read_toml_table(p, "LAW", "law", ("output", "segment"))
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: ...law.toml: [law] has unknown key 'segments' (did you mean 'segment'?)
+    """
+    import tomllib
+
+    from gearlever.errors import GearleverError
+
+    source = str(path)
+    text = read_text_capped(Path(path), what)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise GearleverError(f"{source}: not valid TOML: {exc}") from None
+    found = data.get(table)
+    if not isinstance(found, dict):
+        raise GearleverError(f"{source}: a [{table}] table is missing{missing}")
+    for key in found:
+        if key not in keys:
+            raise GearleverError(f"{source}: [{table}] has unknown key {key!r}{did_you_mean(key, keys)}")
+    return found
