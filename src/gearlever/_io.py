@@ -647,3 +647,79 @@ def read_text_capped(path, what: str, cap: int = MAX_INPUT_BYTES) -> str:
         return data.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError:
         raise GearleverError(f"{what} {str(path)!r}: not UTF-8 text") from None
+
+
+def read_json_capped(path, what: str, where: str | None = None):
+    """The JSON value of the input file ``path``, read by :func:`read_text_capped` (``what``, the cap).
+
+    Text that is not JSON, or JSON nested too deeply for Python's parser, is
+    refused with a :class:`~gearlever.errors.GearleverError` whose message
+    starts with ``where`` (default: ``what`` and the path, as the refusals of
+    :func:`read_text_capped`).
+
+    >>> import pathlib, tempfile
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "d.json"
+    >>> _ = p.write_text('{"x0": [[0, 0]],')
+    >>> read_json_capped(p, "DESIGN", where="d.json")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: d.json: not JSON (Expecting property name enclosed in double quotes, line 1)
+    """
+    from gearlever.errors import GearleverError
+
+    if where is None:
+        where = f"{what} {str(path)!r}"
+    text = read_text_capped(path, what)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise GearleverError(f"{where}: not JSON ({exc.msg}, line {exc.lineno})") from None
+    except RecursionError:
+        raise GearleverError(f"{where}: JSON nested too deeply") from None
+
+
+def did_you_mean(word, names) -> str:
+    """`` (did you mean 'x'?)`` for the name of ``names`` closest to ``word``, or ``""``.
+
+    >>> did_you_mean("segments", ("output", "segment"))
+    " (did you mean 'segment'?)"
+    """
+    import difflib
+
+    close = difflib.get_close_matches(str(word), list(names), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def read_toml_table(path, what: str, table: str, keys, missing: str = "") -> dict:
+    """The table ``[table]`` of the TOML file ``path`` (read by :func:`read_text_capped` as ``what``).
+
+    Refused with a :class:`~gearlever.errors.GearleverError` whose message
+    starts with the path: text that is not TOML, no ``[table]`` table (the
+    message ends with ``missing``, a hint), a key of the table not in ``keys``
+    (with the closest known key).
+
+    >>> import pathlib, tempfile
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "law.toml"
+    >>> _ = p.write_text('[law]\\nsegments = []\\n')
+    >>> read_toml_table(p, "LAW", "law", ("output", "segment"))
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: ...law.toml: [law] has unknown key 'segments' (did you mean 'segment'?)
+    """
+    import tomllib
+
+    from gearlever.errors import GearleverError
+
+    source = str(path)
+    text = read_text_capped(Path(path), what)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise GearleverError(f"{source}: not valid TOML: {exc}") from None
+    found = data.get(table)
+    if not isinstance(found, dict):
+        raise GearleverError(f"{source}: a [{table}] table is missing{missing}")
+    for key in found:
+        if key not in keys:
+            raise GearleverError(f"{source}: [{table}] has unknown key {key!r}{did_you_mean(key, keys)}")
+    return found

@@ -12,14 +12,10 @@ from gearlever.curves.links import linkage_from_dict, solve_plan
 from gearlever.curves.model import linkage_toml
 from gearlever.curves.score import hypervolume
 from gearlever.curves.simulate import simulate
+from tests.curves import _designs
+from tests.curves._designs import SIXBAR
 
-SIXBAR = {
-    "x0": [[0, 0], [0.3, 0.2], [2, 0], [1.5, 1.5], [3, 1], [2.5, 2.5], [1.0, 2.2]],
-    "edges": [[0, 1], [1, 3], [2, 3], [3, 5], [4, 5], [1, 6], [3, 6], [2, 4]],
-    "fixed_joints": [0, 2, 4],
-    "motor": [0, 1],
-    "target_joint": 6,
-}
+small = _designs.small  # fixture
 
 
 def _circle_csv(path, r=0.36055512754639896):
@@ -92,17 +88,6 @@ def test_written_model_traces_the_simulated_curve_under_mechanism_analyze(tmp_pa
     x = simulate(lk.x0[None], solve_plan(lk), thetas=np.radians([0, 90, 180, 270]))[0, 6]
     got = np.array([[float(r["P_x_len"]), float(r["P_y_len"])] for r in rows])
     np.testing.assert_allclose(got, x, atol=1e-8)
-
-
-@pytest.fixture
-def small(monkeypatch):
-    from gearlever.curves import search as S
-
-    monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
-    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
-    monkeypatch.setattr(S, "STARTS", 2)
-    monkeypatch.setattr(S, "PRESELECT", 4)
-    monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
 
 
 def _egg_csv(path):

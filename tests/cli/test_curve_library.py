@@ -5,13 +5,9 @@ import pytest
 
 from gearlever.cli import main
 from gearlever.curves import search as S
+from tests.curves import _designs
 
-
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    folder = tmp_path / "cache"
-    monkeypatch.setenv("GEARLEVER_CACHE", str(folder))
-    return folder
+cache, small = _designs.cache, _designs.small  # fixtures
 
 
 def test_build_then_info(cache, capsys):
@@ -47,15 +43,6 @@ def test_build_into_a_folder_that_cannot_be_made_exits_2(tmp_path, monkeypatch, 
     assert main(["curve", "library", "build", "--size", "50"]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "cache folder" in err and "file/cache" in err
-
-
-@pytest.fixture
-def small(monkeypatch):
-    monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
-    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
-    monkeypatch.setattr(S, "STARTS", 2)
-    monkeypatch.setattr(S, "PRESELECT", 4)
-    monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
 
 
 def test_synthesize_curve_writes_the_same_bytes_with_the_cached_library(tmp_path, cache, small, capsys):

@@ -12,14 +12,7 @@ import pytest
 from gearlever.cli import main
 from gearlever.curves.links import linkage_from_dict, solve_plan
 from gearlever.curves.simulate import simulate
-
-SIXBAR = {
-    "x0": [[0, 0], [0.3, 0.2], [2, 0], [1.5, 1.5], [3, 1], [2.5, 2.5], [1.0, 2.2]],
-    "edges": [[0, 1], [1, 3], [2, 3], [3, 5], [4, 5], [1, 6], [3, 6], [2, 4]],
-    "fixed_joints": [0, 2, 4],
-    "motor": [0, 1],
-    "target_joint": 6,
-}
+from tests.curves._designs import SIXBAR
 
 
 def test_analyze_and_structure_open_a_links_json(tmp_path, capsys):

@@ -8,13 +8,9 @@ import pytest
 from gearlever.curves import library as L
 from gearlever.curves import search as S
 from gearlever.errors import GearleverError
+from tests.curves import _designs
 
-
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    folder = tmp_path / "cache"
-    monkeypatch.setenv("GEARLEVER_CACHE", str(folder))
-    return folder
+cache, small = _designs.cache, _designs.small  # fixtures
 
 
 def _same(a, b):
@@ -47,15 +43,6 @@ def test_the_default_size_is_the_synthesis_library():
     _same(S.build_library(0, size=600), S.build_library(0, 2, 300))
     with pytest.raises(GearleverError, match="library_size must be 1 to 200000"):
         S.library_counts(200_001)
-
-
-@pytest.fixture
-def small(monkeypatch):
-    monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
-    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
-    monkeypatch.setattr(S, "STARTS", 2)
-    monkeypatch.setattr(S, "PRESELECT", 4)
-    monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
 
 
 def _dump(res):

@@ -9,16 +9,13 @@ from gearlever.curves import search as S
 from gearlever.curves.links import solve_plan
 from gearlever.curves.score import distance, material
 from gearlever.curves.simulate import simulate
+from tests.curves import _designs
+
+small = _designs.small  # fixture
 
 
 def _turning(n_dyads, seed=5):
-    rng = np.random.default_rng(seed)
-    while True:
-        topo = S.random_topology(rng, n_dyads, 2)
-        x0 = S.random_sketches(rng, topo, 200)
-        ok = np.isfinite(simulate(x0, topo.plan, steps=100)).all(axis=(1, 2, 3))
-        if ok.any():
-            return topo, x0[np.flatnonzero(ok)[0]]
+    return _designs.turning(n_dyads, seed, steps=100)
 
 
 def test_refine_recovers_a_known_seven_joint_linkage_from_a_perturbed_sketch():
@@ -52,15 +49,6 @@ def test_prune_keeps_only_the_joints_the_traced_joint_needs():
     full = simulate(x0[None], topo.plan)[0, 3]
     pruned = simulate(x0[keep][None], sub.plan)[0, sub.target]
     np.testing.assert_allclose(pruned, full, atol=1e-12)
-
-
-@pytest.fixture
-def small(monkeypatch):
-    monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
-    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
-    monkeypatch.setattr(S, "STARTS", 2)
-    monkeypatch.setattr(S, "PRESELECT", 4)
-    monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
 
 
 def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers_and_on_a_cluster(small):

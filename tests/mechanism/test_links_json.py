@@ -6,30 +6,17 @@ import numpy as np
 import pytest
 
 from gearlever._io import to_json
-from gearlever.curves import search as S
 from gearlever.curves.links import linkage_from_dict, solve_plan
 from gearlever.curves.simulate import crank_angles, simulate
 from gearlever.errors import GearleverError
 from gearlever.mechanism import Mechanism
-
-SIXBAR = {
-    "x0": [[0, 0], [0.3, 0.2], [2, 0], [1.5, 1.5], [3, 1], [2.5, 2.5], [1.0, 2.2]],
-    "edges": [[0, 1], [1, 3], [2, 3], [3, 5], [4, 5], [1, 6], [3, 6], [2, 4]],
-    "fixed_joints": [0, 2, 4],
-    "motor": [0, 1],
-    "target_joint": 6,
-}
+from tests.curves._designs import SIXBAR, turning
 
 
 def _turning(n_dyads, seed):
     """A random dyadic linkage of the synthesis' library that turns fully (``n_dyads`` dyads, two ground pivots)."""
-    rng = np.random.default_rng(seed)
-    while True:
-        topo = S.random_topology(rng, n_dyads, 2)
-        x0 = S.random_sketches(rng, topo, 200)
-        ok = np.isfinite(simulate(x0, topo.plan)).all(axis=(1, 2, 3))
-        if ok.any():
-            return topo.linkage(x0[np.flatnonzero(ok)[0]])
+    topo, x0 = turning(n_dyads, seed)
+    return topo.linkage(x0)
 
 
 def _write(path, lk):

@@ -5,39 +5,15 @@ from __future__ import annotations
 import json
 import math
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from gearlever.cams import FOLLOWERS, FollowerParams, design_cam, load_cam
 from gearlever.errors import GearleverError
-from gearlever.laws import law_from_segments, load_law
+from gearlever.laws import load_law
 from gearlever.plotting.cam_viewer import cam_viewer_data, cam_viewer_html
-
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-ROCK20 = [
-    {"to": 120, "motion": "dwell"},
-    {"to": 240, "motion": "cycloidal", "rise": 20},
-    {"to": 360, "motion": "345", "rise": -20},
-]
-
-
-def designs():
-    """One design per follower kind (and an offset translating roller), 3600 points."""
-    lift = load_law(EXAMPLES / "law_lift.toml")
-    rocker = load_law(EXAMPLES / "law_dwell_rocker.toml")
-    rock20 = law_from_segments("angle", "deg", ROCK20)
-    return {
-        "translating-roller": design_cam(lift, "translating-roller", base_radius=40.0, roller_radius=8.0),
-        "offset-roller": design_cam(lift, "translating-roller", base_radius=40.0, roller_radius=8.0, offset=6.0),
-        "translating-flat": design_cam(lift, "translating-flat", base_radius=45.0),
-        "oscillating-roller": design_cam(
-            rocker, "oscillating-roller", base_radius=30.0, roller_radius=6.0, arm=50.0, pivot_distance=70.0
-        ),
-        "oscillating-flat": design_cam(rock20, "oscillating-flat", base_radius=55.0, pivot_distance=100.0, offset=5.0),
-    }
-
+from tests.plotting._cam_designs import EXAMPLES, designs
 
 DESIGNS = designs()
 FRAMES = [0, 37, 90, 133, 200, 251, 299, 359]

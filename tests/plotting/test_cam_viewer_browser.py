@@ -1,6 +1,6 @@
 """The cam page in a real browser (headless Chromium through selenium): the DOM against the cam module.
 
-One browser for the module, started as in ``test_viewer_browser.py``.  Without chromium/chromedriver the
+One browser for the module (``tests/plotting/_browser.py``).  Without chromium/chromedriver the
 module is skipped locally and FAILS when the environment variable CI is set.  With GEARLEVER_SCREENSHOTS
 set to a folder, the screenshot test also writes ``viewer_cam.png`` there (the guide's picture:
 ``GEARLEVER_SCREENSHOTS=docs/_static``).
@@ -17,78 +17,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gearlever.cams import design_cam
-from gearlever.laws import law_from_segments, load_law
 from gearlever.plotting.cam_viewer import cam_viewer_html
+from tests.plotting import _browser
+from tests.plotting._cam_designs import designs
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-CHROMIUM = "/usr/bin/chromium"
-CHROMEDRIVER = "/usr/bin/chromedriver"
 N = 360
-ROCK20 = [
-    {"to": 120, "motion": "dwell"},
-    {"to": 240, "motion": "cycloidal", "rise": 20},
-    {"to": 360, "motion": "345", "rise": -20},
-]
-
-
-def _designs():
-    lift = load_law(EXAMPLES / "law_lift.toml")
-    rocker = load_law(EXAMPLES / "law_dwell_rocker.toml")
-    return {
-        "translating-roller": design_cam(lift, "translating-roller", base_radius=40.0, roller_radius=8.0),
-        "translating-flat": design_cam(lift, "translating-flat", base_radius=45.0),
-        "oscillating-roller": design_cam(
-            rocker, "oscillating-roller", base_radius=30.0, roller_radius=6.0, arm=50.0, pivot_distance=70.0
-        ),
-        "oscillating-flat": design_cam(
-            law_from_segments("angle", "deg", ROCK20),
-            "oscillating-flat",
-            base_radius=55.0,
-            pivot_distance=100.0,
-            offset=5.0,
-        ),
-    }
-
-
-DESIGNS = _designs()
+DESIGNS = {k: v for k, v in designs().items() if k != "offset-roller"}
 HOSTILE = '"</script><!--<script>window.pwned=1</script>&amp; \u2028 ü'
 
 
-def _have_browser() -> bool:
-    return all(Path(p).is_file() for p in (CHROMIUM, CHROMEDRIVER))
-
-
-@pytest.fixture(scope="module")
-def driver(tmp_path_factory):
-    if not _have_browser():
-        msg = f"chromium and chromedriver are needed ({CHROMIUM}, {CHROMEDRIVER})"
-        if os.environ.get("CI"):
-            pytest.fail(msg + ": the browser tests must run in CI")
-        pytest.skip(msg)
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = CHROMIUM
-    for a in (
-        "--headless=new",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-dev-shm-usage",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--no-first-run",
-        "--window-size=1000,800",
-        f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}",
-    ):
-        opts.add_argument(a)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    d = webdriver.Chrome(service=Service(CHROMEDRIVER), options=opts)
-    d.set_page_load_timeout(60)
-    yield d
-    d.quit()
+driver = _browser.driver  # fixture
 
 
 @pytest.fixture(scope="module")

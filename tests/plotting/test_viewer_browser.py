@@ -1,14 +1,14 @@
 """The viewer page in a real browser (headless Chromium through selenium): the DOM against the solver.
 
-One browser for the module.  Without chromium/chromedriver the module is skipped locally and
-FAILS when the environment variable CI is set (a browser test never silently skips in CI).
+One browser for the module (``tests/plotting/_browser.py``).  Without chromium/chromedriver the module
+is skipped locally and FAILS when the environment variable CI is set (a browser test never silently
+skips in CI).
 """
 
 from __future__ import annotations
 
 import io
 import math
-import os
 import tomllib
 from pathlib import Path
 
@@ -18,10 +18,9 @@ import pytest
 from gearlever.mechanism import Mechanism
 from gearlever.mechanism.centres import instant_centres
 from gearlever.plotting.viewer import GRID_STEPS, viewer_html
+from tests.plotting import _browser
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-CHROMIUM = "/usr/bin/chromium"
-CHROMEDRIVER = "/usr/bin/chromedriver"
 NAMES = ["fourbar", "slider_crank", "whitworth", "watt_sixbar", "geared_fivebar", "zrdpm_gear_contour"]
 N = 360
 #: Where a point circle must be: the solver's coordinates, rounded to 6 significant digits in the page.
@@ -65,39 +64,7 @@ HOSTILE = {
 }
 
 
-def _have_browser() -> bool:
-    return all(Path(p).is_file() for p in (CHROMIUM, CHROMEDRIVER))
-
-
-@pytest.fixture(scope="module")
-def driver(tmp_path_factory):
-    if not _have_browser():
-        msg = f"chromium and chromedriver are needed ({CHROMIUM}, {CHROMEDRIVER})"
-        if os.environ.get("CI"):
-            pytest.fail(msg + ": the browser tests must run in CI")
-        pytest.skip(msg)
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = CHROMIUM
-    for a in (
-        "--headless=new",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-dev-shm-usage",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--no-first-run",
-        "--window-size=1000,800",
-        f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}",
-    ):
-        opts.add_argument(a)
-    d = webdriver.Chrome(service=Service(CHROMEDRIVER), options=opts)
-    d.set_page_load_timeout(60)
-    yield d
-    d.quit()
+driver = _browser.driver  # fixture
 
 
 @pytest.fixture(scope="module")

@@ -5,9 +5,6 @@ Imports the standard library, gearlever._io, gearlever.laws, gearlever.errors an
 
 from __future__ import annotations
 
-import tomllib
-from pathlib import Path
-
 from gearlever.cams.design import MAX_POINTS, CamDesign, design_cam
 from gearlever.errors import GearleverError
 
@@ -57,21 +54,11 @@ def load_cam(path, points: int | None = None) -> CamDesign:
     >>> cam.follower, cam.theta.size, round(cam.stroke, 9)
     ('translating-flat', 720, 10.0)
     """
-    from gearlever._io import read_text_capped
+    from gearlever._io import read_toml_table
     from gearlever.laws import load_law
 
     source = str(path)
-    text = read_text_capped(Path(path), "CAM")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise GearleverError(f"{source}: not valid TOML: {exc}") from None
-    cam = data.get("cam")
-    if not isinstance(cam, dict):
-        raise GearleverError(f"{source}: a [cam] table is missing (write one with gearlever cam design)")
-    for key in cam:
-        if key not in CAM_KEYS:
-            raise GearleverError(f"{source}: [cam] has unknown key {key!r}")
+    cam = read_toml_table(path, "CAM", "cam", CAM_KEYS, " (write one with gearlever cam design)")
     for key in ("follower", "base_radius"):
         if key not in cam:
             raise GearleverError(f"{source}: [cam] {key} is missing")

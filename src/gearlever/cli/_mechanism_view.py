@@ -31,16 +31,27 @@ from gearlever.errors import GearleverError
 MAX_VIEW_FRAMES = 3600
 
 
-def register_view(ms) -> None:
-    v = ms.add_parser("view", help="interactive HTML page (one self-contained file) that animates the model")
-    v.add_argument("model", help="model file (TOML, or a linkage .links.json)")
-    v.add_argument("--out", required=True, help="output page (.html)")
-    v.add_argument(
+def add_page_arguments(parser, turning: str) -> None:
+    """``--out PAGE.html`` and ``--frames N`` (over one turn of ``turning``) of a command that writes a page."""
+    parser.add_argument("--out", required=True, help="output page (.html)")
+    parser.add_argument(
         "--frames",
         type=capped_int(MAX_VIEW_FRAMES, low=2),
         default=360,
-        help=f"frames over one turn of the first input (default 360, at most {MAX_VIEW_FRAMES})",
+        help=f"frames over one turn of {turning} (default 360, at most {MAX_VIEW_FRAMES})",
     )
+
+
+def check_page_out(out: str) -> None:
+    """Refuse an ``--out`` that is not an ``.html`` (or ``.htm``) file name."""
+    if Path(out).suffix.lower() not in (".html", ".htm"):
+        raise GearleverError(f"--out must end with .html, got {out!r}")
+
+
+def register_view(ms) -> None:
+    v = ms.add_parser("view", help="interactive HTML page (one self-contained file) that animates the model")
+    v.add_argument("model", help="model file (TOML, or a linkage .links.json)")
+    add_page_arguments(v, "the first input")
     v.add_argument(
         "--rpm", action="append", metavar="NAME=VALUE", help="speed of an input (rev/min), once per input that moves"
     )
@@ -54,8 +65,7 @@ def register_view(ms) -> None:
 
 
 def _view(args) -> int:
-    if Path(args.out).suffix.lower() not in (".html", ".htm"):
-        raise GearleverError(f"--out must end with .html, got {args.out!r}")
+    check_page_out(args.out)
     if _is_cam_file(args.model):
         if args.rpm or args.input:
             raise GearleverError(f"{'--rpm' if args.rpm else '--input'} does not apply to a cam file ({args.model})")

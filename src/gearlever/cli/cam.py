@@ -37,14 +37,13 @@ from gearlever.cli._common import (
     positive_float,
     to_json,
 )
+from gearlever.cli._mechanism_view import add_page_arguments, check_page_out
 from gearlever.errors import GearleverError
 
 #: Most profile points.
 MAX_POINTS = 1_000_000
 #: Most points the base-circle search evaluates per candidate radius (it tries about 130 radii).
 SIZING_POINTS = 36_000
-#: Largest ``--frames`` of ``cam view`` (same as :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`).
-MAX_VIEW_FRAMES = 3600
 #: Profile file kinds by suffix.
 PROFILE_SUFFIXES = (".csv", ".svg", ".dxf")
 
@@ -96,13 +95,7 @@ def register(sub) -> None:
         "turning counterclockwise, the follower at the law's output, the output and pressure angle plotted.",
     )
     v.add_argument("cam", metavar="CAM.toml", help="cam file written by gearlever cam design")
-    v.add_argument("--out", required=True, help="output page (.html)")
-    v.add_argument(
-        "--frames",
-        type=capped_int(MAX_VIEW_FRAMES, low=2),
-        default=360,
-        help=f"frames over one turn of the cam (default 360, at most {MAX_VIEW_FRAMES})",
-    )
+    add_page_arguments(v, "the cam")
     v.set_defaults(func=_view)
 
 
@@ -380,8 +373,7 @@ def cam_page(path: str, frames: int) -> str:
 
 
 def _view(args) -> int:
-    if Path(args.out).suffix.lower() not in (".html", ".htm"):
-        raise GearleverError(f"--out must end with .html, got {args.out!r}")
+    check_page_out(args.out)
     check_output(args.out)
     emit(cam_page(args.cam, args.frames), args.out)
     return 0

@@ -25,7 +25,6 @@ implemented from their description.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 
@@ -224,13 +223,9 @@ def read_linkage(path, what: str = "DESIGN") -> Linkage:
     >>> read_linkage(p).target_joint
     3
     """
-    from gearlever._io import read_text_capped
+    from gearlever._io import read_json_capped
 
-    text = read_text_capped(path, what)
-    try:
-        d = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise GearleverError(f"{what} {str(path)!r}: not JSON ({exc.msg}, line {exc.lineno})") from None
+    d = read_json_capped(path, what)
     try:
         return linkage_from_dict(d)
     except GearleverError as exc:

@@ -28,16 +28,15 @@ or ``[law] samples = "law.csv"`` (columns input_deg, output).
 from __future__ import annotations
 
 import csv
-import difflib
 import io
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from gearlever._io import read_text_capped
+from gearlever._io import did_you_mean as _did_you_mean
+from gearlever._io import read_text_capped, read_toml_table
 from gearlever._result import Result
 from gearlever._validate import finite, finite_array
 from gearlever.errors import GearleverError
@@ -65,11 +64,6 @@ MIN_SEGMENT_DEG = 1e-6
 MAX_SEGMENTS = 10_000
 #: Most samples (rows of the samples CSV) a law may have.
 MAX_SAMPLES = 1_000_000
-
-
-def _did_you_mean(word: str, names) -> str:
-    close = difflib.get_close_matches(str(word), list(names), n=1)
-    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def _check_kind(output, units, where: str) -> tuple[str, str]:
@@ -591,18 +585,7 @@ def load_law(path) -> MotionLaw:
     """
     p = Path(path)
     source = str(path)
-    text = read_text_capped(p, "LAW")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise GearleverError(f"{source}: not valid TOML: {exc}") from None
-    law = data.get("law")
-    if not isinstance(law, dict):
-        raise GearleverError(f"{source}: a [law] table is missing")
-    keys = ("output", "units", "segment", "samples", "start")
-    for key in law:
-        if key not in keys:
-            raise GearleverError(f"{source}: [law] has unknown key {key!r}{_did_you_mean(key, keys)}")
+    law = read_toml_table(p, "LAW", "law", ("output", "units", "segment", "samples", "start"))
     for key in ("output", "units"):
         if key not in law:
             raise GearleverError(f"{source}: [law] {key} is missing")

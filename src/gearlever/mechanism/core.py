@@ -26,22 +26,15 @@ def _load_linkage(path) -> MechanismModel:
     Imported lazily: :mod:`gearlever.curves` imports nothing of the mechanism
     package at module level and the mechanism package nothing of it.
     """
-    import json
     from pathlib import Path
 
-    from gearlever._io import read_text_capped
+    from gearlever._io import read_json_capped
     from gearlever.curves.links import linkage_from_dict
     from gearlever.curves.model import linkage_model
     from gearlever.errors import GearleverError
 
     p = Path(path)
-    text = read_text_capped(p, "model file")
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise GearleverError(f"{p}: not JSON ({exc.msg}, line {exc.lineno})") from None
-    except RecursionError:
-        raise GearleverError(f"{p}: JSON nested too deeply") from None
+    data = read_json_capped(p, "model file", where=str(p))
     linkage = str(p).lower().endswith(LINKS_SUFFIX)
     if not linkage and not (isinstance(data, dict) and "x0" in data and "edges" in data):
         raise GearleverError(

@@ -13,12 +13,11 @@ capped as the mechanism viewer's.  No matplotlib here.
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 
 from gearlever.errors import GearleverError
-from gearlever.plotting.viewer import MAX_PAGE_BYTES, MAX_VIEW_FRAMES, _escape, _script_json, _template
+from gearlever.plotting.viewer import MAX_PAGE_BYTES, MAX_VIEW_FRAMES, _page, _script_json
 
 __all__ = ["cam_viewer_html", "cam_viewer_data", "MAX_PROFILE_VERTICES", "CAM_DIGITS"]
 
@@ -249,10 +248,4 @@ def cam_viewer_html(design, frames: int = 360, name: str | None = None) -> str:
             f"frames: the page of {frames} frames would be {len(payload) / 1e6:.3g} MB, more than the cap of "
             f"{MAX_PAGE_BYTES / 1e6:g} MB"
         )
-    fill = {
-        "__DATA__": payload,
-        "__TITLE__": _escape(data["name"]),
-        "/*__CSS__*/": _template("viewer.css"),
-        "/*__JS__*/": _template("cam.js"),
-    }
-    return re.sub("|".join(re.escape(k) for k in fill), lambda mt: fill[mt.group(0)], _template("cam.html"))
+    return _page("cam", data["name"], payload)

@@ -412,6 +412,30 @@ def _template(name: str) -> str:
     return resources.files("gearlever.plotting").joinpath("viewer_page", name).read_text(encoding="utf-8")
 
 
+#: The parts of ``viewer_page/`` that every page holds (top: title, readout and the transport controls that
+#: ``common.js`` drives; speed: speed and fit; bottom: the data block and the script), at ``<!--__PART__-->``.
+_PARTS = ("top", "speed", "bottom")
+
+
+def _page(page: str, title: str, payload: str) -> str:
+    """The page ``viewer_page/<page>.html`` filled in: its parts, then in one pass title, data, CSS, scripts.
+
+    The scripts are ``common.js`` (what every page shares) and ``<page>.js``;
+    ``payload`` is the data block (:func:`_script_json`), ``title`` plain text.
+    """
+    html = _template(f"{page}.html")
+    for part in _PARTS:
+        html = html.replace(f"<!--__{part.upper()}__-->\n", _template(f"{part}.html"))
+    fill = {
+        "__DATA__": payload,
+        "__TITLE__": _escape(title),
+        "/*__CSS__*/": _template("viewer.css"),
+        "/*__JS__*/": _template("common.js") + _template(f"{page}.js"),
+    }
+    # one pass: a name holding a marker is not expanded
+    return re.sub("|".join(re.escape(k) for k in fill), lambda mt: fill[mt.group(0)], html)
+
+
 def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
     """One self-contained HTML page (inline SVG, JavaScript and JSON) that animates ``mech``.
 
@@ -489,14 +513,7 @@ def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
             f"frames: the page of {frames} frames would be {len(payload) / 1e6:.3g} MB, more than the cap of "
             f"{MAX_PAGE_BYTES / 1e6:g} MB; use at most {most} frames"
         )
-    fill = {
-        "__DATA__": payload,
-        "__TITLE__": _escape(mech.model.name),
-        "/*__CSS__*/": _template("viewer.css"),
-        "/*__JS__*/": _template("viewer.js"),
-    }
-    # one pass: a model name holding a marker is not expanded
-    return re.sub("|".join(re.escape(k) for k in fill), lambda mt: fill[mt.group(0)], _template("viewer.html"))
+    return _page("viewer", mech.model.name, payload)
 
 
 #: Characters that may not appear raw in JSON inside a <script> element: "<" would let "</script>" or

@@ -3,31 +3,10 @@
   const D = JSON.parse(document.getElementById("gl-data").textContent);
   const N = D.N, L = D.L, F = D.F;
   const view = document.getElementById("view");
-  const NS = view.namespaceURI;
   const world = document.getElementById("world");
-  const $ = (id) => document.getElementById(id);
+  const { $, fmt, esc, el, show, setLine, PM } = GL;  // common.js
   const DEG = 180 / Math.PI;
   const st = { frame: 0, playing: false, speed: 1, acc: 0, last: null, s: 1, tx: 0, ty: 0, drag: null };
-
-  function fmt(v, d) {
-    if (v === null || v === undefined || !isFinite(Number(v))) return "–";
-    const s = Number(v).toPrecision(d || 6);
-    const e = s.indexOf("e");
-    let man = e < 0 ? s : s.slice(0, e);
-    const ex = e < 0 ? "" : s.slice(e);
-    if (man.indexOf(".") >= 0) man = man.replace(/0+$/, "").replace(/\.$/, "");
-    if (/^-0*$/.test(man)) man = "0";
-    return man + ex;
-  }
-  const esc = (t) => String(t).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
-  function el(tag, attrs, parent) {
-    const e = document.createElementNS(NS, tag);
-    for (const k in attrs) e.setAttribute(k, attrs[k]);
-    if (parent) parent.appendChild(e);
-    return e;
-  }
-  function show(e, on) { e.style.display = on ? "" : "none"; }
-  function setLine(e, x1, y1, x2, y2) { e.setAttribute("x1", x1); e.setAttribute("y1", y1); e.setAttribute("x2", x2); e.setAttribute("y2", y2); }
   const poly = (xs, ys) => xs.map((x, i) => x + "," + ys[i]).join(" ");
 
   // ------------------------------------------------------------------ the drawing
@@ -70,17 +49,13 @@
     if (pivotEl) pivotEl.setAttribute("r", 4.5 / st.s);
     render();
   }
-  function fit() {
-    const w = view.clientWidth || 800, hgt = view.clientHeight || 500;
-    const [x0, y0, x1, y1] = D.bbox;
-    const s = 0.94 * Math.min(w / (x1 - x0), hgt / (y1 - y0));
-    st.s = s; st.tx = w / 2 - s * (x0 + x1) / 2; st.ty = hgt / 2 + s * (y0 + y1) / 2;
-    applyView();
-  }
-  function toWorld(evt) {
-    const r = view.getBoundingClientRect();
-    return [(evt.clientX - r.left - st.tx) / st.s, (st.ty - (evt.clientY - r.top)) / st.s];
-  }
+  // zoom, pan, and dragging the cam: it turns by the change of the pointer's angle about its centre
+  const { fit } = GL.viewControls({
+    view: view, st: st, N: N, bbox: D.bbox, applyView: applyView,
+    canTurn: () => true, pivot: () => [0, 0], setFrame: (k) => setFrame(k), setPlaying: (on) => setPlaying(on),
+  });
+  // frames, play (1x: a turn in 6 s), URL
+  const { setFrame, setPlaying, scheduleUrl, startFrame } = GL.transport({ st: st, N: N, render: () => render(), fps: () => N / 6, dir: 1 });
 
   // ------------------------------------------------------------------ one frame
   const outName = D.output === "angle" ? "ψ" : "s";
@@ -117,21 +92,7 @@
   const qsel = $("quantity");
   quantities.forEach((q) => { const o = document.createElement("option"); o.value = q.id; o.textContent = q.label; qsel.appendChild(o); });
   const plot = $("plot");
-  const PM = { l: 62, r: 12, t: 10, b: 30 };
   let plotState = null;
-  function niceTicks(lo, hi, n) {
-    if (!(hi > lo)) { hi = lo + 1; lo = lo - 1; }
-    const raw = (hi - lo) / n, mag = Math.pow(10, Math.floor(Math.log10(raw)));
-    const step = [1, 2, 2.5, 5, 10].map((m) => m * mag).find((s) => s >= raw) || raw;
-    const out = [];
-    for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) out.push(v);
-    return out;
-  }
-  function tickLabel(v, step) {
-    if (Math.abs(v) < 1e-9 * step) return "0";
-    const dec = Math.min(12, Math.max(0, Math.ceil(-Math.log10(step)) + 1));
-    return fmt(Number(v.toFixed(dec)), 15);
-  }
   function drawPlot() {
     while (plot.firstChild) plot.removeChild(plot.firstChild);
     const q = quantities.find((x) => x.id === qsel.value);
@@ -143,20 +104,7 @@
     const pad = 0.05 * (hi - lo); lo -= pad; hi += pad;
     const X = (v) => PM.l + (W - PM.l - PM.r) * v / 360;
     const Y = (v) => PM.t + (H - PM.t - PM.b) * (hi - v) / (hi - lo);
-    const yt = niceTicks(lo, hi, 4), xt = niceTicks(0, 360, 8);
-    yt.forEach((v) => {
-      el("line", { class: "grid", x1: PM.l, x2: W - PM.r, y1: Y(v), y2: Y(v) }, plot);
-      const t = el("text", { class: "ytick", x: PM.l - 4, y: Y(v) + 4, "text-anchor": "end" }, plot);
-      t.textContent = tickLabel(v, yt.length > 1 ? yt[1] - yt[0] : 1);
-    });
-    xt.forEach((v) => {
-      el("line", { class: "grid", y1: PM.t, y2: H - PM.b, x1: X(v), x2: X(v) }, plot);
-      const t = el("text", { class: "xtick", x: X(v), y: H - PM.b + 14, "text-anchor": "middle" }, plot);
-      t.textContent = tickLabel(v, xt[1] - xt[0]);
-    });
-    el("line", { class: "axis", x1: PM.l, x2: W - PM.r, y1: H - PM.b, y2: H - PM.b }, plot);
-    el("line", { class: "axis", x1: PM.l, x2: PM.l, y1: PM.t, y2: H - PM.b }, plot);
-    const xl = el("text", { x: W - PM.r, y: H - 3, "text-anchor": "end" }, plot); xl.textContent = "cam angle θ (deg)";
+    GL.drawAxes(plot, W, H, X, Y, GL.niceTicks(lo, hi, 4), GL.niceTicks(0, 360, 8), "cam angle θ (deg)");
     let d = "";
     for (let k = 0; k < N; k++) d += (k ? "L" : "M") + X(xs[k]).toFixed(1) + "," + Y(ys[k]).toFixed(1);
     d += "L" + X(360).toFixed(1) + "," + Y(ys[0]).toFixed(1);
@@ -172,105 +120,13 @@
     setLine(ps.cursor, x, PM.t, x, ps.H - PM.b);
     ps.dot.setAttribute("cx", x); ps.dot.setAttribute("cy", ps.Y(ps.ys[k]));
   }
-  plot.addEventListener("click", (evt) => {
-    const r = plot.getBoundingClientRect();
-    const f = (evt.clientX - r.left - PM.l) / (r.width - PM.l - PM.r);
-    setPlaying(false);
-    setFrame(Math.min(N - 1, Math.max(0, Math.round(f * N))));
-  });
+  plot.addEventListener("click", (evt) => { setPlaying(false); setFrame(GL.plotFrameAt(plot, N, evt)); });
   qsel.addEventListener("change", drawPlot);
 
-  // ------------------------------------------------------------------ frames, play, URL
-  function setFrame(k) { st.frame = ((Math.round(k) % N) + N) % N; render(); }
-  let urlTimer = null;
-  function scheduleUrl() {
-    if (urlTimer) return;
-    urlTimer = setTimeout(() => {
-      urlTimer = null;
-      try {
-        const u = new URL(window.location.href);
-        u.searchParams.set("frame", st.frame);
-        if (st.playing) u.searchParams.set("play", "1"); else u.searchParams.delete("play");
-        history.replaceState(null, "", u.toString());
-      } catch (e) { /* a page opened where the URL cannot change */ }
-    }, 250);
-  }
-  function setPlaying(on) {
-    st.playing = on; st.last = null; st.acc = 0;
-    $("play").textContent = on ? "❚❚ pause" : "▶ play";
-    $("play").setAttribute("aria-pressed", on ? "true" : "false");
-    scheduleUrl();
-    if (on) requestAnimationFrame(tick);
-  }
-  function tick(t) {
-    if (!st.playing) return;
-    if (st.last !== null) {
-      st.acc += Math.min(0.25, (t - st.last) / 1000) * (N / 6) * st.speed;  // 1x: a turn in 6 s
-      const n = Math.floor(st.acc);
-      if (n > 0) { st.acc -= n; setFrame(st.frame + n); }
-    }
-    st.last = t;
-    requestAnimationFrame(tick);
-  }
-  $("play").addEventListener("click", () => setPlaying(!st.playing));
-  $("step").addEventListener("click", () => { setPlaying(false); setFrame(st.frame + 1); });
-  $("step-back").addEventListener("click", () => { setPlaying(false); setFrame(st.frame - 1); });
-  $("speed").addEventListener("change", () => { st.speed = Number($("speed").value); });
+  // ------------------------------------------------------------------ controls
   $("fit").addEventListener("click", fit);
   ["show-pitch", "show-normal"].forEach((id) => $(id).addEventListener("change", render));
   if (!D.pitch) $("show-pitch").parentNode.hidden = true;
-  const frameInput = $("frame");
-  frameInput.max = N - 1;
-  frameInput.addEventListener("input", () => setFrame(Number(frameInput.value)));
-  document.addEventListener("keydown", (evt) => {
-    const tag = evt.target && evt.target.tagName;
-    if (tag === "SELECT") return;
-    if (evt.key === " " || evt.code === "Space") { evt.preventDefault(); setPlaying(!st.playing); }
-    else if (evt.key === "ArrowRight" || evt.key === "ArrowUp") { evt.preventDefault(); setPlaying(false); setFrame(st.frame + 1); }
-    else if (evt.key === "ArrowLeft" || evt.key === "ArrowDown") { evt.preventDefault(); setPlaying(false); setFrame(st.frame - 1); }
-  });
-
-  // ------------------------------------------------------------------ zoom, pan, drag the cam
-  view.addEventListener("wheel", (evt) => {
-    evt.preventDefault();
-    const r = view.getBoundingClientRect();
-    const sx = evt.clientX - r.left, sy = evt.clientY - r.top;
-    const wx = (sx - st.tx) / st.s, wy = (st.ty - sy) / st.s;
-    st.s *= Math.exp(-evt.deltaY * 0.0015); st.tx = sx - st.s * wx; st.ty = sy + st.s * wy;
-    applyView();
-  }, { passive: false });
-  // the pointer's angle about the cam centre (null within a few pixels of it)
-  function pointerAngle(evt) {
-    const [wx, wy] = toWorld(evt);
-    return Math.hypot(wx, wy) * st.s < 6 ? null : Math.atan2(wy, wx);
-  }
-  // dragging the cam is relative: it turns by the change of the pointer's angle about its centre
-  view.addEventListener("pointerdown", (evt) => {
-    const grab = evt.target.closest && evt.target.closest(".grab");
-    view.setPointerCapture(evt.pointerId);
-    if (grab) { st.drag = { mode: "cam", k0: st.frame, a: pointerAngle(evt), turn: 0 }; setPlaying(false); }
-    else { st.drag = { mode: "pan", x: evt.clientX, y: evt.clientY }; view.style.cursor = "grabbing"; }
-  });
-  view.addEventListener("pointermove", (evt) => {
-    const d = st.drag;
-    if (!d) return;
-    if (d.mode === "pan") {
-      st.tx += evt.clientX - d.x; st.ty += evt.clientY - d.y; d.x = evt.clientX; d.y = evt.clientY;
-      applyView();
-      return;
-    }
-    const a = pointerAngle(evt);
-    if (a === null) return;
-    if (d.a !== null) d.turn += Math.atan2(Math.sin(a - d.a), Math.cos(a - d.a));
-    d.a = a;
-    const k = d.k0 + Math.round(d.turn * N / (2 * Math.PI));
-    if (((k % N) + N) % N !== st.frame) setFrame(k);
-  });
-  function endDrag(evt) {
-    if (st.drag) { st.drag = null; view.style.cursor = ""; try { view.releasePointerCapture(evt.pointerId); } catch (e) { /* released */ } }
-  }
-  view.addEventListener("pointerup", endDrag);
-  view.addEventListener("pointercancel", endDrag);
   window.addEventListener("resize", () => { fit(); drawPlot(); });
 
   // ------------------------------------------------------------------ start
@@ -285,8 +141,7 @@
   $("note").textContent = "The cam turns counterclockwise; dashed green: the common normal at the contact (the line of the force). " +
     "Drag the cam to turn it; drag the background to pan, wheel to zoom; space plays, arrows step.";
   const params = new URLSearchParams(window.location.search);
-  const f0 = Number(params.get("frame"));
-  st.frame = Number.isFinite(f0) ? ((Math.floor(f0) % N) + N) % N : 0;
+  st.frame = startFrame(params);
   fit();
   drawPlot();
   render();

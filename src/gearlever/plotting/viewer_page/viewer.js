@@ -3,17 +3,16 @@
   const D = JSON.parse(document.getElementById("gl-data").textContent);
   const N = D.N, M = D.M, L = D.L;
   const view = document.getElementById("view");
-  const NS = view.namespaceURI;
   const world = document.getElementById("world");
   const labelsG = document.getElementById("labels");
-  const $ = (id) => document.getElementById(id);
+  const { NS, $, fmt, esc, el, show, setLine, PM } = GL;  // common.js
   const COLORS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
   const DEG = 180 / Math.PI;
 
   // ------------------------------------------------------------------ state
   const st = {
     frame: 0, grid: D.grid ? D.grid.default : 0, playing: false, speed: 1, acc: 0, last: null,
-    s: 1, tx: 0, ty: 0, drag: null, pathsOn: {}, urlTimer: null,
+    s: 1, tx: 0, ty: 0, drag: null, pathsOn: {},
   };
 
   // ------------------------------------------------------------------ data access
@@ -28,20 +27,6 @@
   const P = (name, k) => [at(S.x[name], k), at(S.y[name], k)];
   const inputAngle = (k) => D.inputs[0].start + 2 * Math.PI * k / N;
   function rotOf(link, k) { return link === "ground" ? 0 : at(S.phi[link], k); }
-  // a number to d significant digits (default 6), trailing zeros of the fraction dropped (never those of
-  // a whole number: 1000 stays "1000"); "–" for no value
-  function fmt(v, d) {
-    if (v === null || v === undefined || v === "" || !isFinite(Number(v))) return "–";
-    const s = Number(v).toPrecision(d || 6);
-    const e = s.indexOf("e");
-    let man = e < 0 ? s : s.slice(0, e);
-    const ex = e < 0 ? "" : s.slice(e);
-    if (man.indexOf(".") >= 0) man = man.replace(/0+$/, "").replace(/\.$/, "");
-    if (/^-0*$/.test(man)) man = "0";
-    return man + ex;
-  }
-  // text for innerHTML: model names, units and labels are the user's text
-  const esc = (t) => String(t).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
 
   // units
   const U = D.units;
@@ -50,15 +35,6 @@
   const accUnit = rated ? U + "/s²" : U + "/rad²";
   const wUnit = rated ? "rad/s" : "rad/rad";
   const alUnit = rated ? "rad/s²" : "rad/rad²";
-
-  // ------------------------------------------------------------------ svg helpers
-  function el(tag, attrs, parent) {
-    const e = document.createElementNS(NS, tag);
-    for (const k in attrs) e.setAttribute(k, attrs[k]);
-    if (parent) parent.appendChild(e);
-    return e;
-  }
-  function show(e, on) { e.style.display = on ? "" : "none"; }
 
   const linkColor = {};
   D.links.forEach((lk, i) => { linkColor[lk.name] = COLORS[i % COLORS.length]; });
@@ -246,21 +222,17 @@
     for (const pair in icEls) icEls[pair].setAttribute("r", 3.5 / st.s);
     render();
   }
-  function fit() {
-    const w = view.clientWidth || 800, hgt = view.clientHeight || 500;
-    const [x0, y0, x1, y1] = D.bbox;
-    const s = 0.94 * Math.min(w / (x1 - x0), hgt / (y1 - y0));
-    st.s = s;
-    st.tx = w / 2 - s * (x0 + x1) / 2;
-    st.ty = hgt / 2 + s * (y0 + y1) / 2;
-    applyView();
-  }
-  const toScreen = (x, y) => [st.tx + st.s * x, st.ty - st.s * y];
-  function toWorld(evt) {
-    const r = view.getBoundingClientRect();
-    const sx = evt.clientX - r.left, sy = evt.clientY - r.top;
-    return [(sx - st.tx) / st.s, (st.ty - sy) / st.s];
-  }
+  // zoom, pan, and dragging the input: it turns by the change of the pointer's angle about its pivot
+  const { fit, toScreen } = GL.viewControls({
+    view: view, st: st, N: N, bbox: D.bbox, applyView: applyView,
+    canTurn: () => Boolean(inputLink && pivotName), pivot: () => (pivotName ? P(pivotName, st.frame) : null),
+    setFrame: (k) => setFrame(k), setPlaying: (on) => setPlaying(on),
+  });
+  // frames, play (1x: real time at the given speed, else a turn in 6 s), URL (with ?grid=)
+  const { setFrame, setPlaying, scheduleUrl, startFrame } = GL.transport({
+    st: st, N: N, render: () => render(), fps: () => (D.period ? N / D.period : N / 6), dir: Math.sign(D.inputs[0].rate || 1),
+    urlParams: (u) => { if (D.grid) u.searchParams.set("grid", st.grid); else u.searchParams.delete("grid"); },
+  });
   // labels are queued by render() and laid out together: each at the first of a ring of places about its
   // anchor that stays inside the drawing and overlaps no label placed before it (nor a point), in order
   // of priority (points, links, gears, centres); coincident anchors therefore fan out instead of stacking
@@ -348,9 +320,6 @@
   }
 
   // ------------------------------------------------------------------ render one frame
-  function setLine(e, x1, y1, x2, y2) {
-    e.setAttribute("x1", x1); e.setAttribute("y1", y1); e.setAttribute("x2", x2); e.setAttribute("y2", y2);
-  }
   function render() {
     const k = st.frame;
     const ok = closedAt(k);
@@ -571,25 +540,7 @@
   if (D.sliders.length) qsel.value = "s:" + D.sliders[D.sliders.length - 1].name;
   else if (D.links.length) qsel.value = "phi:" + D.links[D.links.length - 1].name;
   const plot = $("plot");
-  const PM = { l: 62, r: 12, t: 10, b: 30 };
   let plotState = null;
-  function niceTicks(lo, hi, n) {
-    if (!(hi > lo)) { hi = lo + 1; lo = lo - 1; }
-    const raw = (hi - lo) / n, mag = Math.pow(10, Math.floor(Math.log10(raw)));
-    const step = [1, 2, 2.5, 5, 10].map((m) => m * mag).find((s) => s >= raw) || raw;
-    const out = [];
-    for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) out.push(v);
-    return out;
-  }
-  // an axis tick: the decimals its step needs (2.5 -> "2.5", 1000 -> "1000"); very large or small
-  // values to 6 significant digits
-  function tickLabel(v, step) {
-    if (Math.abs(v) < 1e-9 * step) return "0";
-    const a = Math.max(Math.abs(v), step);
-    if (a >= 1e7 || a < 1e-4) return fmt(v, 6);
-    const dec = Math.min(12, Math.max(0, Math.ceil(-Math.log10(step)) + 1));
-    return fmt(Number(v.toFixed(dec)), 15);
-  }
   function drawPlot() {
     while (plot.firstChild) plot.removeChild(plot.firstChild);
     const q = quantities.find((x) => x.id === qsel.value);
@@ -604,20 +555,7 @@
     const x0 = xs[0], x1 = xs[0] + 360;
     const X = (v) => PM.l + (W - PM.l - PM.r) * (v - x0) / (x1 - x0);
     const Y = (v) => PM.t + (H - PM.t - PM.b) * (hi - v) / (hi - lo);
-    const yt = niceTicks(lo, hi, 4), xt = niceTicks(x0, x1, 8);
-    yt.forEach((v) => {
-      el("line", { class: "grid", x1: PM.l, x2: W - PM.r, y1: Y(v), y2: Y(v) }, plot);
-      const t = el("text", { class: "ytick", x: PM.l - 4, y: Y(v) + 4, "text-anchor": "end", "data-value": v }, plot);
-      t.textContent = tickLabel(v, yt.length > 1 ? yt[1] - yt[0] : Math.abs(v) || 1);
-    });
-    xt.forEach((v) => {
-      el("line", { class: "grid", y1: PM.t, y2: H - PM.b, x1: X(v), x2: X(v) }, plot);
-      const t = el("text", { class: "xtick", x: X(v), y: H - PM.b + 14, "text-anchor": "middle", "data-value": v }, plot);
-      t.textContent = tickLabel(v, xt.length > 1 ? xt[1] - xt[0] : Math.abs(v) || 1);
-    });
-    el("line", { class: "axis", x1: PM.l, x2: W - PM.r, y1: H - PM.b, y2: H - PM.b }, plot);
-    el("line", { class: "axis", x1: PM.l, x2: PM.l, y1: PM.t, y2: H - PM.b }, plot);
-    const xl = el("text", { x: W - PM.r, y: H - 3, "text-anchor": "end" }, plot); xl.textContent = `input ${D.inputs[0].label} θ (deg)`;
+    GL.drawAxes(plot, W, H, X, Y, GL.niceTicks(lo, hi, 4), GL.niceTicks(x0, x1, 8), `input ${D.inputs[0].label} θ (deg)`);
     let d = "", pen = false;
     for (let k = 0; k < N; k++) {
       if (ys[k] === null || !isFinite(ys[k])) { pen = false; continue; }
@@ -636,11 +574,7 @@
     const x = plotState.X(plotState.xs[st.frame]);
     setLine(plotState.cursor, x, PM.t, x, (plot.clientHeight || 180) - PM.b);
   }
-  function plotFrameAt(evt) {
-    const r = plot.getBoundingClientRect();
-    const f = (evt.clientX - r.left - PM.l) / (r.width - PM.l - PM.r);
-    return Math.min(N - 1, Math.max(0, Math.round(f * N)));
-  }
+  const plotFrameAt = (evt) => GL.plotFrameAt(plot, N, evt);
   plot.addEventListener("mousemove", (evt) => {
     if (!plotState) return;
     const k = plotFrameAt(evt), ps = plotState;
@@ -656,48 +590,7 @@
   plot.addEventListener("click", (evt) => setFrame(plotFrameAt(evt)));
   qsel.addEventListener("change", drawPlot);
 
-  // ------------------------------------------------------------------ frame control, animation, URL
-  function setFrame(k) {
-    st.frame = ((Math.round(k) % N) + N) % N;
-    render();
-  }
-  function scheduleUrl() {
-    if (st.urlTimer) return;
-    st.urlTimer = setTimeout(() => {
-      st.urlTimer = null;
-      try {
-        const u = new URL(window.location.href);
-        u.searchParams.set("frame", st.frame);
-        if (st.playing) u.searchParams.set("play", "1"); else u.searchParams.delete("play");
-        if (D.grid) u.searchParams.set("grid", st.grid); else u.searchParams.delete("grid");
-        history.replaceState(null, "", u.toString());
-      } catch (e) { /* a page opened where the URL cannot change */ }
-    }, 250);
-  }
-  function setPlaying(on) {
-    st.playing = on;
-    st.last = null;
-    st.acc = 0;
-    $("play").textContent = on ? "❚❚ pause" : "▶ play";
-    $("play").setAttribute("aria-pressed", on ? "true" : "false");
-    scheduleUrl();
-    if (on) requestAnimationFrame(tick);
-  }
-  function tick(t) {
-    if (!st.playing) return;
-    if (st.last !== null) {
-      const fps = D.period ? N / D.period : N / 6;  // 1x: real time at the given speed, else a turn in 6 s
-      st.acc += Math.min(0.25, (t - st.last) / 1000) * fps * st.speed;
-      const n = Math.floor(st.acc);
-      if (n > 0) { st.acc -= n; setFrame(st.frame + n * Math.sign(D.inputs[0].rate || 1)); }
-    }
-    st.last = t;
-    requestAnimationFrame(tick);
-  }
-  $("play").addEventListener("click", () => setPlaying(!st.playing));
-  $("step").addEventListener("click", () => { setPlaying(false); setFrame(st.frame + 1); });
-  $("step-back").addEventListener("click", () => { setPlaying(false); setFrame(st.frame - 1); });
-  $("speed").addEventListener("change", () => { st.speed = Number($("speed").value); });
+  // ------------------------------------------------------------------ controls
   $("fit").addEventListener("click", fit);
   // narrow windows: the check boxes are a menu under the "show" button
   $("options-button").addEventListener("click", (evt) => {
@@ -711,9 +604,6 @@
       $("options-button").setAttribute("aria-expanded", "false");
     }
   });
-  const frameInput = $("frame");
-  frameInput.max = N - 1;
-  frameInput.addEventListener("input", () => setFrame(Number(frameInput.value)));
   if (D.grid) {
     $("grid-group").hidden = false;
     const g = $("grid");
@@ -724,66 +614,6 @@
   }
   ["show-velocity", "show-acceleration", "show-paths", "show-centres", "show-labels", "show-kennedy"].forEach((id) => $(id).addEventListener("change", applyToggles));
   $("kennedy-triple").addEventListener("change", () => { if (!$("show-kennedy").checked) $("show-kennedy").checked = true; applyToggles(); });
-  document.addEventListener("keydown", (evt) => {
-    const tag = evt.target && evt.target.tagName;
-    if (tag === "SELECT" || (tag === "INPUT" && evt.target.type === "text")) return;
-    if (evt.key === " " || evt.code === "Space") { evt.preventDefault(); setPlaying(!st.playing); }
-    else if (evt.key === "ArrowRight" || evt.key === "ArrowUp") { evt.preventDefault(); setPlaying(false); setFrame(st.frame + 1); }
-    else if (evt.key === "ArrowLeft" || evt.key === "ArrowDown") { evt.preventDefault(); setPlaying(false); setFrame(st.frame - 1); }
-  });
-
-  // ------------------------------------------------------------------ zoom, pan, drag the input
-  view.addEventListener("wheel", (evt) => {
-    evt.preventDefault();
-    const r = view.getBoundingClientRect();
-    const sx = evt.clientX - r.left, sy = evt.clientY - r.top;
-    const wx = (sx - st.tx) / st.s, wy = (st.ty - sy) / st.s;
-    const f = Math.exp(-evt.deltaY * 0.0015);
-    st.s *= f; st.tx = sx - st.s * wx; st.ty = sy + st.s * wy;
-    applyView();
-  }, { passive: false });
-  // the pointer's angle about the input's pivot (null within a few pixels of it: no direction there)
-  function pointerAngle(evt) {
-    const [wx, wy] = toWorld(evt);
-    const [px, py] = P(pivotName, st.frame);
-    if (px === null || py === null) return null;
-    const dx = wx - px, dy = wy - py;
-    return Math.hypot(dx, dy) * st.s < 6 ? null : Math.atan2(dy, dx);
-  }
-  // dragging the input is relative: the input turns by the change of the pointer's angle about the pivot
-  // since the grab (from wherever it starts, the pivot included), one frame per 360/N degrees
-  view.addEventListener("pointerdown", (evt) => {
-    const grab = evt.target.closest && evt.target.closest(".grab");
-    view.setPointerCapture(evt.pointerId);
-    if (grab && inputLink && pivotName) {
-      st.drag = { mode: "input", k0: st.frame, a: pointerAngle(evt), turn: 0 };
-      setPlaying(false);
-    } else {
-      st.drag = { mode: "pan", x: evt.clientX, y: evt.clientY };
-      view.style.cursor = "grabbing";
-    }
-  });
-  view.addEventListener("pointermove", (evt) => {
-    const d = st.drag;
-    if (!d) return;
-    if (d.mode === "pan") {
-      st.tx += evt.clientX - d.x; st.ty += evt.clientY - d.y;
-      d.x = evt.clientX; d.y = evt.clientY;
-      applyView();
-      return;
-    }
-    const a = pointerAngle(evt);
-    if (a === null) return;
-    if (d.a !== null) d.turn += Math.atan2(Math.sin(a - d.a), Math.cos(a - d.a));
-    d.a = a;
-    const k = d.k0 + Math.round(d.turn * N / (2 * Math.PI));
-    if (((k % N) + N) % N !== st.frame) setFrame(k);
-  });
-  function endDrag(evt) {
-    if (st.drag) { st.drag = null; view.style.cursor = ""; try { view.releasePointerCapture(evt.pointerId); } catch (e) { /* released */ } }
-  }
-  view.addEventListener("pointerup", endDrag);
-  view.addEventListener("pointercancel", endDrag);
   window.addEventListener("resize", () => { fit(); drawPlot(); });
 
   // ------------------------------------------------------------------ export
@@ -867,14 +697,13 @@
   buildPaths();
   const params = new URLSearchParams(window.location.search);
   if (D.grid && params.has("grid")) { const g = Number(params.get("grid")); if (g >= 0 && g < M) { st.grid = Math.floor(g); $("grid").value = st.grid; buildPaths(); } }
-  const f0 = Number(params.get("frame"));
-  st.frame = Number.isFinite(f0) ? ((Math.floor(f0) % N) + N) % N : 0;
+  st.frame = startFrame(params);
   legend();
   fit();
   applyToggles();
   drawPlot();
   if (params.get("play") === "1") setPlaying(true);
   // for tests and scripts: the number formatter of the axes, the hover and the legend, and the CSV text
-  window.gearlever = { fmt: fmt, tickLabel: tickLabel, cycleCsv: cycleCsv };
+  window.gearlever = { fmt: fmt, tickLabel: GL.tickLabel, cycleCsv: cycleCsv };
   document.body.setAttribute("data-ready", "1");
 })();
