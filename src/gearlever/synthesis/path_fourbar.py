@@ -618,6 +618,7 @@ class FourBarPathProblem:
 
 
 def fourbar_result(pb: FourBarPathProblem, w, sigma, evals, seed, starts, seconds) -> PathSynthesis:
+    """The :class:`~gearlever.synthesis.path_kinds.PathSynthesis` of a polished four-bar (branch ``sigma``)."""
     from gearlever.loops import grashof, transmission_angle
 
     Z, phi = pb._split(np.asarray(w, dtype=float))
