@@ -22,6 +22,7 @@ ALIASES = {
     "gearlever.structure": "gearlever.mechanism.mobility",
     "gearlever.mechanism.structure": "gearlever.mechanism.mobility",
     "gearlever.vector_loop": "gearlever.loops.vector_loop",
+    "gearlever.synthesis._model": "gearlever.synthesis.model",
 }
 
 

@@ -9,7 +9,7 @@ import pytest
 
 from gearlever.cli import main
 from gearlever.mechanism import Mechanism
-from gearlever.synthesis._model import fourbar_model
+from gearlever.synthesis.model import fourbar_model
 
 LOG = ["--expr", "log10(x)", "--x-range", "1", "2", "--input-range", "45", "105", "--output-range", "135", "225"]
 

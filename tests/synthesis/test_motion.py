@@ -5,7 +5,7 @@ import pytest
 
 from gearlever.errors import GearleverError
 from gearlever.mechanism import Mechanism
-from gearlever.synthesis._model import fourbar_model
+from gearlever.synthesis.model import fourbar_model
 from gearlever.synthesis.motion import burmester_curves, burmester_points, synthesize_motion
 
 O2, O4, A, B, P = (0.0, 0.0), (4.0, 0.0), (1.0, 0.3), (4.5, 2.8), (2.0, 3.0)

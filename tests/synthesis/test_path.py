@@ -9,7 +9,7 @@ import pytest
 
 from gearlever.errors import GearleverError
 from gearlever.loops import fourbar, grashof
-from gearlever.synthesis._model import model_toml
+from gearlever.synthesis.model import model_toml
 from gearlever.synthesis.path import FourBarPathProblem, _coupler, synthesize_path
 
 from ._jacobian import central_differences

@@ -8,7 +8,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from gearlever.synthesis._model import model_toml
+from gearlever.synthesis.model import model_toml
 from gearlever.synthesis.path import _coupler, synthesize_path
 from gearlever.synthesis.sixbar import StephensonSixBarPathProblem
 

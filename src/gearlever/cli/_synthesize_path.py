@@ -52,7 +52,7 @@ MAX_WORKERS = 256
 
 def register_path(ss) -> None:
     """Add the ``path`` sub-command to the ``synthesize`` sub-parsers ``ss``."""
-    from gearlever.synthesis.path import DEFAULT_BUDGET, MAX_BUDGET, min_budget
+    from gearlever.synthesis.path import DEFAULT_BUDGET, KINDS, MAX_BUDGET, min_budget
 
     p = ss.add_parser(
         "path",
@@ -93,7 +93,7 @@ def register_path(ss) -> None:
         metavar="DEG",
         help="smallest transmission angle allowed over the turn, 0..90 (four-bar only; default: no bound)",
     )
-    p.add_argument("--type", dest="kind", choices=("fourbar", "geared-fivebar", "sixbar", "auto"), default="fourbar")
+    p.add_argument("--type", dest="kind", choices=KINDS, default="fourbar")  # the registered kinds and "auto"
     p.add_argument("--seed", type=nonnegative_int, default=0, help="fixes the result (default 0)")
     p.add_argument(
         "--budget",
@@ -206,7 +206,7 @@ def read_targets(path: str):
 def _run(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis._model import model_toml
+    from gearlever.synthesis.model import model_toml
     from gearlever.synthesis.path import synthesize_path
 
     check_output(args.report, "--report")

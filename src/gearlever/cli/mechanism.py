@@ -373,7 +373,7 @@ def _analyze(args) -> int:
 
 def _assemble(args) -> int:
     from gearlever.mechanism import assemble
-    from gearlever.synthesis._model import model_toml
+    from gearlever.synthesis.model import model_toml
 
     mech = _load(args.model)
     exact = assemble(mech.model, hold_inputs=not args.free_inputs)

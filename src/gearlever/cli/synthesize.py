@@ -168,8 +168,8 @@ def _bound(v: float, scale: float) -> str:
 def _function(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis._model import model_toml
     from gearlever.synthesis.function import MAX_ANGLE, MAX_LENGTH, function_targets, synthesize_function
+    from gearlever.synthesis.model import model_toml
 
     _MAX_PAIR_DEG = round(math.degrees(MAX_ANGLE), -3)  # 57000 deg, within the library's cap
 
@@ -356,7 +356,7 @@ def _offsets(res) -> dict:
 def _motion(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis._model import model_toml
+    from gearlever.synthesis.model import model_toml
     from gearlever.synthesis.motion import MAX_POSES, burmester_curves, synthesize_motion
 
     _check_outputs(args)

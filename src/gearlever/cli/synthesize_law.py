@@ -121,9 +121,9 @@ def _r(obj, digits: int = 10):
 
 def _run(args) -> int:
     from gearlever.laws import load_law
-    from gearlever.synthesis._model import model_toml
     from gearlever.synthesis.law import synthesize_law
     from gearlever.synthesis.law.measure import cam_comparison, law_report
+    from gearlever.synthesis.model import model_toml
 
     check_output(args.out, "--out")
     for flag, path in (("--report", args.report), ("--figure", args.figure)):

@@ -17,7 +17,7 @@ What lives here:
   in the user's cache folder (``gearlever curve library build``).
 
 May import numpy, scipy, pymoo, dask and :mod:`gearlever.errors`,
-:mod:`gearlever._io`, :mod:`gearlever.synthesis._model` (model text); never
+:mod:`gearlever._io`, :mod:`gearlever.synthesis.model` (model text); never
 matplotlib, pandas or the CLI.  Figures are in :mod:`gearlever.plotting.curves`.
 """
 

@@ -14,7 +14,7 @@ between two fixed joints is part of the ground.
 
 from __future__ import annotations
 
-from gearlever.synthesis._model import _mechanism_table, model_toml
+from gearlever.synthesis.model import mechanism_table, model_toml
 
 __all__ = ["joint_names", "linkage_model", "linkage_toml"]
 
@@ -40,7 +40,7 @@ def linkage_model(lk, *, name: str = "synthesized linkage", units: str = "") -> 
         a, b = (i, j) if key != "crank" else (int(lk.motor[0]), int(lk.motor[1]))
         links[key] = [names[a], names[b]]
     links = {"ground": links.pop("ground"), "crank": links.pop("crank"), **links}
-    return {"mechanism": _mechanism_table(name, units), "points": points, "links": links, "inputs": [{"link": "crank"}]}
+    return {"mechanism": mechanism_table(name, units), "points": points, "links": links, "inputs": [{"link": "crank"}]}
 
 
 def linkage_toml(lk, comment: str = "", **kw) -> str:

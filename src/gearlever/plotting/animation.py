@@ -1,7 +1,7 @@
 """The four-bar of ``gearlever animate --fourbar``, animated by the one mechanism animation.
 
 :func:`fourbar_mechanism` builds the four-bar from its link lengths as a
-mechanism model (the names of :func:`gearlever.synthesis._model.fourbar_model`:
+mechanism model (the names of :func:`gearlever.synthesis.model.fourbar_model`:
 ``O2``, ``A``, ``B``, ``O4``; links ``crank``, ``coupler``, ``rocker``) in the
 first crank position where it closes on the branch asked for;
 :func:`animate_fourbar` sweeps the crank over one turn from there and writes
@@ -60,7 +60,7 @@ def fourbar_mechanism(ground, crank, coupler, rocker, branch="open", units: str 
     """
     from gearlever.loops import fourbar, grashof
     from gearlever.mechanism import Mechanism
-    from gearlever.synthesis._model import fourbar_model
+    from gearlever.synthesis.model import fourbar_model
 
     kind = grashof(ground, crank, coupler, rocker).kind
     th = np.linspace(0.0, 2 * np.pi, _START_ANGLES, endpoint=False)

@@ -1,8 +1,10 @@
 """Dimensional synthesis of linkages: from the motion a designer wants to a model file.
 
-- :mod:`~gearlever.synthesis._model`: the synthesized linkage as a model
-  dict in the schema of :mod:`gearlever.mechanism.model` and its TOML text
-  (four-bar and slider-crank).
+- :mod:`~gearlever.synthesis.model`: the one home for writing model files:
+  the synthesized linkages as model dicts in the schema of
+  :mod:`gearlever.mechanism.model` (four-bar, slider-crank, geared five-bar,
+  Stephenson six-bar) and their TOML text, used by every package that writes
+  a model.
 - :mod:`~gearlever.synthesis.expr`: a safe formula ``y = f(x)`` (parsed by
   :mod:`ast`, never evaluated by Python).
 - :mod:`~gearlever.synthesis.function`: function generation, four-bar
@@ -12,6 +14,13 @@
   guidance) of a four-bar through 3, 4 or 5 poses: pivots, Burmester curves
   and Burmester points, ranked four-bars free of branch, order and circuit
   defects.
+- :mod:`~gearlever.synthesis.path`: path generation, the driver (seeded
+  starts on dask, polish) over the registry of linkage kinds
+  :mod:`~gearlever.synthesis.path_kinds`, one module per kind:
+  :mod:`~gearlever.synthesis.path_fourbar` (four-bar),
+  :mod:`~gearlever.synthesis.fivebar` (geared five-bar),
+  :mod:`~gearlever.synthesis.sixbar` (Stephenson six-bar).
+- :mod:`~gearlever.synthesis.law`: law synthesis (its own registry of kinds).
 
 Numeric core: may import numpy, scipy, :mod:`gearlever.loops`,
 :mod:`gearlever.mechanism`, :mod:`gearlever.errors`, :mod:`gearlever._io`

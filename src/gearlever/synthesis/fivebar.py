@@ -10,7 +10,7 @@ couplers ``A-C`` (``c``) and ``B-C`` (``d``) meeting at ``C``; the traced
 point ``P`` rides on ``A-C`` at ``(cx, cy)`` in its frame.  ``C`` is the
 circle intersection on the branch ``sigma``, the same closed form as the
 four-bar's with the moving ``B`` in place of the fixed pivot
-(:func:`gearlever.synthesis.path._dyad`).
+(:func:`gearlever.synthesis.path_fourbar._dyad`).
 
 Search vector: ``x0, y0, theta0`` (unless fixed), ``r1, a, b, c, d, cx, cy,
 psi``, ``phi1`` (relative timing), and ``branch``, a discrete code
@@ -24,6 +24,9 @@ margin at every crank angle of the period (:data:`TURNS` crank turns, checked
 at :data:`CLOSURE_SAMPLES` angles per turn with the relative margin
 :data:`CLOSURE_MARGIN`), so the motion runs on one branch without a toggle.
 
+The kind registers itself as ``geared-fivebar``
+(:mod:`gearlever.synthesis.path_kinds`), second in ``auto``.
+
 Pure numpy.
 """
 
@@ -34,9 +37,10 @@ import math
 import numpy as np
 
 from gearlever.errors import GearleverError
-from gearlever.synthesis.path import FourBarPathProblem, PathSynthesis, _dyad
+from gearlever.synthesis.path_fourbar import FourBarPathProblem, _dyad
+from gearlever.synthesis.path_kinds import PathKind, PathSynthesis, register
 
-__all__ = ["GearedFiveBarPathProblem", "RATIOS"]
+__all__ = ["GearedFiveBarKind", "GearedFiveBarPathProblem", "RATIOS", "fivebar_result"]
 
 #: Gear pairs (teeth of the input crank's gear, of the second crank's gear): ratios 1, 2, 1/2, 3.
 RATIOS = ((30, 30), (40, 20), (20, 40), (60, 20))
@@ -177,7 +181,7 @@ class GearedFiveBarPathProblem(FourBarPathProblem):
 
 
 def fivebar_result(pb: GearedFiveBarPathProblem, w, mode, evals, seed, starts, seconds) -> PathSynthesis:
-    """The :class:`~gearlever.synthesis.path.PathSynthesis` of a polished geared five-bar."""
+    """The :class:`~gearlever.synthesis.path_kinds.PathSynthesis` of a polished geared five-bar."""
     Z, phi = pb._split(np.asarray(w, dtype=float), mode)
     p, _ = pb.params(Z[None, :])
     p = {k: float(v[0]) for k, v in p.items()}
@@ -243,3 +247,30 @@ def check_kind(kind: str) -> str:
     if kind not in ("fourbar", "geared-fivebar"):
         raise GearleverError(f"kind must be 'fourbar', 'geared-fivebar' or 'auto', got {kind!r}")
     return kind
+
+
+@register
+class GearedFiveBarKind(PathKind):
+    """The ``geared-fivebar`` kind: two cranks coupled by a gear pair, tried after the four-bar in ``auto``.
+
+    Examples
+    --------
+    >>> from gearlever.synthesis.path_kinds import get
+    >>> get("geared-fivebar").make_problem(targets=[[0, 0], [1, 0], [2, 1]]).names[-2:]
+    ('psi', 'branch')
+    """
+
+    name = "geared-fivebar"
+    order = 20
+    problem = GearedFiveBarPathProblem
+
+    def result(self, pb, w, mode, evals, seed, starts, seconds):
+        return fivebar_result(pb, w, mode, evals, seed, starts, seconds)
+
+    def model(self, result, name, units):
+        from gearlever.synthesis.model import geared_fivebar_model
+
+        q = result.points
+        return geared_fivebar_model(
+            q["O2"], q["O4"], q["A"], q["B"], q["C"], q["P"], result.teeth, name=name, units=units
+        )

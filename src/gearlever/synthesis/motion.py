@@ -33,7 +33,7 @@ from numpy.polynomial import polynomial as npoly
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.loops.fourbar import fourbar, grashof, transmission_angle
-from gearlever.synthesis._model import fourbar_model
+from gearlever.synthesis.model import fourbar_model
 
 __all__ = [
     "Dyad",

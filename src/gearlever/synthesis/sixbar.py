@@ -3,13 +3,13 @@
 Linkage (Stephenson III, the six-bar path generator of R. L. Norton,
 *Design of Machinery*, sec. 3.7 and fig. 3-26, "six-bar linkages"; the
 synthesis formulation is that of the four-bar in
-:mod:`gearlever.synthesis.path`): the Grashof crank-rocker
+:mod:`gearlever.synthesis.path_fourbar`): the Grashof crank-rocker
 ``O2-A-B-O4`` (same exact parametrization of the crank) carries the point
 ``C`` at ``(cx, cy)`` in its coupler frame; the dyad ``C-D`` (length
 ``l5``), ``D-O6`` (``l6``) joins it to the ground pivot ``O6 = (x6, y6)``;
 the traced point ``P`` rides on ``C-D`` at ``(px, py)`` in its frame.  The
 dyad is the same closed form as the four-bar's
-(:func:`gearlever.synthesis.path._dyad` with ``A -> C``, ``D -> O6 - C``).
+(:func:`gearlever.synthesis.path_fourbar._dyad` with ``A -> C``, ``D -> O6 - C``).
 
 Search vector: the four-bar's (``x0, y0, theta0, r1, r3, r4, u2, cx, cy``,
 ``phi1``), then ``x6, y6, l5, l6, px, py`` and ``branch``, a discrete code
@@ -22,6 +22,9 @@ angles per turn with the relative margin :data:`CLOSURE_MARGIN`) before a
 candidate is evaluated.  Lengths ``l5, l6`` in the length range, ``x6, y6,
 px, py`` in the coordinate range.
 
+The kind registers itself as ``sixbar``
+(:mod:`gearlever.synthesis.path_kinds`), third in ``auto``.
+
 Pure numpy.
 """
 
@@ -31,9 +34,11 @@ import math
 
 import numpy as np
 
-from gearlever.synthesis.path import FourBarPathProblem, PathSynthesis, _coupler, _dyad, _result
+from gearlever.synthesis.path_fourbar import FourBarPathProblem, _coupler, _dyad
+from gearlever.synthesis.path_fourbar import fourbar_result as _result
+from gearlever.synthesis.path_kinds import PathKind, PathSynthesis, register
 
-__all__ = ["StephensonSixBarPathProblem"]
+__all__ = ["StephensonSixBarKind", "StephensonSixBarPathProblem", "sixbar_result"]
 
 #: Crank angles per turn at which the dyad's closure is checked.
 CLOSURE_SAMPLES = 360
@@ -133,7 +138,7 @@ class StephensonSixBarPathProblem(FourBarPathProblem):
 
 
 def sixbar_result(pb: StephensonSixBarPathProblem, w, mode, evals, seed, starts, seconds) -> PathSynthesis:
-    """The :class:`~gearlever.synthesis.path.PathSynthesis` of a polished Stephenson six-bar."""
+    """The :class:`~gearlever.synthesis.path_kinds.PathSynthesis` of a polished Stephenson six-bar."""
     from dataclasses import replace
 
     s1, s2 = (float(v[0]) for v in pb.decode(np.array([int(mode)])))
@@ -172,3 +177,30 @@ def sixbar_result(pb: StephensonSixBarPathProblem, w, mode, evals, seed, starts,
         params={**r4.params, **{k: p[k] for k in ("x6", "y6", "l5", "l6", "px", "py")}, "sigma2": s2},
         path=path,
     )
+
+
+@register
+class StephensonSixBarKind(PathKind):
+    """The ``sixbar`` kind: a Stephenson III six-bar, tried after the geared five-bar in ``auto``.
+
+    Examples
+    --------
+    >>> from gearlever.synthesis.path_kinds import get
+    >>> get("sixbar").make_problem(targets=[[0, 0], [1, 0], [2, 1]]).names[-3:]
+    ('px', 'py', 'branch')
+    """
+
+    name = "sixbar"
+    order = 30
+    problem = StephensonSixBarPathProblem
+
+    def result(self, pb, w, mode, evals, seed, starts, seconds):
+        return sixbar_result(pb, w, mode, evals, seed, starts, seconds)
+
+    def model(self, result, name, units):
+        from gearlever.synthesis.model import stephenson_sixbar_model
+
+        q = result.points
+        return stephenson_sixbar_model(
+            q["O2"], q["O4"], q["O6"], q["A"], q["B"], q["C"], q["D"], q["P"], name=name, units=units
+        )

@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
-from gearlever.synthesis._model import _mechanism_table, _xy
 from gearlever.synthesis.law._core import LawKind, atan2c, register
+from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["FourBarLaw", "crank_rocker", "fourbar_angles", "SIZE", "LENGTHS"]
 
@@ -161,8 +161,8 @@ class FourBarLaw(LawKind):
     def model(self, z, k):
         pts, _ = self.pose(z)
         return {
-            "mechanism": _mechanism_table("law four-bar", ""),
-            "points": {n: _xy(n, p) for n, p in pts.items()},
+            "mechanism": mechanism_table("law four-bar", ""),
+            "points": {n: xy_pair(n, p) for n, p in pts.items()},
             "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"], "output": ["O4", "B"]},
             "inputs": [{"link": "crank"}],
         }

@@ -47,10 +47,10 @@ import math
 import numpy as np
 
 from gearlever.errors import GearleverError
-from gearlever.synthesis._model import _mechanism_table, _xy
 from gearlever.synthesis.law._core import LawKind, atan2c, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, crank_rocker, fourbar_angles, transmission_range
 from gearlever.synthesis.law.geared_fourbar import teeth_for_ratio
+from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["GearLeverLaw", "SLIDE_RANGE", "ARM", "DYAD"]
 
@@ -296,10 +296,10 @@ class GearLeverLaw(LawKind):
         return {
             # the module makes the engine check the mesh's assembly constraint |O1 E| = m (z9 + z8) / 2
             "mechanism": {
-                **_mechanism_table(f"law gear-lever differential (ZRDPM, gear 9 {self.variant})", ""),
+                **mechanism_table(f"law gear-lever differential (ZRDPM, gear 9 {self.variant})", ""),
                 "module": 2.0 * S * ell / (z9 + z8),
             },
-            "points": {n: _xy(n, p) for n, p in pts.items()},
+            "points": {n: xy_pair(n, p) for n, p in pts.items()},
             "links": {
                 "ground": ["O1", "O3"],
                 "crank": ["O1", "A"],

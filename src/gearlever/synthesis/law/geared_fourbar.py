@@ -32,9 +32,9 @@ from fractions import Fraction
 import numpy as np
 
 from gearlever.errors import GearleverError
-from gearlever.synthesis._model import _mechanism_table, _xy
 from gearlever.synthesis.law._core import LawKind, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, FourBarLaw, crank_rocker, fourbar_angles, transmission_range
+from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["GearedFourBarLaw", "teeth_for_ratio"]
 
@@ -130,8 +130,8 @@ class GearedFourBarLaw(LawKind):
         P = pts[pivot]
         pts["E"] = (P[0] + r5 * math.cos(th5), P[1] + r5 * math.sin(th5))
         return {
-            "mechanism": _mechanism_table("law geared four-bar", ""),
-            "points": {n: _xy(n, p) for n, p in pts.items()},
+            "mechanism": mechanism_table("law geared four-bar", ""),
+            "points": {n: xy_pair(n, p) for n, p in pts.items()},
             "links": {
                 "ground": ["O2", "O4"],
                 "crank": ["O2", "A"],

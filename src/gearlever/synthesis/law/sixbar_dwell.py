@@ -31,9 +31,9 @@ import math
 
 import numpy as np
 
-from gearlever.synthesis._model import _mechanism_table, _xy
 from gearlever.synthesis.law._core import LawKind, atan2c, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, crank_rocker, fourbar_angles, transmission_range
+from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["SixBarDwellLaw"]
 
@@ -206,8 +206,8 @@ class SixBarDwellLaw(LawKind):
             "D": (S * (z[6] + z[9] * math.cos(psi6)), S * (z[7] + z[9] * math.sin(psi6))),
         }
         return {
-            "mechanism": _mechanism_table("law six-bar dwell (Stephenson III)", ""),
-            "points": {n: _xy(n, p) for n, p in pts.items()},
+            "mechanism": mechanism_table("law six-bar dwell (Stephenson III)", ""),
+            "points": {n: xy_pair(n, p) for n, p in pts.items()},
             "links": {
                 "ground": ["O2", "O4", "O6"],
                 "crank": ["O2", "A"],

@@ -19,8 +19,8 @@ import math
 
 import numpy as np
 
-from gearlever.synthesis._model import _mechanism_table, _xy
 from gearlever.synthesis.law._core import LawKind, register
+from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["SliderCrankLaw"]
 
@@ -74,8 +74,12 @@ class SliderCrankLaw(LawKind):
         s0 = a * math.cos(al) + sig * math.sqrt(b * b - h * h)
         units = self.target.units if self.target.output == "displacement" else ""
         return {
-            "mechanism": _mechanism_table("law slider-crank", units),
-            "points": {"O2": _xy("O2", (0, 0)), "A": _xy("A", (a * math.cos(al), a * math.sin(al))), "B": [s0, e]},
+            "mechanism": mechanism_table("law slider-crank", units),
+            "points": {
+                "O2": xy_pair("O2", (0, 0)),
+                "A": xy_pair("A", (a * math.cos(al), a * math.sin(al))),
+                "B": [s0, e],
+            },
             "links": {"ground": ["O2"], "crank": ["O2", "A"], "rod": ["A", "B"], "output": ["B"]},
             "sliders": [{"link": "output", "on": "ground", "point": "B", "direction": [1.0, 0.0]}],
             "inputs": [{"link": "crank"}],

@@ -1,9 +1,25 @@
-"""A synthesized linkage as a model: a dict in the model-file schema and its TOML text.
+"""The one home for writing model files: a synthesized linkage as a model dict and its TOML text.
+
+Every package that writes a model file (the synthesis kinds, the coupler-curve
+library :mod:`gearlever.curves`, the command line, the animation of a
+four-bar in :mod:`gearlever.plotting`) builds its dict with the helpers here
+and writes it with :func:`model_toml`:
+
+- :func:`model_toml`: the TOML text of a model dict (tables in the schema's
+  order, coordinates settled at :data:`COORD_DIGITS` digits of the size);
+- the builders of the synthesized linkages: :func:`fourbar_model`,
+  :func:`slider_crank_model`, :func:`geared_fivebar_model`,
+  :func:`stephenson_sixbar_model`;
+- the pieces other writers share: :func:`mechanism_table` (the
+  ``[mechanism]`` table) and :func:`xy_pair` (a checked point).
 
 The point and link names follow one convention for every synthesized
 four-bar: ``O2`` input (crank) pivot, ``O4`` output (rocker) ground pivot,
 ``A`` crank pin, ``B`` rocker pin, ``P`` traced point; links ``ground``,
-``crank``, ``coupler``, ``rocker``; the crank is the input.
+``crank``, ``coupler``, ``rocker``; the crank is the input.  The schema is
+that of :mod:`gearlever.mechanism.model`.
+
+Imports only :mod:`gearlever.errors` and :mod:`gearlever._format`.
 """
 
 from __future__ import annotations
@@ -12,7 +28,15 @@ import math
 
 from gearlever.errors import GearleverError
 
-__all__ = ["fourbar_model", "model_toml", "slider_crank_model"]
+__all__ = [
+    "fourbar_model",
+    "geared_fivebar_model",
+    "mechanism_table",
+    "model_toml",
+    "slider_crank_model",
+    "stephenson_sixbar_model",
+    "xy_pair",
+]
 
 #: Significant digits of other numbers written to a model file.
 DIGITS = 15
@@ -23,7 +47,30 @@ DIGITS = 15
 COORD_DIGITS = 10
 
 
-def _xy(where: str, p) -> list:
+def xy_pair(where: str, p) -> list:
+    """A point ``[x, y]`` of a model file: a pair of finite floats (``-0.0`` written ``0.0``).
+
+    Parameters
+    ----------
+    where : str
+        The point's name, in the message of a refusal.
+    p : pair of float
+
+    Raises
+    ------
+    GearleverError
+        Naming ``where`` when ``p`` is not a pair of finite numbers.
+
+    Examples
+    --------
+    >>> xy_pair("A", (1, -0.0))
+    [1.0, 0.0]
+    >>> try:
+    ...     xy_pair("A", (1, float("nan")))
+    ... except GearleverError as exc:
+    ...     print(exc)
+    A must be finite, got (1, nan)
+    """
     try:
         x, y = (float(v) for v in p)
     except (TypeError, ValueError):
@@ -33,8 +80,14 @@ def _xy(where: str, p) -> list:
     return [x + 0.0, y + 0.0]
 
 
-def _mechanism_table(name: str, units: str) -> dict:
-    """The ``[mechanism]`` table of a written model: its name, and its length unit when one is given."""
+def mechanism_table(name: str, units: str) -> dict:
+    """The ``[mechanism]`` table of a written model: its name, and its length unit when one is given.
+
+    Examples
+    --------
+    >>> mechanism_table("crank", ""), mechanism_table("crank", "mm")
+    ({'name': 'crank'}, {'name': 'crank', 'units': 'mm'})
+    """
     return {"name": name, "units": units} if units else {"name": name}
 
 
@@ -62,12 +115,12 @@ def fourbar_model(O2, O4, A, B, P=None, *, name: str = "synthesized four-bar", u
     >>> m.moving
     ('crank', 'coupler', 'rocker')
     """
-    pts = {"O2": _xy("O2", O2), "O4": _xy("O4", O4), "A": _xy("A", A), "B": _xy("B", B)}
+    pts = {"O2": xy_pair("O2", O2), "O4": xy_pair("O4", O4), "A": xy_pair("A", A), "B": xy_pair("B", B)}
     coupler = ["A", "B"]
     if P is not None:
-        pts["P"] = _xy("P", P)
+        pts["P"] = xy_pair("P", P)
         coupler.append("P")
-    mech = _mechanism_table(name, units)
+    mech = mechanism_table(name, units)
     return {
         "mechanism": mech,
         "points": pts,
@@ -106,13 +159,13 @@ def slider_crank_model(
     >>> m.moving
     ('crank', 'rod', 'slider')
     """
-    u = _xy("direction", direction)
+    u = xy_pair("direction", direction)
     if math.hypot(*u) == 0.0:
         raise GearleverError("direction must not be zero")
-    mech = _mechanism_table(name, units)
+    mech = mechanism_table(name, units)
     return {
         "mechanism": mech,
-        "points": {"O2": _xy("O2", O2), "A": _xy("A", A), "B": _xy("B", B)},
+        "points": {"O2": xy_pair("O2", O2), "A": xy_pair("A", A), "B": xy_pair("B", B)},
         "links": {"ground": ["O2"], "crank": ["O2", "A"], "rod": ["A", "B"], "slider": ["B"]},
         "sliders": [{"link": "slider", "on": "ground", "point": "B", "direction": u}],
         "inputs": [{"link": "crank"}],
@@ -203,14 +256,14 @@ def geared_fivebar_model(
     if len(z) != 2 or min(z) < 1 or any(int(t) != t for t in teeth):
         raise GearleverError(f"teeth must be two positive integers (z1, z2), got {teeth!r}")
     pts = {
-        "O2": _xy("O2", O2),
-        "O4": _xy("O4", O4),
-        "A": _xy("A", A),
-        "B": _xy("B", B),
-        "C": _xy("C", C),
-        "P": _xy("P", P),
+        "O2": xy_pair("O2", O2),
+        "O4": xy_pair("O4", O4),
+        "A": xy_pair("A", A),
+        "B": xy_pair("B", B),
+        "C": xy_pair("C", C),
+        "P": xy_pair("P", P),
     }
-    mech = _mechanism_table(name, units)
+    mech = mechanism_table(name, units)
     return {
         "mechanism": mech,
         "points": pts,
@@ -248,8 +301,8 @@ def stephenson_sixbar_model(
     1
     """
     names = ("O2", "O4", "O6", "A", "B", "C", "D", "P")
-    pts = {n: _xy(n, v) for n, v in zip(names, (O2, O4, O6, A, B, C, D, P))}
-    mech = _mechanism_table(name, units)
+    pts = {n: xy_pair(n, v) for n, v in zip(names, (O2, O4, O6, A, B, C, D, P))}
+    mech = mechanism_table(name, units)
     return {
         "mechanism": mech,
         "points": pts,
