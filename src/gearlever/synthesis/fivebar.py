@@ -36,7 +36,6 @@ import math
 
 import numpy as np
 
-from gearlever.errors import GearleverError
 from gearlever.synthesis.path_fourbar import FourBarPathProblem, _dyad
 from gearlever.synthesis.path_kinds import PathKind, PathSynthesis, register
 
@@ -240,13 +239,6 @@ def fivebar_result(pb: GearedFiveBarPathProblem, w, mode, evals, seed, starts, s
         path=path,
         teeth=(z1, z2),
     )
-
-
-def check_kind(kind: str) -> str:
-    """The linkage type of ``kind`` (refused unless implemented)."""
-    if kind not in ("fourbar", "geared-fivebar"):
-        raise GearleverError(f"kind must be 'fourbar', 'geared-fivebar' or 'auto', got {kind!r}")
-    return kind
 
 
 @register
