@@ -90,7 +90,7 @@ POPULATION = 40
 SCALES = np.linspace(0.9, 0.99, 10)
 #: Least material weight of a refinement (a barrier against sketches growing without bound), and the most a
 #: distance-only refinement may multiply the material by.
-MATERIAL_FLOOR = 1e-7
+MATERIAL_FLOOR = 1e-11
 MAX_GROWTH = 3.0
 #: Front members (closest first) polished by a longer refinement.
 POLISH = 3
