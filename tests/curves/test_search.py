@@ -9,6 +9,7 @@ from gearlever.curves import search as S
 from gearlever.curves.links import solve_plan
 from gearlever.curves.score import distance, material
 from gearlever.curves.simulate import simulate
+from gearlever.curves.targets import known_mechanism
 
 
 def _turning(n_dyads, seed=5):
@@ -53,6 +54,14 @@ def test_prune_keeps_only_the_joints_the_traced_joint_needs():
     full = simulate(x0[None], topo.plan)[0, 3]
     pruned = simulate(x0[keep][None], sub.plan)[0, sub.target]
     np.testing.assert_allclose(pruned, full, atol=1e-12)
+
+
+def test_synthesis_recovers_the_suites_known_nine_joint_linkage_exactly():
+    topo, _, curve = known_mechanism(6, 12)  # benchmarks/bench_curves.py's 9-joint linkage (7 joints after pruning)
+    assert topo.n == 9
+    r = S.synthesize_curve(curve, budget=1000, seed=0, workers=1)
+    assert r.distance[0] < 0.01  # 0.066 before issue 27 (budget 20 000)
+    assert r.material[0] < 10 and r.hypervolume > 6
 
 
 @pytest.fixture

@@ -78,7 +78,7 @@ MAX_LIBRARY_SIZE = 200_000
 #: Fourier harmonics of the descriptor.
 HARMONICS = 12
 #: Retrieved entries refined briefly, and the best of them kept as starts.
-PRESELECT = 24
+PRESELECT = 100
 STARTS = 8
 #: Alignments kept by the search's fast distance.
 KEEP = 12
