@@ -16,12 +16,15 @@ machine and any number of workers):
 2. **Retrieval** (:func:`retrieve`): the nearest library curves to the
    target's descriptor, re-ranked by the challenge's distance after scaling
    each sketch so its curve has the target's RMS radius; the best
-   :data:`STARTS` distinct ones are the starts.
+   :data:`PRESELECT` distinct ones are refined briefly and :data:`STARTS`
+   of them are the starts.
 3. **Per start** (:func:`run_start`): least-squares refinement of the
-   distance (:func:`refine`: Gauss-Newton / trust region of
+   distance (:func:`refine`: trust region of
    :func:`scipy.optimize.least_squares` on the analytic Jacobian of
-   :func:`~gearlever.curves.simulate.simulate_jacobian`, against the
-   target's points at the current best alignment), topology moves (another
+   :func:`~gearlever.curves.simulate.simulate_jacobian` carried through the
+   resampling by arc length, the challenge's gaps at the current best
+   cyclic shift with the rotation a free parameter, then the shift walked
+   while the distance falls), topology moves (another
    traced joint, one more dyad on the traced joint), then NSGA-II of pymoo
    (Deb et al. 2002) over the joint positions with distance and material as
    objectives and the challenge's bounds as constraints, seeded with the
