@@ -16,12 +16,15 @@ machine and any number of workers):
 2. **Retrieval** (:func:`retrieve`): the nearest library curves to the
    target's descriptor, re-ranked by the challenge's distance after scaling
    each sketch so its curve has the target's RMS radius; the best
-   :data:`STARTS` distinct ones are the starts.
+   :data:`PRESELECT` distinct ones are refined briefly and :data:`STARTS`
+   of them are the starts.
 3. **Per start** (:func:`run_start`): least-squares refinement of the
-   distance (:func:`refine`: Gauss-Newton / trust region of
+   distance (:func:`refine`: trust region of
    :func:`scipy.optimize.least_squares` on the analytic Jacobian of
-   :func:`~gearlever.curves.simulate.simulate_jacobian`, against the
-   target's points at the current best alignment), topology moves (another
+   :func:`~gearlever.curves.simulate.simulate_jacobian` carried through the
+   resampling by arc length, the challenge's gaps at the current best
+   cyclic shift with the rotation a free parameter, then the shift walked
+   while the distance falls), topology moves (another
    traced joint, one more dyad on the traced joint), then NSGA-II of pymoo
    (Deb et al. 2002) over the joint positions with distance and material as
    objectives and the challenge's bounds as constraints, seeded with the
@@ -78,7 +81,7 @@ MAX_LIBRARY_SIZE = 200_000
 #: Fourier harmonics of the descriptor.
 HARMONICS = 12
 #: Retrieved entries refined briefly, and the best of them kept as starts.
-PRESELECT = 24
+PRESELECT = 100
 STARTS = 8
 #: Alignments kept by the search's fast distance.
 KEEP = 12
@@ -90,7 +93,7 @@ POPULATION = 40
 SCALES = np.linspace(0.9, 0.99, 10)
 #: Least material weight of a refinement (a barrier against sketches growing without bound), and the most a
 #: distance-only refinement may multiply the material by.
-MATERIAL_FLOOR = 1e-7
+MATERIAL_FLOOR = 1e-11
 MAX_GROWTH = 3.0
 #: Front members (closest first) polished by a longer refinement.
 POLISH = 3
@@ -382,35 +385,6 @@ def retrieve(library: Library, target, starts: int = STARTS, shortlist: int = 40
     return out
 
 
-def _aligned_targets(topo, x0, target_c, curve):
-    """Target point matched to each time step of ``curve`` at the best alignment, the rotation and weights."""
-    from gearlever.curves.score import _alignment_indices
-
-    n = target_c.z.shape[0]
-    seg = np.hypot(*np.diff(curve, axis=0).T)
-    cum = np.concatenate([[0.0], np.cumsum(seg)])
-    f = cum / cum[-1]
-    c = resample(curve[None], n)[0]
-    c = c - c.mean(0)
-    cz = (c[:, 0] + 1j * c[:, 1]) / target_c.scale
-    idx = _alignment_indices(n)
-    C = cz[idx]
-    z = (target_c.z * np.conj(C)).sum(-1)
-    rot = np.exp(1j * np.angle(z))
-    gap = np.abs(target_c.z - rot[:, None] * C).mean(-1)
-    a = int(np.argmin(gap))
-    m = f * (n - 1)
-    pos = (m - a) % n if a < n else (a - n - m) % n
-    lo = np.floor(pos).astype(int) % n
-    w = pos - np.floor(pos)
-    tz = target_c.z[lo] * (1 - w) + target_c.z[(lo + 1) % n] * w
-    wk = np.zeros_like(f)
-    wk[:-1] += seg / 2
-    wk[1:] += seg / 2
-    wk /= wk.sum()
-    return tz, rot[a], wk
-
-
 @dataclass(frozen=True)
 class _Target:
     z: np.ndarray
@@ -425,55 +399,128 @@ def _target(target) -> _Target:
     return _Target((t[:, 0] + 1j * t[:, 1]) / s, s, np.asarray(target, dtype=float))
 
 
-def _residuals(topo: Topology, tc, tz, rot, wk, material_weight: float):
-    """Residuals and Jacobian of one refinement round (alignment fixed): weighted gaps, then sqrt(w) x material."""
-    N = topo.n
-    sw = np.sqrt(wk)
-    lam = math.sqrt(material_weight)
+def _best_alignment(tc, curve) -> tuple[int, float]:
+    """Index (as :func:`~gearlever.curves.score._alignment_indices`) and angle of the curve's best alignment."""
+    from gearlever.curves.score import _alignment_indices
 
-    def fun(p):
-        x = p.reshape(N, 2)
+    n = tc.z.shape[0]
+    c = resample(curve[None], n)[0]
+    c = c - c.mean(0)
+    C = ((c[:, 0] + 1j * c[:, 1]) / tc.scale)[_alignment_indices(n)]
+    z = (tc.z * np.conj(C)).sum(-1)
+    rot = np.exp(1j * np.angle(z))
+    a = int(np.argmin(np.abs(tc.z - rot[:, None] * C).mean(-1)))
+    return a, float(np.angle(z[a]))
+
+
+def _residuals(topo: Topology, tc, a: int, material_weight: float):
+    """Residuals of the distance at alignment ``a`` and their Jacobian; parameters: the sketch, then an angle.
+
+    The residuals are the gaps between the target's points and the design's
+    curve resampled by arc length, centred, scaled and turned by the angle
+    (the challenge's distance with its cyclic shift and direction ``a``
+    fixed, squared), then ``sqrt(w)`` x material.  The Jacobian goes through
+    the resampling: a resampled point ``p_lo + w (p_hi - p_lo)`` with
+    ``w = (s L - c_lo) / l_lo`` (``L`` the curve's length, ``c_lo`` the
+    length up to sample ``lo``, ``l_lo`` the segment's) moves with the
+    samples and with the lengths.
+    """
+    from gearlever.curves.score import _alignment_indices
+
+    N = topo.n
+    n = tc.z.shape[0]
+    perm = _alignment_indices(n)[a]
+    s = np.linspace(0.0, 1.0, n)
+    lam = math.sqrt(material_weight)
+    norm = 1.0 / math.sqrt(n)
+    extra = 1 if lam else 0
+
+    def fun(q):
+        x = q[:-1].reshape(N, 2)
         c = simulate(x[None], topo.plan)[0, topo.target]
-        if not np.isfinite(c).all():
-            return np.full(2 * len(sw) + (1 if lam else 0), 10.0)
-        cz = c[:, 0] + 1j * c[:, 1]
-        cz = cz - (wk * cz).sum()
-        r = sw * (rot * cz / tc.scale - tz)
-        out = np.concatenate([r.real, r.imag])
+        r = resample(c[None], n)[0]
+        if not np.isfinite(r).all():
+            return np.full(2 * n + extra, 10.0)
+        z = r[:, 0] + 1j * r[:, 1]
+        z = (z - z.mean()) / tc.scale
+        g = norm * (np.exp(1j * q[-1]) * z[perm] - tc.z)
+        out = np.concatenate([g.real, g.imag])
         if lam:
             out = np.append(out, lam * material(x[None], topo.edges)[0])
         return out
 
-    def jac(p):
-        x = p.reshape(N, 2)
+    def jac(q):
+        x = q[:-1].reshape(N, 2)
         c, J = simulate_jacobian(x[None], topo.plan, joints=[topo.target])
-        J = J[0, 0]  # (T, 2, 2N)
-        if not np.isfinite(J).all():
-            return np.zeros((2 * len(sw) + (1 if lam else 0), 2 * N))
-        Jz = J[:, 0] + 1j * J[:, 1]
-        Jz = Jz - (wk[:, None] * Jz).sum(0)
-        R = sw[:, None] * rot * Jz / tc.scale
+        c, J = c[0, topo.target], J[0, 0]  # (T, 2), (T, 2, 2N)
+        T = c.shape[0]
+        dv = np.diff(c, axis=0)
+        seg = np.hypot(dv[:, 0], dv[:, 1])
+        if not (np.isfinite(J).all() and np.isfinite(seg).all()) or seg.sum() <= 0:
+            return np.zeros((2 * n + extra, 2 * N + 1))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            u = np.where(seg[:, None] > 0, dv / seg[:, None], 0.0)
+        dseg = np.einsum("tc,tcp->tp", u, J[1:] - J[:-1])
+        cum = np.concatenate([[0.0], np.cumsum(seg)])
+        dcum = np.concatenate([np.zeros((1, 2 * N)), np.cumsum(dseg, 0)])
+        total, dtotal = cum[-1], dcum[-1]
+        hi = np.clip(np.searchsorted(cum / total, s, side="right"), 1, T - 1)
+        lo = hi - 1
+        sl = seg[lo]
+        pos = sl > 0
+        safe = np.where(pos, sl, 1.0)
+        w = np.where(pos, np.clip((s * total - cum[lo]) / safe, 0.0, 1.0), 0.0)
+        dw = np.where(pos[:, None], (s[:, None] * dtotal - dcum[lo] - w[:, None] * dseg[lo]) / safe[:, None], 0.0)
+        p = c[lo] + w[:, None] * (c[hi] - c[lo])
+        dp = (1 - w)[:, None, None] * J[lo] + w[:, None, None] * J[hi] + (c[hi] - c[lo])[:, :, None] * dw[:, None, :]
+        z = p[:, 0] + 1j * p[:, 1]
+        z = (z - z.mean()) / tc.scale
+        dz = dp[:, 0] + 1j * dp[:, 1]
+        dz = (dz - dz.mean(0)) / tc.scale
+        e = np.exp(1j * q[-1])
+        R = norm * np.column_stack([e * dz[perm], 1j * e * z[perm]])
         out = np.concatenate([R.real, R.imag])
         if lam:
-            e = topo.edges
-            d = x[e[:, 0]] - x[e[:, 1]]
+            ed = topo.edges
+            d = x[ed[:, 0]] - x[ed[:, 1]]
             L = np.hypot(d[:, 0], d[:, 1])
-            g = np.zeros((N, 2))
-            np.add.at(g, e[:, 0], 2 * d / L[:, None])
-            np.add.at(g, e[:, 1], -2 * d / L[:, None])
-            out = np.vstack([out, lam * g.reshape(1, -1)])
+            gm = np.zeros((N, 2))
+            np.add.at(gm, ed[:, 0], 2 * d / L[:, None])
+            np.add.at(gm, ed[:, 1], -2 * d / L[:, None])
+            out = np.vstack([out, lam * np.append(gm.reshape(-1), 0.0)[None]])
         return out
 
     return fun, jac
 
 
-def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material_weight: float = 0.0):
+def refine(
+    topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material_weight: float = 0.0, walk: bool = True
+):
     """Least-squares refinement of the distance of one sketch (analytic Jacobian); returns (x0, d, m, evals).
 
-    Each round fixes the best alignment (cyclic shift, direction, rotation) of
-    the current curve and solves the weighted least-squares problem of the
-    gaps between the time samples and their matched target points; a round
-    is kept only if the challenge's distance decreases.
+    Each round fixes the best cyclic shift and direction of the current
+    curve (:func:`_best_alignment`) and solves the least-squares problem of
+    the gaps between the target's points and the design's curve resampled
+    by arc length (:func:`_residuals`: the challenge's distance, squared,
+    with the rotation a free parameter); a round is kept only if the
+    challenge's distance decreases (the material-weighted cost, with a
+    ``material_weight``), and the rounds stop at the first that is not.
+    Then (``walk``, distance only) the cyclic shift is moved one sample at
+    a time, each way, while the distance falls: the curve's start is tied to
+    the crank angle and its time samples are the polyline's corners, so the
+    minimum at one shift is not the minimum at the next.
+
+    Examples
+    --------
+    >>> from gearlever.curves.links import linkage_from_dict
+    >>> from gearlever.curves.simulate import simulate
+    >>> lk = linkage_from_dict({"x0": [[0, 0], [0.3, 0], [1, 0], [0.8, 0.8], [0.5, 1.0]],
+    ...     "edges": [[0, 1], [1, 3], [2, 3], [1, 4], [3, 4]], "fixed_joints": [0, 2], "motor": [0, 1]})
+    >>> topo = _topology(5, lk.edges, lk.fixed_joints, lk.motor, 4)
+    >>> target = simulate(lk.x0[None], topo.plan)[0, 4]
+    >>> x, d, m, evals = refine(topo, lk.x0 + [[0, 0], [0.01, 0], [0, 0], [0, 0.01], [0, 0]], target, rounds=10)
+    >>> bool(d < 1e-4)
+    True
     """
     from scipy.optimize import least_squares
 
@@ -486,28 +533,57 @@ def refine(topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material
         return x0, best_d, best_m, evals
     best = x0
     N = topo.n
-    for _ in range(rounds):
-        curve = simulate(best[None], topo.plan)[0, topo.target]
-        tz, rot, wk = _aligned_targets(topo, best, tc, curve)
-        fun, jac = _residuals(topo, tc, tz, rot, wk, max(material_weight, MATERIAL_FLOOR))
+    weight = max(material_weight, MATERIAL_FLOOR)
+    n = tc.z.shape[0]
+
+    def solve(a, angle):
+        fun, jac = _residuals(topo, tc, a, weight)
+        q0 = np.append(best.ravel(), angle)
         try:
-            res = least_squares(fun, best.ravel(), jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
+            res = least_squares(fun, q0, jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
         except (ValueError, np.linalg.LinAlgError):
-            break
-        evals += int(res.nfev) + int(res.njev or 0)
-        cand = res.x.reshape(N, 2)
+            return None, math.inf, math.inf, 0
+        cand = res.x[:-1].reshape(N, 2)
         d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw, keep=None))
-        evals += 1
-        cost0 = 0.5 * float((fun(best.ravel()) ** 2).sum())
         if not material_weight:
             better = d < best_d - 1e-9 and m <= MAX_GROWTH * m_start
         else:
-            better = math.isfinite(d) and res.cost < cost0 - 1e-12
-        if better:
-            best, best_d, best_m = cand, d, m
-        else:
+            better = math.isfinite(d) and res.cost < 0.5 * float((fun(q0) ** 2).sum()) - 1e-12
+        return (cand if better else None), d, m, int(res.nfev) + int(res.njev or 0) + 1
+
+    a = None
+    for _ in range(rounds):
+        curve = simulate(best[None], topo.plan)[0, topo.target]
+        a, angle = _best_alignment(tc, curve)
+        cand, d, m, e = solve(a, angle)
+        evals += e
+        if cand is None:
             break
+        best, best_d, best_m = cand, d, m
+    if walk and a is not None and not material_weight:
+        # the curve's start point is tied to the crank angle: walk the cyclic shift while the distance falls
+        for step in (1, -1):
+            while True:
+                b = (a + step) % n if a < n else n + (a - n + step) % n
+                curve = simulate(best[None], topo.plan)[0, topo.target]
+                angle = _alignment_angle(tc, curve, b)
+                cand, d, m, e = solve(b, angle)
+                evals += e
+                if cand is None:
+                    break
+                best, best_d, best_m, a = cand, d, m, b
     return best, best_d, best_m, evals
+
+
+def _alignment_angle(tc, curve, a: int) -> float:
+    """Best rotation of the curve at alignment ``a``."""
+    from gearlever.curves.score import _alignment_indices
+
+    n = tc.z.shape[0]
+    c = resample(curve[None], n)[0]
+    c = c - c.mean(0)
+    C = ((c[:, 0] + 1j * c[:, 1]) / tc.scale)[_alignment_indices(n)[a]]
+    return float(np.angle((tc.z * np.conj(C)).sum()))
 
 
 def _moves(rng, topo: Topology, x0, max_joints: int):

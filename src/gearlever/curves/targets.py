@@ -15,12 +15,14 @@ import numpy as np
 
 from gearlever.errors import GearleverError
 
-__all__ = ["MAX_TARGET_ROWS", "MIN_DISTINCT", "check_target", "read_target"]
+__all__ = ["MAX_TARGET_ROWS", "MIN_DISTINCT", "SUITE_RMS", "check_target", "known_mechanism", "read_target"]
 
 #: Most rows of a target file.
 MAX_TARGET_ROWS = 100_000
 #: Fewest distinct points of a target.
 MIN_DISTINCT = 10
+#: RMS radius of the suite's curves: that of the MIT 2.156 challenge's six targets (material is absolute).
+SUITE_RMS = 0.191
 
 
 def check_target(xy, what: str = "target") -> np.ndarray:
@@ -75,3 +77,63 @@ def read_target(path, what: str = "TARGET") -> np.ndarray:
         except (ValueError, IndexError):
             raise GearleverError(f"{where}: line {n + start}: x and y must be numbers, got {r}") from None
     return check_target(xy, where)
+
+
+def known_mechanism(n_dyads: int, seed: int, rms: float = SUITE_RMS):
+    """A random dyadic linkage that turns fully and is feasible, and the curve its traced joint draws.
+
+    The suite's exact-recovery targets: the first of the random sketches of
+    the first random topology (``n_dyads`` dyads on a crank, two ground
+    pivots) that turns over a whole crank turn and whose material, once the
+    linkage is scaled so that its curve has RMS radius ``rms``, is below the
+    challenge's 10 (a design of more material is off the front, so it could
+    not be recovered there).
+
+    Parameters
+    ----------
+    n_dyads : int
+        Dyads beyond the crank (the linkage has ``n_dyads + 3`` joints).
+    seed : int
+        Seed of the draws.
+    rms : float
+        RMS radius of the curve.
+
+    Returns
+    -------
+    topology : gearlever.curves.search.Topology
+    x0 : ndarray, shape (N, 2)
+        The sketch.
+    curve : ndarray, shape (200, 2)
+        The traced joint's positions over a crank turn.
+
+    Notes
+    -----
+    Draws of :func:`gearlever.curves.search.random_topology` and
+    :func:`~gearlever.curves.search.random_sketches` from
+    ``numpy.random.default_rng(seed)``; the challenge's material and bound
+    as :mod:`gearlever.curves.score`.
+
+    Examples
+    --------
+    >>> topo, x0, curve = known_mechanism(6, 12)
+    >>> topo.n, curve.shape
+    (9, (200, 2))
+    """
+    from gearlever.curves.score import MAX_MATERIAL, material
+    from gearlever.curves.search import random_sketches, random_topology
+    from gearlever.curves.simulate import simulate
+
+    rng = np.random.default_rng(seed)
+    while True:
+        topo = random_topology(rng, int(n_dyads), 2)
+        x0 = random_sketches(rng, topo, 400)
+        x = simulate(x0, topo.plan)
+        ok = np.isfinite(x).all(axis=(1, 2, 3))
+        c = x[:, topo.target]
+        size = np.sqrt(((c - c.mean(1, keepdims=True)) ** 2).sum(-1).mean(1))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ok &= material(x0, topo.edges) * (rms / size) < MAX_MATERIAL
+        if ok.any():
+            i = int(np.flatnonzero(ok)[0])
+            x = x0[i] * (rms / size[i])
+            return topo, x, simulate(x[None], topo.plan)[0, topo.target]
