@@ -12,7 +12,10 @@
    the written model of one candidate at the same inputs (the same output,
    checked), one process; prints the ratio.
 
-Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_law.py [SEED ...] [--quick]
+3. ``--examples DIR``: the guide's worked example per kind (a figure each and
+   a table against the cam, :mod:`gearlever.reproduce._law_synthesis`).
+
+Run: PYTHONPATH=src .venv/bin/python benchmarks/bench_law.py [SEED ...] [--quick] [--examples DIR]
 """
 
 from __future__ import annotations
@@ -94,6 +97,15 @@ def evaluation_ratio() -> None:
 
 
 def main(argv) -> None:
+    if "--examples" in argv:  # the guide's worked example per kind (docs/_static/law_synthesis)
+        from pathlib import Path
+
+        from gearlever.reproduce._law_synthesis import run
+
+        folder = Path(argv[argv.index("--examples") + 1])
+        folder.mkdir(parents=True, exist_ok=True)
+        print("\n".join(run(folder, folder)))
+        return
     quick = "--quick" in argv
     seeds = [int(a) for a in argv if a.isdigit()] or [0]
     kinds = ["sixbar-dwell"] if quick else ["fourbar", "geared-fourbar", "sixbar-dwell", "gear-lever", "auto"]

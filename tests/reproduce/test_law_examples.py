@@ -1,4 +1,4 @@
-"""The law-synthesis step of ``make reproduce``: a figure per kind and the table against the cam."""
+"""The worked examples of law synthesis (bench_law.py --examples): a figure per kind, the table against the cam."""
 
 import math
 
@@ -7,7 +7,7 @@ import pytest
 
 from gearlever.data import example_path
 from gearlever.laws import load_law
-from gearlever.reproduce import law_synthesis as step
+from gearlever.reproduce import _law_synthesis as step
 from gearlever.synthesis.law import synthesize_law
 from gearlever.synthesis.law.measure import cam_comparison, law_report
 
