@@ -28,7 +28,9 @@ machine and any number of workers):
    traced joint, one more dyad on the traced joint), then NSGA-II of pymoo
    (Deb et al. 2002) over the joint positions with distance and material as
    objectives and the challenge's bounds as constraints, seeded with the
-   refined sketch; then the front members are refined again and, because
+   refined sketch; then the closest front members are refined again, members
+   spread over material are refined with a material-weighted objective
+   (:data:`SPREAD`, :data:`SPREAD_WEIGHTS`) and, because
    size counts in the distance, each is offered in scaled copies (a smaller
    copy has less material and more distance).
 4. **Front**: the non-dominated feasible designs of every start, at most
@@ -97,6 +99,9 @@ MATERIAL_FLOOR = 1e-11
 MAX_GROWTH = 3.0
 #: Front members (closest first) polished by a longer refinement.
 POLISH = 3
+#: Front members (spread over material) refined again with each of the material weights ``SPREAD_WEIGHTS``.
+SPREAD = 6
+SPREAD_WEIGHTS = (0.01, 0.1, 0.3)
 #: Material weights of the refinement chain.
 LAMBDAS = np.geomspace(1e-3, 0.3, 10)
 #: Caps.
@@ -706,6 +711,20 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list:
         polished.append(xp)
     if polished:
         Xall = np.concatenate([Xall, np.array(polished)])
+        d, m = evaluate(topo, Xall, target, keep=None)
+        front = _nondominated(d, m)
+    # members spread over material, refined with a material-weighted objective for a few weights: fill the front
+    spread = front[np.unique(np.round(np.linspace(0, front.size - 1, min(SPREAD, front.size))).astype(int))]
+    extra = []
+    for i in spread:
+        for w in SPREAD_WEIGHTS:
+            if deadline is not None and time.monotonic() > deadline:
+                break
+            xw, dw, mw, _ = refine(topo, Xall[i], tc, rounds=2, material_weight=w)
+            if math.isfinite(dw):
+                extra.append(xw)
+    if extra:
+        Xall = np.concatenate([Xall, np.array(extra)])
         d, m = evaluate(topo, Xall, target, keep=None)
         front = _nondominated(d, m)
     for i in front:
