@@ -68,15 +68,20 @@ def check_target(target, *, mkdir: bool = False) -> Path:
     if not parent.is_dir():
         raise _refuse(errno.ENOTDIR, "is not a directory", parent)
     # SIGTERM and Ctrl-C wait until the probe is gone (a handler that raises could otherwise
-    # leave it behind, between its creation and its removal)
+    # leave it behind, between its creation and its removal).  The mask holds this thread only:
+    # a signal the kernel hands to another thread (OpenBLAS's workers) still runs Python's
+    # handler here, so the removal is also in a finally.
     with _signals_held():
+        probe = None
         try:
             fd, probe = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".probe", dir=parent)
+            os.close(fd)
         except OSError as exc:
             raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", target) from None
-        os.close(fd)
-        with contextlib.suppress(OSError):
-            os.unlink(probe)
+        finally:
+            if probe is not None:
+                with contextlib.suppress(OSError):
+                    os.unlink(probe)
     return target
 
 
@@ -134,12 +139,16 @@ def check_folder(folder, *, create: bool = False) -> Path:
         existing = existing.parent
     if not existing.is_dir():
         raise _refuse(errno.ENOTDIR, "is not a directory", existing)
+    probe = None
     try:
         fd, probe = tempfile.mkstemp(prefix=".gearlever.", suffix=".probe", dir=existing)
+        os.close(fd)
     except OSError as exc:
         raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", existing) from None
-    os.close(fd)
-    os.unlink(probe)
+    finally:
+        if probe is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(probe)
     if create and existing != folder:
         folder.mkdir(parents=True, exist_ok=True)
     return folder
