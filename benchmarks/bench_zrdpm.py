@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from gearlever.zrdpm import model as zrdpm
+from gearlever import zrdpm
 
 N = 1_000_000
 REPEATS = 21

@@ -27,8 +27,9 @@ def test_pyplot_is_imported_only_in_plotting():
 
 
 def test_pandas_is_imported_only_in_tables():
+    """And lazily in ``_frame.py``, the leaf that builds ``Result.to_frame`` (the base must not import tables)."""
     users = _modules_importing(r"^\s*(import pandas|from pandas)")
-    assert users and all(u.startswith("tables/") for u in users), users
+    assert users and all(u.startswith("tables/") or u == "_frame.py" for u in users), users
 
 
 def test_nothing_in_the_package_reads_the_shared_folder():

@@ -5,8 +5,8 @@ inherits :class:`Result`, which gives it
 
 - :meth:`Result.as_dict`: its fields in declaration order, as they are;
 - :meth:`Result.to_frame`: a pandas DataFrame, one row per input point,
-  built by :mod:`gearlever.tables` (the one home of pandas) only when called,
-  so the numeric core never loads pandas.
+  built by :func:`gearlever._frame.frame` (which imports pandas) only when
+  called, so the numeric core never loads pandas.
 
 Imports only the standard library and numpy.
 """
@@ -64,7 +64,7 @@ class Result:
         return cols
 
     def to_frame(self):
-        """A :class:`pandas.DataFrame`, one row per input point (built by :mod:`gearlever.tables`)."""
-        from gearlever.tables._common import frame
+        """A :class:`pandas.DataFrame`, one row per input point (built by :func:`gearlever._frame.frame`)."""
+        from gearlever._frame import frame
 
         return frame(self._frame_columns())

@@ -6,10 +6,10 @@ matplotlib.use("Agg")
 
 import pytest  # noqa: E402
 
+from gearlever import zrdpm  # noqa: E402
 from gearlever.plotting import zrdpm as plots  # noqa: E402
 from gearlever.plotting._common import axes, save  # noqa: E402
 from gearlever.tables import zrdpm as tabs  # noqa: E402
-from gearlever.zrdpm import model as zrdpm  # noqa: E402
 
 
 def _check_axes(ax):

@@ -63,7 +63,7 @@ def test_mobility_frame_agrees_with_the_paper():
 
 
 def test_analogue_frame_columns():
-    from gearlever.zrdpm import model as zrdpm
+    from gearlever import zrdpm
 
     df = tabs.analogue_frame(zrdpm.ZrdpmContour(contour=2), [0.0, 90.0])
     assert list(df.columns) == ["phi_deg", "u_2", "u_7", "e_2", "e_7", "a_D_cm", "a_E_cm"]

@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from gearlever import zrdpm
 from gearlever.errors import GearleverError
-from gearlever.zrdpm import model as zrdpm
 from tests._zrdpm_fd import assert_rel, d1, d2
 
 #: Tolerance for the published values: the print has 2-4 decimals (zrdpm-paper.md section 5
@@ -325,7 +325,10 @@ def test_package_re_exports_every_name_from_the_modules_by_concern():
     from gearlever.zrdpm import fast, model, parameters, published
 
     for name in pkg.__all__:
-        assert getattr(pkg, name) is getattr(model, name)  # old single-module imports still work
+        # each name is the very object of the module(s) that hold it; model no longer re-exports published
+        homes = [m for m in (model, parameters, published) if name in vars(m)]
+        assert homes and all(getattr(m, name) is getattr(pkg, name) for m in homes), name
+    assert not hasattr(model, "published_table")
     assert pkg.ZrdpmContour is parameters.ZrdpmContour and pkg.published_table is published.published_table
     assert callable(fast.fast_outputs)
 

@@ -4,7 +4,7 @@ The problem data are read from the package data file ``textbook_dynamics.toml``
 and the printed answers from ``textbook_dynamics.csv`` (worked examples of
 Khurmi and Gupta's *Theory of Machines*, chapters 13, 15 and 16).  Nothing here
 copies an answer: each epicyclic train is a gear network whose holding torques
-come from :meth:`~gearlever.gears.networks.Network.torques`; each engine is built
+come from :func:`~gearlever.gears.torques.network_torques`; each engine is built
 as a :class:`~gearlever.mechanism.Mechanism` (an in-line slider-crank with its
 masses, loads and gravity) and solved by
 :meth:`~gearlever.mechanism.Mechanism.inverse_dynamics`; each turning moment is
@@ -338,12 +338,13 @@ def epicyclic_problem(example: str) -> dict[str, float]:
     *Theory of Machines*, chapter 13 (torques in epicyclic gear trains).
     """
     from gearlever.gears.networks import parse_network
+    from gearlever.gears.torques import network_torques
 
     spec = _spec("epicyclic", example)
     net = parse_network(spec["network"])
     w = float(spec["input_speed"])
     torque = float(spec["input_torque"]) if "input_torque" in spec else float(spec["power"]) / w
-    t = net.torques({spec["input"]: torque}, [spec["load"]], speeds={spec["input"]: w})
+    t = network_torques(net, {spec["input"]: torque}, [spec["load"]], speeds={spec["input"]: w})
     return {
         "holding_torque": abs(float(t.frame_reactions[spec["held"]])),
         "output_torque": abs(float(t.torques[spec["load"]])),

@@ -818,17 +818,6 @@ class Network:
         names = self.names
         return {names[j]: {names[c]: v for c, v in e.items()} for j, e in expr.items()}
 
-    def torques(self, applied, loads, speeds=None, efficiency=1):
-        """Torques that hold the train in equilibrium: see :func:`gearlever.gears.torques.network_torques`.
-
-        >>> net = parse_network("member,s,gear,20\\nmember,p,gear,30\\nconstraint,m,mesh,s,p,,1")
-        >>> net.torques({"s": 3}, ["p"]).torques["p"]
-        Fraction(9, 2)
-        """
-        from gearlever.gears.torques import network_torques
-
-        return network_torques(self, applied, loads, speeds=speeds, efficiency=efficiency)
-
     def solve_float(self, inputs: Sequence[str], rtol: float = 1e-10) -> np.ndarray:
         """Float path: matrix (members x inputs) of d rot_member / d rot_input by a sparse LU.
 

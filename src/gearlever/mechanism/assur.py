@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearlever.mechanism._constants import COARSE_STEP
 from gearlever.mechanism.model import GROUND, MechanismModel
 
 __all__ = ["DYAD_MARGIN", "DyadPlan", "plan_dyads"]
@@ -278,8 +279,6 @@ class DyadPlan:
         steps of at most ``COARSE_STEP``, so that they equal the ones found
         by continuation.
         """
-        from gearlever.mechanism.solve import COARSE_STEP
-
         ks = self.ks
         Nn = q.shape[1]
         dq = q - ks.q0[:, None]

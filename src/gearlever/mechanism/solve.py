@@ -34,14 +34,13 @@ import numpy as np
 from gearlever._result import Result
 from gearlever._validate import finite_array
 from gearlever.errors import GearleverError, GearleverWarning
+from gearlever.mechanism._constants import COARSE_STEP
 from gearlever.mechanism.constraints import mesh_coefficients
 from gearlever.mechanism.model import GROUND, MechanismModel
 from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independent_rows, numeric_rank
 
 __all__ = ["KinematicSystem", "MechanismResult", "input_name", "solve"]
 
-#: Largest step (rad, or length / model length scale) of the sequential continuation.
-COARSE_STEP = 0.25
 #: Hadamard-ratio threshold below which the reduced Jacobian counts as singular (a dead point).
 SINGULAR_TOL = 1e-9
 

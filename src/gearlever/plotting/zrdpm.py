@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from gearlever import zrdpm
 from gearlever.plotting._common import axes, plt
-from gearlever.zrdpm import model as zrdpm
 
 #: Angles (degrees) at which curves are drawn: one point per degree.
 _PHI_DEG = np.linspace(0.0, 360.0, 361)

@@ -6,16 +6,14 @@ from pathlib import Path
 
 import pandas as pd
 
+from gearlever._frame import frame
 from gearlever._io import write_text_atomic
+
+__all__ = ["FLOAT_FORMAT", "frame", "write_csv"]
 
 #: Significant digits written for floats: enough for a round trip of the
 #: values to ~1e-12 relative, and byte-identical on every run.
 FLOAT_FORMAT = "%.12g"
-
-
-def frame(columns: dict) -> pd.DataFrame:
-    """A DataFrame of ``columns`` (name -> 1-D array), in the order given."""
-    return pd.DataFrame(columns)
 
 
 def write_csv(df: pd.DataFrame, path, float_format: str = FLOAT_FORMAT) -> Path:

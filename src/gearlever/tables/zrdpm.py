@@ -7,8 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from gearlever import zrdpm
 from gearlever.mechanism.mobility import mobility, published_mobility_cases, redundant_constraints
-from gearlever.zrdpm import model as zrdpm
 
 #: Decimals written, each at the precision its data supports, so that the CSVs
 #: are byte-identical on any machine (the published tables carry 2-3 decimals):

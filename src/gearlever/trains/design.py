@@ -12,7 +12,6 @@ so that their greatest common divisor is 1 or as small as possible
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 from fractions import Fraction
@@ -23,6 +22,7 @@ from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.trains._caps import MAX_KEEP, MAX_PAIRS, MAX_TEETH, capped_int, teeth_range
 from gearlever.trains.continued import approximants, neighbours, parse_ratio
+from gearlever.trains.pairing import best_pairing
 from gearlever.trains.rules import PairCountBounds, min_teeth_for_form, pair_count_bounds, rules
 
 __all__ = [
@@ -109,55 +109,6 @@ def _factor_rec(n, k, lo, hi, prefix, out, budget) -> None:
     for d in range(lo, top + 1):
         if n % d == 0 and d**k <= n:
             _factor_rec(n // d, k - 1, d, hi, prefix + (d,), out, budget)
-
-
-def best_pairing(drivers, followers) -> tuple[tuple[int, int], ...]:
-    """Pair each driver with a follower so that the teeth wear evenly.
-
-    Parameters
-    ----------
-    drivers, followers : sequence of int
-        Same length K.
-
-    Returns
-    -------
-    tuple of (driver, follower)
-        For K <= 6, the pairing with the least largest gcd, then the least
-        sum of gcds, then the per-pair ratios closest to one another (all K!
-        pairings tried).  For K > 6, an optimal assignment (scipy) for the
-        cost sum(gcd**3), which puts the largest gcd first.
-
-    Notes
-    -----
-    The classic text on trains of wheelwork, page marked (41) (referring to
-    its section 44): the teeth wear evenly when the greatest common divisor of
-    the two tooth numbers of each pair is 1, or else as small as it can be.
-
-    Examples
-    --------
-    >>> best_pairing([30, 28], [15, 14])
-    ((30, 14), (28, 15))
-    """
-    drivers = tuple(int(d) for d in drivers)
-    followers = tuple(int(f) for f in followers)
-    if len(drivers) != len(followers):
-        raise GearleverError(f"followers must have as many entries as drivers ({len(drivers)}), got {len(followers)}")
-    k = len(drivers)
-    g = [[math.gcd(d, f) for f in followers] for d in drivers]
-    if k > 6:
-        from scipy.optimize import linear_sum_assignment
-
-        rows, cols = linear_sum_assignment(np.array(g, dtype=float) ** 3)
-        return tuple((drivers[r], followers[c]) for r, c in zip(rows, cols))
-    lg = [[math.log(d / f) for f in followers] for d in drivers]
-    best_key, best = None, None
-    for perm in itertools.permutations(range(k)):
-        gcds = [g[i][j] for i, j in enumerate(perm)]
-        logs = [lg[i][j] for i, j in enumerate(perm)]
-        key = (max(gcds), sum(gcds), max(logs) - min(logs), tuple(followers[j] for j in perm))
-        if best_key is None or key < best_key:
-            best_key, best = key, key[3]
-    return tuple(zip(drivers, best))
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,8 @@ section-2 formulas (Tables I and II are eq. 16 with constant analogues):
 * the **tables model** (:func:`tables_outputs`): eq. 16/35 evaluated with
   *constant* ``l u**2`` and ``l e`` and the lever at ``phi + theta0``; this is
   what Tables I and II were computed with.  Its constants are identified from
-  the published values by least squares (:func:`identify_tables_constants`).
+  the published values by least squares
+  (:func:`~gearlever.zrdpm.published.identify_tables_constants`).
 
 Angles are radians (``_deg`` only at the command line and in table
 columns; ``lever_angle0_deg`` is kept as an alias keyword).  Lengths in cm.  All
@@ -271,39 +272,17 @@ def tables_outputs(
     return ContourKinematics(u_c, u_g, e_c, e_g, a_x, a_y)
 
 
-# the names of the other modules, for code that imports them from here
-from gearlever.zrdpm.published import (  # noqa: E402
-    PublishedTable,
-    SelfConsistentFit,
-    TablesFit,
-    fit_self_consistent,
-    gear_acceleration_from_points,
-    identify_tables_constants,
-    published_table,
-    recover_lever_analogues,
-    recover_tables_constants,
-)
-
 __all__ = [
     "CONTOUR_OF_TABLE",
     "PAPER_NAMES",
     "TABLE_OF_CONTOUR",
     "ContourKinematics",
-    "PublishedTable",
-    "SelfConsistentFit",
     "TablesConstants",
-    "TablesFit",
     "ZrdpmContour",
     "analogues",
     "contour1",
     "contour2",
-    "fit_self_consistent",
-    "gear_acceleration_from_points",
-    "identify_tables_constants",
     "lever_angle",
-    "published_table",
-    "recover_lever_analogues",
-    "recover_tables_constants",
     "tables_outputs",
     "tables_point_accelerations",
     "x_sign",
