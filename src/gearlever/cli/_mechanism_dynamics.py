@@ -51,6 +51,7 @@ import numpy as np
 
 from gearlever._format import DIGITS_FORCES, DIGITS_SIMULATE
 from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress, table_text
+from gearlever.cli._shared import MAX_POINTS, load_model
 from gearlever.errors import GearleverError
 
 #: Largest number of input turns ``simulate`` integrates (``--time`` x fastest ``--rpm`` / 60); one input
@@ -61,8 +62,6 @@ _POWER = {"N_m": "W", "N_mm": "mW", "N_km": "kW"}
 
 
 def register_dynamics(ms) -> None:
-    from gearlever.cli.mechanism import MAX_POINTS
-
     f = ms.add_parser("forces", help="input torques and pin, guide and tooth forces at constant input speeds")
     f.add_argument("model", help="model file (TOML) with [masses], [[loads]], gravity")
     f.add_argument(
@@ -191,9 +190,7 @@ def _efficiency(args):
 
 
 def _forces(args) -> int:
-    from gearlever.cli.mechanism import _load
-
-    mech = _load(args.model)
+    mech = load_model(args.model)
     names = _names(mech)
     w = _speeds(mech, args, required=False)
     analogue = w is None
@@ -267,9 +264,7 @@ def _model_element(exc, model: str) -> GearleverError:
 
 
 def _simulate(args) -> int:
-    from gearlever.cli.mechanism import _load
-
-    mech = _load(args.model)
+    mech = load_model(args.model)
     names = _names(mech)
     w = _speeds(mech, args, required=True)
     turns = args.time * float(np.max(np.abs([w[i] for i, (_, r) in enumerate(names) if r] or [0.0]))) / (2 * math.pi)

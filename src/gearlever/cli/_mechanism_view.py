@@ -22,30 +22,10 @@ a page of at most :data:`~gearlever.plotting.viewer.MAX_PAGE_BYTES` bytes, at mo
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
-from gearlever.cli._common import capped_int, emit, named_values
+from gearlever.cli._common import emit, named_values
+from gearlever.cli._shared import add_page_arguments, cam_page, check_page_out, load_model
 from gearlever.errors import GearleverError
-
-#: Largest ``--frames`` (same as :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`, kept here so ``--help`` stays fast).
-MAX_VIEW_FRAMES = 3600
-
-
-def add_page_arguments(parser, turning: str) -> None:
-    """``--out PAGE.html`` and ``--frames N`` (over one turn of ``turning``) of a command that writes a page."""
-    parser.add_argument("--out", required=True, help="output page (.html)")
-    parser.add_argument(
-        "--frames",
-        type=capped_int(MAX_VIEW_FRAMES, low=2),
-        default=360,
-        help=f"frames over one turn of {turning} (default 360, at most {MAX_VIEW_FRAMES})",
-    )
-
-
-def check_page_out(out: str) -> None:
-    """Refuse an ``--out`` that is not an ``.html`` (or ``.htm``) file name."""
-    if Path(out).suffix.lower() not in (".html", ".htm"):
-        raise GearleverError(f"--out must end with .html, got {out!r}")
 
 
 def register_view(ms) -> None:
@@ -69,14 +49,11 @@ def _view(args) -> int:
     if _is_cam_file(args.model):
         if args.rpm or args.input:
             raise GearleverError(f"{'--rpm' if args.rpm else '--input'} does not apply to a cam file ({args.model})")
-        from gearlever.cli.cam import cam_page
-
         emit(cam_page(args.model, args.frames), args.out)
         return 0
-    from gearlever.cli.mechanism import _load
     from gearlever.plotting.viewer import viewer_html
 
-    mech = _load(args.model)
+    mech = load_model(args.model)
     specs = mech.model.inputs
     labels = [s.label for s in specs]
     rpm = named_values(args.rpm, "--rpm", labels) if args.rpm else None

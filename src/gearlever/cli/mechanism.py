@@ -47,10 +47,10 @@ from pathlib import Path
 import numpy as np
 
 from gearlever.cli._common import check_input_span, emit, finite_float, named_values, positive_int, table_text, to_json
+from gearlever.cli._shared import MAX_POINTS
+from gearlever.cli._shared import load_model as _load
 from gearlever.errors import GearleverError
 
-#: Largest ``--points`` accepted (rows of a sweep).
-MAX_POINTS = 100_000
 #: Rows of a sweep when ``--points`` is not given (analyze, draw, the viewer).
 DEFAULT_POINTS = 360
 
@@ -310,12 +310,6 @@ def input_labels(mech) -> list:
     from gearlever.mechanism.solve import input_name
 
     return [input_name(spec) for spec in mech.model.inputs]
-
-
-def _load(path):
-    from gearlever.mechanism import Mechanism
-
-    return Mechanism.load(path)
 
 
 def _structure(args) -> int:

@@ -1,0 +1,63 @@
+"""Pieces shared by the ``mechanism`` and ``cam`` commands: the model loader, the page arguments, the cam page.
+
+``gearlever mechanism`` (with its ``forces``/``simulate`` and ``view``
+sub-commands, :mod:`~gearlever.cli._mechanism_dynamics` and
+:mod:`~gearlever.cli._mechanism_view`) and ``gearlever cam`` all import these
+from here, so that no command module imports another: the command modules
+sit above this one, which imports only :mod:`gearlever.cli._common`, the
+error family and (lazily, when called) the library.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from gearlever.cli._common import capped_int
+from gearlever.errors import GearleverError
+
+#: Largest ``--points`` accepted (rows of a sweep).
+MAX_POINTS = 100_000
+#: Largest ``--frames`` (same as :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`, kept here so ``--help`` stays fast).
+MAX_VIEW_FRAMES = 3600
+
+
+def load_model(path):
+    """The :class:`~gearlever.mechanism.Mechanism` of a model file (TOML, or a linkage ``.links.json``)."""
+    from gearlever.mechanism import Mechanism
+
+    return Mechanism.load(path)
+
+
+def add_page_arguments(parser, turning: str) -> None:
+    """``--out PAGE.html`` and ``--frames N`` (over one turn of ``turning``) of a command that writes a page."""
+    parser.add_argument("--out", required=True, help="output page (.html)")
+    parser.add_argument(
+        "--frames",
+        type=capped_int(MAX_VIEW_FRAMES, low=2),
+        default=360,
+        help=f"frames over one turn of {turning} (default 360, at most {MAX_VIEW_FRAMES})",
+    )
+
+
+def check_page_out(out: str) -> None:
+    """Refuse an ``--out`` that is not an ``.html`` (or ``.htm``) file name."""
+    if Path(out).suffix.lower() not in (".html", ".htm"):
+        raise GearleverError(f"--out must end with .html, got {out!r}")
+
+
+def cam_page(path: str, frames: int) -> str:
+    """The page of ``cam view`` (and of ``mechanism view`` given a CAM.toml): the design at a multiple of ``frames``."""
+    import tomllib
+
+    from gearlever._io import read_text_capped
+    from gearlever.cams import load_cam
+    from gearlever.plotting.cam_viewer import cam_viewer_html
+
+    try:
+        stored = tomllib.loads(read_text_capped(path, "CAM")).get("cam", {}).get("points", 3600)
+    except tomllib.TOMLDecodeError:
+        stored = 3600  # load_cam names the error
+    stored = stored if isinstance(stored, int) and not isinstance(stored, bool) and stored > 0 else 3600
+    points = frames * max(1, -(-min(stored, 36_000) // frames))
+    cam = load_cam(path, points=points)
+    return cam_viewer_html(cam, frames=frames, name=Path(path).stem)
