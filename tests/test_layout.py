@@ -1,6 +1,6 @@
 """The house rules of the package layout: subpackages by concept, each saying what it holds
-and what it may import; old module paths kept as aliases of the one new home; provenance
-cited as a reader can find it."""
+and what it may import; provenance cited as a reader can find it.  (The 0.1 module paths
+are gone: see CHANGELOG.md.)"""
 
 import importlib
 import pathlib
@@ -9,7 +9,6 @@ import re
 import pytest
 
 import gearlever
-from gearlever._aliases import ALIASES
 
 SRC = pathlib.Path(gearlever.__file__).parent
 
@@ -41,11 +40,6 @@ def test_no_top_level_module_holds_a_concept_of_its_own():
     """Only private helpers and the error family sit beside the subpackages."""
     top = sorted(p.stem for p in SRC.glob("*.py"))
     assert all(t.startswith("_") or t == "errors" for t in top), top
-
-
-@pytest.mark.parametrize("old", sorted(ALIASES))
-def test_old_module_paths_give_the_new_module_itself(old):
-    assert importlib.import_module(old) is importlib.import_module(ALIASES[old])
 
 
 def test_py_typed_marker_ships_with_the_package():

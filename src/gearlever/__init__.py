@@ -35,7 +35,6 @@ is the same function, kept for existing code: a mechanism's motion is
 
 __version__ = "0.1.0"
 
-from gearlever import _aliases  # noqa: E402
 from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
@@ -89,5 +88,3 @@ __all__ = [
     "HookeJoint",
     "flywheel",
 ]
-
-_aliases.install()

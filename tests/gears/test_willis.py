@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 import gearlever
 from gearlever.gears import willis as df
-from gearlever.loops import vector_loop as vl
+from gearlever.loops import closed as vl
 from tests._zrdpm_fd import assert_rel, d1
 
 ratios = st.floats(0.05, 20.0)

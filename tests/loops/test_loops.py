@@ -16,6 +16,7 @@ from gearlever.loops import (
     LoopSystem,
     Unknown,
     Vector,
+    closed,
     double_slider,
     double_slider_system,
     fourbar,
@@ -27,7 +28,6 @@ from gearlever.loops import (
     slider_crank,
     slider_crank_system,
     transmission_angle,
-    vector_loop,
 )
 
 TURN = np.linspace(0.0, 2 * np.pi, 721)
@@ -385,10 +385,10 @@ def test_inverted_slider_crank_closed_form_matches_newton_and_finite_differences
     assert t.valid.tolist() == [False, True]
 
 
-def test_double_slider_closed_form_equals_vector_loop_and_engine_newton():
+def test_double_slider_closed_form_equals_closed_and_engine_newton():
     phi = np.linspace(0, 2 * np.pi, 73)
     s = double_slider(21.0, 2.5, phi)
-    ref = vector_loop.double_slider(21.0, 2.5, phi)
+    ref = closed.double_slider_projections(21.0, 2.5, phi)
     assert np.array_equal(s["x_B"], ref[0]) and np.array_equal(s.d2("y_A"), ref[5])
     system = double_slider_system(21.0, 2.5)
     assert np.abs(system.residual(phi, s.x)).max() < 1e-12

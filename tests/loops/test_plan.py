@@ -14,6 +14,7 @@ from PIL import Image
 
 from gearlever.loops import (
     acceleration_plan,
+    closed,
     double_slider,
     double_slider_system,
     fourbar,
@@ -22,7 +23,6 @@ from gearlever.loops import (
     inverted_slider_crank_system,
     slider_crank,
     slider_crank_system,
-    vector_loop,
     velocity_plan,
 )
 
@@ -91,11 +91,11 @@ def test_zrdpm_plan_is_paper_eq_19_20_with_eq_16(phi_deg):
     }
     # a_B along x and a_A along y (their guides)
     assert abs(terms[("B", "s")].imag) < 1e-12 and abs(terms[("A", "s")].real) < 1e-12
-    xb, ya, dxb, dya, d2xb, d2ya = vector_loop.double_slider(l, 0.0, phi)
+    xb, ya, dxb, dya, d2xb, d2ya = closed.double_slider_projections(l, 0.0, phi)
     assert abs(terms[("B", "s")].real - (d2xb * w**2 + dxb * al)) < 1e-12
     assert abs(terms[("A", "s")].imag - (d2ya * w**2 + dya * al)) < 1e-12
     # relative acceleration of B about A (link BA at -phi, u = -1, e = -alpha/omega^2): eq. 16
-    ax, ay = vector_loop.point_acceleration(l, -phi, -1.0, -al / w**2)
+    ax, ay = closed.point_acceleration(l, -phi, -1.0, -al / w**2)
     rel = terms[("BA", "n")] + terms[("BA", "t")]
     assert abs(rel - complex(ax, ay) * w**2) < 1e-11
     # eq. 19: a_B = a_A + a_BA^n + a_BA^t

@@ -3,7 +3,7 @@
 gearlever.loops.zrdpm_contour_system writes contour 1 (or 2) as four loops (the
 double slider, the sliders turning the lever, the lever's point, the Willis
 relation) and the batched Newton engine solves them; its analogues are compared
-with the closed forms of gearlever.loops.vector_loop (paper eqs. 6-7, 16) and of
+with the closed forms of gearlever.loops.closed (paper eqs. 6-7, 16) and of
 gearlever.zrdpm (eqs. 9, 11, 14, 16) when that module is present.
 """
 
@@ -14,15 +14,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gearlever.loops import double_slider, double_slider_system, vector_loop, zrdpm_contour
+from gearlever.loops import closed, double_slider, double_slider_system, zrdpm_contour
 
 PHI = np.linspace(0.0, 2 * np.pi, 145)
 
 
-def test_engine_double_slider_equals_vector_loop_closed_form():
+def test_engine_double_slider_equals_closed_closed_form():
     system = double_slider_system(21.0, 3.0)
     sol = system.solve(PHI, {"x_B": 20.0, "y_A": 2.0})  # Newton, not the closed form
-    ref = vector_loop.double_slider(21.0, 3.0, PHI)
+    ref = closed.double_slider_projections(21.0, 3.0, PHI)
     assert sol.valid.all()
     for k, name in enumerate(("x_B", "y_A")):
         assert np.allclose(sol[name], ref[k], atol=1e-12)
@@ -49,14 +49,14 @@ def test_engine_contour_matches_eq_9_14_16_closed_forms(l, r_a, r_b, th0, ratio,
     tol = 1e-11 * (1 + c)  # rounding grows with the lever's gain c
     assert np.allclose(sol.d1("theta1"), u, rtol=1e-10, atol=tol)
     assert np.allclose(sol.d2("theta1"), e, rtol=1e-10, atol=tol)
-    ax, ay = vector_loop.point_acceleration(l, sol["theta1"], u, e)  # eq. 16
+    ax, ay = closed.point_acceleration(l, sol["theta1"], u, e)  # eq. 16
     assert np.allclose(sol.d2("p_x"), ax, rtol=1e-10, atol=tol * l * (1 + c))
     assert np.allclose(sol.d2("p_y"), ay, rtol=1e-10, atol=tol * l * (1 + c))
     i = -ratio if mesh == "external" else ratio
     assert np.allclose(sol.d1("theta8"), (1 - i) * u + i, rtol=1e-10, atol=tol * (1 + ratio))  # eq. 11
     assert np.allclose(sol.d2("theta8"), (1 - i) * e, rtol=1e-10, atol=tol * (1 + ratio))  # eq. 14
     # the recovery without eq. 17's division (both projections) returns the engine's e
-    u2, e_back = vector_loop.recover_analogues(l, sol["theta1"], sol.d2("p_x"), sol.d2("p_y"))
+    u2, e_back = closed.recover_analogues(l, sol["theta1"], sol.d2("p_x"), sol.d2("p_y"))
     assert np.allclose(e_back, e, atol=10 * tol * (1 + c)) and np.allclose(u2, u * u, atol=10 * tol * (1 + c))
 
 

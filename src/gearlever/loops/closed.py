@@ -3,8 +3,7 @@
 The one home of the ZRDPM contour's closed forms (paper eqs. 6-9, 16-17):
 :func:`double_slider_projections`, :func:`slider_lever`,
 :func:`point_acceleration`, :func:`recover_analogues`; :func:`double_slider`,
-:func:`zrdpm_contour` and :mod:`gearlever.zrdpm` use them
-(:mod:`gearlever.loops.vector_loop` only re-exports them).  Derivatives are
+:func:`zrdpm_contour` and :mod:`gearlever.zrdpm` use them.  Derivatives are
 *analogues*: derivatives with respect to the input angle ``phi``.
 
 Each mechanism comes as a :class:`~gearlever.loops.engine.LoopSystem` (the

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gearlever.loops import vector_loop as vl
+from gearlever.loops import closed as vl
 from tests._zrdpm_fd import assert_rel, d1, d2
 
 angles = st.lists(st.floats(-2 * math.pi, 2 * math.pi), min_size=1, max_size=20).map(np.array)
@@ -17,11 +17,11 @@ lengths = st.floats(0.1, 50.0)
 @settings(max_examples=40, deadline=None)
 @given(l=lengths, r=st.floats(-10, 10), phi=angles)
 def test_double_slider_analogues_are_derivatives_of_the_projections(l, r, phi):
-    x, y, dx, dy, d2x, d2y = vl.double_slider(l, r, phi)
-    assert_rel(d1(lambda p: vl.double_slider(l, r, p)[0], phi), dx, l)
-    assert_rel(d1(lambda p: vl.double_slider(l, r, p)[1], phi), dy, l)
-    assert_rel(d1(lambda p: vl.double_slider(l, r, p)[2], phi), d2x, l)
-    assert_rel(d1(lambda p: vl.double_slider(l, r, p)[3], phi), d2y, l)
+    x, y, dx, dy, d2x, d2y = vl.double_slider_projections(l, r, phi)
+    assert_rel(d1(lambda p: vl.double_slider_projections(l, r, p)[0], phi), dx, l)
+    assert_rel(d1(lambda p: vl.double_slider_projections(l, r, p)[1], phi), dy, l)
+    assert_rel(d1(lambda p: vl.double_slider_projections(l, r, p)[2], phi), d2x, l)
+    assert_rel(d1(lambda p: vl.double_slider_projections(l, r, p)[3], phi), d2y, l)
 
 
 @settings(max_examples=40, deadline=None)
@@ -32,7 +32,7 @@ def test_slider_lever_analogues_are_derivatives_and_follow_eq8(l, ra, rb, phi):
     assert_rel(d1(lambda p: vl.slider_lever(l, ra, rb, p)[0], phi), u, c)
     assert_rel(d1(lambda p: vl.slider_lever(l, ra, rb, p)[1], phi), e, c)
     # eq. 8: omega_1 = (V_A - V_B) / (rA + rB) with the slider speeds of eq. 7
-    _, _, dx_b, dy_a, _, _ = vl.double_slider(l, 0.0, phi)
+    _, _, dx_b, dy_a, _, _ = vl.double_slider_projections(l, 0.0, phi)
     np.testing.assert_allclose(u, (dy_a - dx_b) / (ra + rb), rtol=1e-12, atol=1e-12)
 
 
@@ -74,15 +74,15 @@ def test_recover_analogues_is_finite_at_0_and_180_degrees():
 
 def test_outputs_keep_the_shape_of_phi():
     phi = np.zeros((3, 4))
-    assert all(a.shape == (3, 4) for a in vl.double_slider(1.0, 0.0, phi))
+    assert all(a.shape == (3, 4) for a in vl.double_slider_projections(1.0, 0.0, phi))
     assert all(a.shape == (3, 4) for a in vl.slider_lever(1.0, 1.0, 1.0, phi))
 
 
 @pytest.mark.parametrize(
     "call, name",
     [
-        (lambda: vl.double_slider(0.0, 0.0, [0.0]), "l"),
-        (lambda: vl.double_slider(1.0, float("nan"), [0.0]), "r"),
+        (lambda: vl.double_slider_projections(0.0, 0.0, [0.0]), "l"),
+        (lambda: vl.double_slider_projections(1.0, float("nan"), [0.0]), "r"),
         (lambda: vl.point_acceleration(-1.0, 0.0, 1.0, 0.0), "l"),
         (lambda: vl.recover_analogues(1.0, [float("inf")], 0.0, 0.0), "theta"),
         (lambda: vl.slider_lever(1.0, 0.0, 1.0, [0.0]), "r_a"),
