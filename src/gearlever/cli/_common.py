@@ -33,15 +33,14 @@ for every command, and what each command can add):
 from __future__ import annotations
 
 import argparse
-import contextlib
 import math
 import numbers
 import re
 import sys
-import threading
-import time
 
 from gearlever import _io
+from gearlever._format import format_number
+from gearlever._progress import PROGRESS_DELAY, TerminalProgress
 from gearlever.errors import GearleverError
 
 
@@ -286,54 +285,18 @@ def to_json(obj) -> str:
     return _io.to_json(obj, indent=2)
 
 
-#: Seconds of work before :func:`progress` starts printing.
-PROGRESS_DELAY = 2.0
-
-
-@contextlib.contextmanager
-def progress(label: str, stream=None, delay: float = PROGRESS_DELAY, interval: float = 1.0):
+def progress(label: str, stream=None, delay: float = PROGRESS_DELAY, interval: float = 1.0) -> TerminalProgress:
     """Show ``label`` and the elapsed seconds on stderr while the body runs, if it is a terminal.
 
-    Nothing is printed when the stream is not a terminal (pipes, files, tests)
-    or when the body takes less than ``delay`` seconds; the line is erased at
-    the end.  The body needs no callback: a daemon thread does the printing.
+    The renderer is :class:`gearlever._progress.TerminalProgress`: nothing is
+    printed when the stream is not a terminal (pipes, files, tests) or when the
+    body takes less than ``delay`` seconds; the line is erased at the end.  The
+    same object is the ``progress(stage, done, total)`` callback of library work.
 
     >>> with progress("simulating"):
     ...     pass
     """
-    stream = sys.stderr if stream is None else stream
-    try:
-        tty = stream.isatty()
-    except (AttributeError, ValueError):
-        tty = False
-    if not tty:
-        yield
-        return
-    done = threading.Event()
-    shown = threading.Event()
-    start = time.monotonic()
-
-    def tick():
-        if done.wait(delay):
-            return
-        while not done.is_set():
-            with contextlib.suppress(OSError, ValueError):
-                stream.write(f"\r{label} ... {time.monotonic() - start:.0f} s")
-                stream.flush()
-                shown.set()
-            done.wait(interval)
-
-    thread = threading.Thread(target=tick, name="gearlever-progress", daemon=True)
-    thread.start()
-    try:
-        yield
-    finally:
-        done.set()
-        thread.join()
-        if shown.is_set():
-            with contextlib.suppress(OSError, ValueError):
-                stream.write("\r\033[K")
-                stream.flush()
+    return TerminalProgress(label, stream, delay, interval)
 
 
 def flagged(exc: Exception, flags: dict[str, str]) -> GearleverError:
@@ -349,40 +312,6 @@ def flagged(exc: Exception, flags: dict[str, str]) -> GearleverError:
         text = flags[lead.group(0)] + text[lead.end() :]
     text = re.sub(r"\b[a-z]+(?:_[a-z]+)+\b", lambda m: flags.get(m.group(0), m.group(0)), text)
     return GearleverError(text)
-
-
-class StderrProgress:
-    """Progress of long work on one stderr line, only when stderr is a terminal."""
-
-    def __init__(self, label: str):
-        self.label = label
-        self.active = sys.stderr.isatty()
-        self.shown = False
-
-    def __call__(self, stage: str, done: int, total: int) -> None:
-        if self.active:
-            sys.stderr.write(f"\r{self.label}: {stage} {done}/{total}\033[K")
-            sys.stderr.flush()
-            self.shown = True
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\r\033[K")
-            sys.stderr.flush()
-
-
-def format_number(v, digits: int = 12) -> str:
-    """One number as CSV text: ``digits`` significant digits, ``nan``/``inf`` spelt out, never ``-0``.
-
-    >>> format_number(-0.0), format_number(float("nan")), format_number(1 / 3, 6)
-    ('0', 'nan', '0.333333')
-    """
-    v = float(v)
-    if math.isnan(v):
-        return "nan"
-    if math.isinf(v):
-        return "inf" if v > 0 else "-inf"
-    return f"{v + 0.0:.{digits}g}"  # + 0.0: no "-0"
 
 
 def _settled_column(col: list, digits: int) -> list:

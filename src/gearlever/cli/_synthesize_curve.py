@@ -21,8 +21,8 @@ either way.
 
 from __future__ import annotations
 
+from gearlever._progress import TerminalProgress
 from gearlever.cli._common import (
-    StderrProgress,
     capped_float,
     capped_int,
     check_output,
@@ -99,7 +99,7 @@ def _run(args) -> int:
         raise GearleverError(f"--time must be at least 1 second, got {args.time:g}")
     target = read_target(args.target, "TARGET")
     budget = None if args.time is not None else (args.budget or 20_000)
-    bar = StderrProgress("gearlever synthesize curve")
+    bar = TerminalProgress("gearlever synthesize curve")
     try:
         res = synthesize_curve(
             target,

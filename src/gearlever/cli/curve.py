@@ -94,12 +94,13 @@ def _score(args) -> int:
 
 
 def _library_build(args) -> int:
-    from gearlever.cli._common import StderrProgress, check_output_folder, commit_outputs
+    from gearlever._progress import TerminalProgress
+    from gearlever.cli._common import check_output_folder, commit_outputs
     from gearlever.curves.library import build_cached, library_path
 
     # refused before any work, naming the folder; made if missing (and removed again if the build fails)
     check_output_folder(library_path(args.size, args.seed).parent, "cache folder", create=True)
-    bar = StderrProgress("gearlever curve library build")
+    bar = TerminalProgress("gearlever curve library build")
     try:
         lib, path = build_cached(args.size, args.seed, progress=bar)
     finally:

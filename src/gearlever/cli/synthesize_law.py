@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import math
 
+from gearlever._progress import TerminalProgress
 from gearlever.cli._common import (
-    StderrProgress,
     capped_int,
     check_output,
     emit,
@@ -143,7 +143,7 @@ def _run(args) -> int:
         "min_transmission": "--min-transmission",
         "teeth": "--teeth",
     }
-    bar = StderrProgress("gearlever synthesize law")
+    bar = TerminalProgress("gearlever synthesize law")
     try:
         res = synthesize_law(
             law,

@@ -9,7 +9,8 @@ the library are reported with the user's flag names.
 
 from __future__ import annotations
 
-from gearlever.cli._common import StderrProgress, capped_int, emit, flagged, to_json
+from gearlever._progress import TerminalProgress
+from gearlever.cli._common import capped_int, emit, flagged, to_json
 from gearlever.errors import GearleverError
 from gearlever.trains._caps import (
     DEFAULT_LIMIT,
@@ -251,7 +252,7 @@ def _search(args) -> int:
     from gearlever.trains.search import search_best
 
     limit = MAX_LIMIT if args.all else (args.limit or DEFAULT_LISTED)
-    progress = StderrProgress("train search")
+    progress = TerminalProgress("train search")
     try:
         res = search_best(
             parse_ratio(args.ratio),

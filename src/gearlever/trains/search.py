@@ -16,12 +16,13 @@ import functools
 import itertools
 import math
 import operator
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
 
+from gearlever._progress import Progress
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.trains._caps import (
@@ -34,7 +35,7 @@ from gearlever.trains._caps import (
     teeth_range,
 )
 from gearlever.trains.continued import parse_ratio
-from gearlever.trains.design import best_pairing
+from gearlever.trains.pairing import best_pairing
 
 __all__ = [
     "DEFAULT_LIMIT",
@@ -52,9 +53,6 @@ __all__ = [
 
 #: Error measures of :func:`search_best`.
 METRICS = ("absolute", "relative")
-
-#: Progress callback: ``progress(stage, done, total)``, called between steps.
-Progress = Callable[[str, int, int], None]
 
 #: Up to this many distinct optimal products, their factorizations are counted
 #: by memoized recursion; beyond it, from whole distributions (vectorized).
@@ -312,7 +310,7 @@ class TrainSolution:
 
     @property
     def pairing(self) -> tuple[tuple[int, int], ...]:
-        """Driver-follower pairs arranged for the least gcd (:func:`~gearlever.trains.design.best_pairing`)."""
+        """Driver-follower pairs arranged for the least gcd (:func:`~gearlever.trains.pairing.best_pairing`)."""
         return best_pairing(self.drivers, self.followers)
 
     def as_dict(self) -> dict:
