@@ -46,6 +46,13 @@ __all__ = [
     "quantize",
     "quantized",
     "rounded",
+    "rounded_report",
+    "format_number",
+    "below",
+    "page_numbers",
+    "binary_grid",
+    "toml_value",
+    "toml_key",
 ]
 
 DIGITS_KINEMATICS = 12
@@ -160,3 +167,124 @@ def rounded(obj, digits: int, scale: float | None = None):
             return None
         return quantize(v, 0.0 if scale is None else scale, digits)
     return obj
+
+
+def rounded_report(rep: dict, digits: int, scales: dict) -> dict:
+    """A report rounded by :func:`rounded`: each key of ``scales`` at ``digits`` of its scale, the rest of itself.
+
+    The digits of a synthesis report: distances at the targets' size ``S``,
+    objectives (sums of squares) at ``S**2``, angles of 360 deg, so that an
+    exact fit is written 0, not its rounding noise.
+
+    >>> rounded_report({"error": 3e-13, "angle": 90.00000000001, "n": 2}, 10, {"error": 4.0})
+    {'error': 0.0, 'angle': 90.0, 'n': 2}
+    """
+    out = rounded(rep, digits)
+    for key, scale in scales.items():
+        if key in rep:
+            out[key] = rounded(rep[key], digits, scale)
+    return out
+
+
+def format_number(v, digits: int = 12) -> str:
+    """One number as CSV text: ``digits`` significant digits, ``nan``/``inf`` spelt out, never ``-0``.
+
+    >>> format_number(-0.0), format_number(float("nan")), format_number(1 / 3, 6)
+    ('0', 'nan', '0.333333')
+    """
+    v = float(v)
+    if math.isnan(v):
+        return "nan"
+    if math.isinf(v):
+        return "inf" if v > 0 else "-inf"
+    return f"{v + 0.0:.{digits}g}"  # + 0.0: no "-0"
+
+
+def below(v, scale: float, digits: int = DIGITS_DESIGN, fmt: str = ".6g") -> str:
+    """A quantized error as printed: ``below`` the last decade of ``scale`` when it is 0, else ``v`` in ``fmt``.
+
+    >>> below(0.0, 4.0), below(2.5e-6, 4.0, fmt=".3g"), below(None, 1.0)
+    ('below 1e-09', '2.5e-06', 'none')
+    """
+    if v is None:
+        return "none"
+    return f"below {decade_unit(scale, digits):g}" if v == 0 else f"{v:{fmt}}"
+
+
+def page_numbers(a, digits: int, scale: float | None = None, *, integers: bool = False) -> list:
+    """An array as a JSON-ready list for a page: ``digits`` significant digits, None for NaN, no ``-0``.
+
+    Values below ``1e-12 scale`` are rounding noise: written as 0 (no floor
+    when ``scale`` is None).  With ``integers``, whole values below 1e15 are
+    written as ints (``5`` rather than ``5.0``, shorter pages).
+
+    >>> page_numbers([1 / 3, -1e-15, float("nan"), 2.0], 4, scale=1.0, integers=True)
+    [0.3333, 0, None, 2]
+    """
+    a = np.asarray(a, dtype=float).ravel()
+    if scale is not None:
+        a = np.where(np.abs(a) < 1e-12 * scale, 0.0, a)
+    out = [float(f"{v:.{digits}g}") if math.isfinite(v) else None for v in a.tolist()]
+    if integers:
+        out = [int(v) if v is not None and v.is_integer() and abs(v) < 1e15 else v for v in out]
+    return [0 if v == 0 else v for v in out]
+
+
+def binary_grid(values, bits: int) -> list:
+    """Complex ``values`` rounded to the power-of-two grid ``2**-bits`` of the largest magnitude of a part.
+
+    A power of two keeps the rounding exact; the grid is chosen from the largest
+    value's binary exponent, which last-bit differences between machines do not
+    change (except at an exact power of two, where both sides then round alike
+    anyway).  Values are returned unchanged when all are 0 or one is not finite.
+
+    >>> binary_grid([complex(1.0, 1e-12), complex(0.5, 0.25)], 30)
+    [(1+0j), (0.5+0.25j)]
+    """
+    values = [complex(v) for v in values]
+    big = max([abs(v) for v in values] + [0.0])
+    if not big > 0 or not math.isfinite(big):
+        return values
+    grid = 2.0 ** (math.frexp(big)[1] - bits)
+
+    def r(x: float) -> float:
+        return round(x / grid) * grid + 0.0
+
+    return [complex(r(v.real), r(v.imag)) for v in values]
+
+
+def toml_value(v, digits: int = 12) -> str:
+    """One TOML value: floats at ``digits`` significant digits (``.0`` kept), ``nan``/``inf`` spelt as TOML does.
+
+    Strings are basic strings (JSON's escapes, which TOML shares), lists are
+    arrays and dicts inline tables.
+
+    >>> toml_value(90.0), toml_value(1 / 3, 6), toml_value(float("nan")), toml_value(["a", 2, True])
+    ('90.0', '0.333333', 'nan', '["a", 2, true]')
+    """
+    import json
+
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    if isinstance(v, (float, np.floating)):
+        text = format_number(v, digits)
+        return text if any(c in text for c in ".en") else text + ".0"
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(toml_value(x, digits) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{toml_key(k)} = {toml_value(x, digits)}" for k, x in v.items()) + " }"
+    raise TypeError(f"cannot write {type(v).__name__} as a TOML value")
+
+
+def toml_key(k) -> str:
+    """A TOML key: bare when it is ASCII letters, digits, ``_`` and ``-``, else quoted.
+
+    >>> toml_key("base_radius"), toml_key("a b")
+    ('base_radius', '"a b"')
+    """
+    k = str(k)
+    return k if k and k.isascii() and all(c.isalnum() or c in "_-" for c in k) else toml_value(k)

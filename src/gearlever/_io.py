@@ -732,3 +732,164 @@ def read_toml_table(path, what: str, table: str, keys, missing: str = "") -> dic
         if key not in keys:
             raise GearleverError(f"{source}: [{table}] has unknown key {key!r}{did_you_mean(key, keys)}")
     return found
+
+
+class CsvTable:
+    """The rows of a CSV file read by :func:`read_csv_table`, each with its line in the file.
+
+    Attributes
+    ----------
+    where : str
+        The file as errors name it (``PAIRS 'p.csv'``).
+    header : list of str
+        The column names (stripped), empty when the file has no header row.
+    rows : list of list of str
+        The cells of each data row, as written.
+    lines : list of int
+        The line of each data row in the file (1-based), for error messages.
+    """
+
+    def __init__(self, where: str, header: list, rows: list, lines: list):
+        self.where, self.header, self.rows, self.lines = where, header, rows, lines
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def number(self, k: int, column: int, name: str | None = None, finite: bool = True) -> float:
+        """The cell of row ``k`` in ``column`` as a (finite) float, or the one refusal naming the line and column.
+
+        With ``finite=False``, ``nan`` and ``inf`` are returned for the caller to refuse
+        (a law's samples, refused with their row among the samples).
+
+        >>> t = CsvTable("PAIRS 'p.csv'", ["x"], [["1.5"], ["abc"]], [2, 3])
+        >>> t.number(0, 0)
+        1.5
+        >>> t.number(1, 0)
+        Traceback (most recent call last):
+        ...
+        gearlever.errors.GearleverError: PAIRS 'p.csv' row 3 column x: not a number ('abc')
+        """
+        from gearlever.errors import GearleverError
+
+        row = self.rows[k]
+        name = name if name is not None else (self.header[column] if column < len(self.header) else str(column + 1))
+        cell = row[column].strip() if column < len(row) else ""
+        at = f"{self.where} row {self.lines[k]} column {name}"
+        try:
+            v = float(cell)
+        except ValueError:
+            raise GearleverError(f"{at}: not a number ({cell!r})") from None
+        if finite and not math.isfinite(v):
+            raise GearleverError(f"{at}: must be finite, got {cell!r}")
+        return v
+
+    def columns(self, names, finite: bool = True) -> dict[str, list[float]]:
+        """The named columns as lists of (finite) floats (:meth:`number` refuses a bad cell)."""
+        index = {n: self.header.index(n) for n in names}
+        return {n: [self.number(k, j, n, finite) for k in range(len(self.rows))] for n, j in index.items()}
+
+
+def read_csv_table(
+    path,
+    what: str,
+    *,
+    columns=(),
+    header: bool | None = True,
+    comments: bool = False,
+    max_rows: int | None = None,
+    cap: int = MAX_INPUT_BYTES,
+    where: str | None = None,
+) -> CsvTable:
+    """The one CSV reader of the package: a capped read, the :mod:`csv` module's quoting, one wording of refusals.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    what : str
+        What the file is to the user (``"PAIRS"``, ``"--torque-file"``): named in
+        every refusal, with the path, as ``where`` (default ``f"{what} {path!r}"``).
+    columns : sequence of str
+        Columns the header must name (refused otherwise, with the header found).
+    header : bool or None
+        True: the first row names the columns; False: there is no header row;
+        None: the first row is a header when its first cell is not a number.
+    comments : bool
+        Skip rows whose first cell starts with ``#``.  Blank rows are always skipped.
+    max_rows : int, optional
+        Most data rows (refused beyond, without reading on).
+    cap : int
+        Most bytes read (:func:`read_text_capped`).
+
+    Returns
+    -------
+    CsvTable
+
+    Raises
+    ------
+    GearleverError
+        The file missing, unreadable, too large, not UTF-8; a column missing;
+        more than ``max_rows`` rows.  Cells are checked by the caller
+        (:meth:`CsvTable.number` for numbers), every refusal naming ``where``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "pairs.csv"
+    >>> _ = p.write_text("input_deg,output_deg\\n10,20\\n\\n30,40\\n")
+    >>> t = read_csv_table(p, "PAIRS", columns=("input_deg", "output_deg"), where="PAIRS")
+    >>> t.header, t.lines, t.columns(["output_deg"])
+    (['input_deg', 'output_deg'], [2, 4], {'output_deg': [20.0, 40.0]})
+    >>> read_csv_table(p, "PAIRS", columns=("input_deg", "out"), where="PAIRS")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: PAIRS: missing column(s) out (header: input_deg,output_deg)
+    """
+    where = f"{what} {str(path)!r}" if where is None else where
+    text = read_text_capped(path, what, cap)
+    return csv_table(text, where, columns=columns, header=header, comments=comments, max_rows=max_rows)
+
+
+def csv_table(
+    text: str, where: str, *, columns=(), header: bool | None = True, comments: bool = False, max_rows=None
+) -> CsvTable:
+    """The :class:`CsvTable` of CSV ``text`` already read (package data); see :func:`read_csv_table`.
+
+    >>> csv_table("# source\\nx,y\\n1,2\\n", "data", comments=True).rows
+    [['1', '2']]
+    """
+    import csv
+    import io
+
+    from gearlever.errors import GearleverError
+
+    reader = csv.reader(io.StringIO(text))
+    rows, lines = [], []
+    head: list | None = None if header is not False else []
+    for record in reader:
+        if not any(c.strip() for c in record):
+            continue
+        if comments and record[0].lstrip().startswith("#"):
+            continue
+        if head is None:
+            is_header = True
+            if header is None:
+                try:
+                    float(record[0])
+                    is_header = False
+                except ValueError:
+                    pass
+            if is_header:
+                head = [c.strip() for c in record]
+                continue
+            head = []
+        if max_rows is not None and len(rows) >= max_rows:
+            raise GearleverError(f"{where}: more than {max_rows} rows")
+        rows.append(record)
+        lines.append(reader.line_num)
+    head = head or []
+    missing = [c for c in columns if c not in head]
+    if missing:
+        hint = did_you_mean(missing[0], head) if len(missing) == 1 else ""
+        raise GearleverError(f"{where}: missing column(s) {', '.join(missing)} (header: {','.join(head)}){hint}")
+    return CsvTable(where, head, rows, lines)

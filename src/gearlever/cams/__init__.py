@@ -4,14 +4,29 @@ Holds the follower kinds (:mod:`~gearlever.cams.followers`, one module per
 kind behind the registry ``FOLLOWERS``: translating and oscillating, roller
 and flat-faced) and the design (:mod:`~gearlever.cams.design`: the cam for a
 :class:`~gearlever.laws.MotionLaw`, batched over the cam angle, and
-base-circle sizing) and reading a CAM.toml again (:mod:`~gearlever.cams.camfile`).
+base-circle sizing), CAM.toml written and read again (:mod:`~gearlever.cams.camfile`) and
+the profile exported as CSV, SVG or DXF (:mod:`~gearlever.cams.export`, behind the registry ``EXPORTS``).
 
-Pure numeric core: may import numpy, the standard library, gearlever.laws,
-gearlever.errors, gearlever._result and gearlever._io (to read CAM.toml); never pandas or matplotlib.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, the standard library, ezdxf
+(lazily, for a DXF) and gearlever's ``_format``, ``_io``, ``_progress``,
+``_result``, ``_validate``, ``data``, ``errors``, ``laws``; never pandas or
+matplotlib.
 """
 
-from gearlever.cams.camfile import load_cam
+from gearlever.cams.camfile import cam_toml, load_cam
 from gearlever.cams.design import CamDesign, design_cam, size_base_radius
+from gearlever.cams.export import EXPORTS, export_profile
 from gearlever.cams.followers import FOLLOWERS, FollowerParams
 
-__all__ = ["FOLLOWERS", "CamDesign", "FollowerParams", "design_cam", "load_cam", "size_base_radius"]
+__all__ = [
+    "EXPORTS",
+    "FOLLOWERS",
+    "CamDesign",
+    "FollowerParams",
+    "cam_toml",
+    "design_cam",
+    "export_profile",
+    "load_cam",
+    "size_base_radius",
+]

@@ -1,6 +1,8 @@
-"""Reading a CAM.toml written by ``gearlever cam design``: the design again from its dimensions and law.
+"""CAM.toml, both ways: :func:`cam_toml` writes a design's dimensions, law and report; :func:`load_cam` reads it.
 
-Imports the standard library, gearlever._io, gearlever.laws, gearlever.errors and gearlever.cams.design.
+Reading designs the cam again from its dimensions and law.  Imports the
+standard library, gearlever._io, gearlever._format, gearlever.laws,
+gearlever.errors and gearlever.cams.design.
 """
 
 from __future__ import annotations
@@ -8,10 +10,79 @@ from __future__ import annotations
 from gearlever.cams.design import MAX_POINTS, CamDesign, design_cam
 from gearlever.errors import GearleverError
 
-__all__ = ["load_cam"]
+__all__ = ["CAM_DIGITS", "cam_toml", "load_cam"]
 
 #: Keys of the ``[cam]`` table.
 CAM_KEYS = ("follower", "units", "base_radius", "roller_radius", "offset", "arm", "pivot_distance", "points")
+#: Significant digits of the numbers of a CAM.toml (and of ``gearlever cam design``'s report).
+CAM_DIGITS = 12
+
+
+def _table(name: str, d: dict) -> list[str]:
+    from gearlever._format import toml_value
+
+    return [f"[{name}]"] + [f"{k} = {toml_value(v, CAM_DIGITS)}" for k, v in d.items() if v is not None]
+
+
+def cam_toml(design: CamDesign, law_table: dict, report: dict, comment: str = "") -> str:
+    """Text of a CAM.toml: ``[cam]`` dimensions, the ``[law]`` (so the file reads as a LAW.toml too), ``[report]``.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam (its follower, units, dimensions and number of cam angles).
+    law_table : dict
+        The law as a TOML table (:meth:`gearlever.laws.MotionLaw.to_dict`),
+        ``segment`` written as ``[[law.segment]]``.
+    report : dict
+        Values of ``[report]``: the numbers, bools and strings of it (finite
+        numbers only, at :data:`CAM_DIGITS` digits); lists are left to the
+        JSON report.
+    comment : str
+        Lines written first as ``#`` comments.
+
+    Returns
+    -------
+    str
+        TOML text that :func:`load_cam` reads back.
+
+    Examples
+    --------
+    >>> import tomllib
+    >>> from gearlever.cams import design_cam
+    >>> from gearlever.laws import law_from_segments
+    >>> law = law_from_segments("displacement", "mm", [{"to": 180, "motion": "cycloidal", "rise": 10},
+    ...     {"to": 360, "motion": "cycloidal", "rise": -10}])
+    >>> cam = design_cam(law, "translating-flat", base_radius=30.0, points=720)
+    >>> text = cam_toml(cam, law.to_dict(), {"undercut": False}, "a cam")
+    >>> d = tomllib.loads(text)
+    >>> d["cam"]["base_radius"], d["cam"]["points"], d["report"]["undercut"]
+    (30.0, 720, False)
+    """
+    import math
+
+    from gearlever._format import rounded, toml_value
+
+    cam = {
+        "follower": design.follower,
+        "units": design.units,
+        "base_radius": design.base_radius,
+        "roller_radius": design.roller_radius,
+        "offset": design.offset,
+        "arm": design.arm,
+        "pivot_distance": design.pivot_distance,
+        "points": int(design.theta.size),
+    }
+    cam = rounded(cam, CAM_DIGITS)  # NaN (a dimension the follower has not) as None: left out
+    lines = [f"# {c}" for c in comment.splitlines()] + [""] + _table("cam", cam) + [""]
+    segs = law_table.get("segment")
+    lines += _table("law", {k: v for k, v in law_table.items() if k != "segment"})
+    for seg in segs or []:
+        lines += ["", "[[law.segment]]"] + [f"{k} = {toml_value(v, CAM_DIGITS)}" for k, v in seg.items()]
+    rep = {k: v for k, v in report.items() if isinstance(v, bool | int | float | str) and k not in cam}
+    rep = {k: v for k, v in rep.items() if not (isinstance(v, float) and not math.isfinite(v))}
+    lines += ["", *_table("report", rep)]
+    return "\n".join(lines) + "\n"
 
 
 def load_cam(path, points: int | None = None) -> CamDesign:

@@ -23,7 +23,6 @@ view CAM.toml`` does the same.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from pathlib import Path
@@ -33,19 +32,16 @@ from gearlever.cli._common import (
     check_output,
     emit,
     finite_float,
-    format_number,
     positive_float,
     to_json,
 )
-from gearlever.cli._mechanism_view import add_page_arguments, check_page_out
+from gearlever.cli._shared import add_page_arguments, cam_page, check_page_out
 from gearlever.errors import GearleverError
 
 #: Most profile points.
 MAX_POINTS = 1_000_000
 #: Most points the base-circle search evaluates per candidate radius (it tries about 130 radii).
 SIZING_POINTS = 36_000
-#: Profile file kinds by suffix.
-PROFILE_SUFFIXES = (".csv", ".svg", ".dxf")
 
 
 def register(sub) -> None:
@@ -99,126 +95,19 @@ def register(sub) -> None:
     v.set_defaults(func=_view)
 
 
-def _rounded(obj, digits: int = 12):
-    if isinstance(obj, dict):
-        return {k: _rounded(v, digits) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [_rounded(v, digits) for v in obj]
-    if isinstance(obj, float) and math.isfinite(obj):
-        return float(f"{obj:.{digits}g}")
-    return obj
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float):
-        if math.isnan(v):
-            return "nan"
-        return format_number(v) if "e" not in format_number(v) and "." in format_number(v) else repr(float(v))
-    return json.dumps(str(v))
-
-
-def _table(name: str, d: dict) -> list[str]:
-    return [f"[{name}]"] + [f"{k} = {_toml_value(v)}" for k, v in d.items() if v is not None]
-
-
-def cam_toml(design, law_table: dict, report: dict, comment: str) -> str:
-    """Text of CAM.toml: ``[cam]`` dimensions, the ``[law]`` (so the file reads as a LAW.toml too), ``[report]``."""
-    cam = {
-        "follower": design.follower,
-        "units": design.units,
-        "base_radius": design.base_radius,
-        "roller_radius": design.roller_radius,
-        "offset": design.offset,
-        "arm": design.arm,
-        "pivot_distance": design.pivot_distance,
-        "points": int(design.theta.size),
-    }
-    cam = {k: v for k, v in _rounded(cam).items() if not (isinstance(v, float) and math.isnan(v))}
-    lines = [f"# {c}" for c in comment.splitlines()] + [""] + _table("cam", cam) + [""]
-    segs = law_table.get("segment")
-    lines += _table("law", {k: v for k, v in law_table.items() if k != "segment"})
-    for seg in segs or []:
-        lines += ["", "[[law.segment]]"] + [f"{k} = {_toml_value(v)}" for k, v in seg.items()]
-    rep = {k: v for k, v in report.items() if isinstance(v, bool | int | float | str) and k not in cam}
-    rep = {k: v for k, v in rep.items() if not (isinstance(v, float) and not math.isfinite(v))}
-    lines += ["", *_table("report", rep)]
-    return "\n".join(lines) + "\n"
-
-
-def _profile_csv(design) -> str:
-    rows = ["x,y"] + [f"{format_number(x)},{format_number(y)}" for x, y in design.surface]
-    return "\n".join(rows) + "\n"
-
-
-def _profile_svg(design) -> str:
-    pts = design.surface
-    r = float(max(abs(pts).max(), design.base_radius)) * 1.05
-    path = " ".join(f"{format_number(x, 9)},{format_number(-y, 9)}" for x, y in pts)
-    w = format_number(2 * r, 9)
-    return (
-        '<?xml version="1.0" encoding="UTF-8"?>\n'
-        f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{format_number(-r, 9)} {format_number(-r, 9)} {w} {w}" '
-        f'width="{w}{_svg_unit(design.units)}" height="{w}{_svg_unit(design.units)}">\n'
-        f"  <title>{design.follower} cam, base radius {format_number(design.base_radius, 9)} {design.units}</title>\n"
-        f'  <polygon points="{path}" fill="none" stroke="black" stroke-width="{format_number(r / 500, 6)}"/>\n'
-        f'  <circle cx="0" cy="0" r="{format_number(r / 100, 6)}" fill="black"/>\n'
-        "</svg>\n"
-    )
-
-
-def _svg_unit(units: str) -> str:
-    return units if units in ("mm", "cm", "in") else ""
-
-
-def _fix_class_order(doc) -> None:
-    """The CLASSES section in a fixed order: ezdxf adds the classes of the entity types in use from a set,
-    whose order changes with Python's hash seed; the required ones are kept first, in ezdxf's order."""
-    from ezdxf.sections.classes import REQ_R2004, REQUIRED_CLASSES
-
-    doc.classes.add_required_classes(doc.dxfversion)
-    required = REQUIRED_CLASSES.get(doc.dxfversion, REQ_R2004)
-    items = doc.classes.classes
-    first = [k for k in items if k[0] in required]
-    rest = sorted(k for k in items if k[0] not in required)
-    doc.classes.classes = {k: items[k] for k in first + rest}
-
-
-def _write_dxf(design, path: str) -> None:
-    import ezdxf
-
-    from gearlever._io import atomic_path
-
-    units = {"mm": 4, "cm": 5, "m": 6, "in": 1, "ft": 2, "um": 13}.get(design.units, 0)
-    # ezdxf's own switch for fixed dates and GUIDs: the same bytes on every run
-    fixed = ezdxf.options.write_fixed_meta_data_for_testing
-    ezdxf.options.write_fixed_meta_data_for_testing = True
-    try:
-        doc = ezdxf.new("R2010", units=units)
-        msp = doc.modelspace()
-        pts = [(float(x), float(y)) for x, y in design.surface]
-        msp.add_lwpolyline(pts, close=True, dxfattribs={"layer": "CAM"})
-        msp.add_circle((0.0, 0.0), design.base_radius / 50, dxfattribs={"layer": "CENTRE"})
-        _fix_class_order(doc)
-        with atomic_path(path) as tmp:
-            doc.saveas(tmp)
-    finally:
-        ezdxf.options.write_fixed_meta_data_for_testing = fixed
-
-
 def _design(args) -> int:
     import numpy as np
 
+    from gearlever._format import rounded
     from gearlever.cams import FOLLOWERS, design_cam, size_base_radius
+    from gearlever.cams.camfile import CAM_DIGITS, cam_toml
+    from gearlever.cams.export import EXPORTS, export_profile
     from gearlever.laws import load_law
 
     kind = FOLLOWERS[args.follower]
     for flag, path in (("--profile", args.profile), ("--report", args.report), ("--figure", args.figure)):
         check_output(path, flag)
-    if args.profile is not None and not args.profile.lower().endswith(PROFILE_SUFFIXES):
+    if args.profile is not None and not args.profile.lower().endswith(tuple(EXPORTS)):
         raise GearleverError(f"--profile must end with .csv, .svg or .dxf, got {args.profile!r}")
     if args.figure is not None and not args.figure.lower().endswith(".png"):
         raise GearleverError(f"--figure must end with .png, got {args.figure!r}")
@@ -304,18 +193,21 @@ def _design(args) -> int:
         report[f"v_max_{unit}_per_s"] = float(np.max(np.abs(ps.v))) * scale
         report[f"a_max_{unit}_per_s2"] = float(np.max(np.abs(ps.a))) * scale
         report[f"j_max_{unit}_per_s3"] = float(np.max(np.abs(ps.j))) * scale
-    report = _rounded(report)
+    report = rounded(report, CAM_DIGITS)
     law_table = law.to_dict()
     if law_table.get("samples", 1) is None:
         src = Path(args.law).parent / _samples_name(args.law)
         law_table["samples"] = os.path.relpath(src, Path(args.out).resolve().parent)
     emit(cam_toml(cam, law_table, report, f"Written by gearlever cam design from {Path(args.law).name}"), args.out)
     if args.profile is not None:
-        suffix = args.profile.lower().rsplit(".", 1)[1]
-        if suffix == "dxf":
-            _write_dxf(cam, args.profile)
+        content = export_profile(cam, args.profile)
+        if isinstance(content, bytes):
+            from gearlever._io import atomic_path
+
+            with atomic_path(args.profile) as tmp:
+                Path(tmp).write_bytes(content)
         else:
-            emit(_profile_csv(cam) if suffix == "csv" else _profile_svg(cam), args.profile, "--profile")
+            emit(content, args.profile, "--profile")
     if args.report is not None:
         emit(to_json(report), args.report, "--report")
     if args.figure is not None:
@@ -352,24 +244,6 @@ def _samples_name(law_path: str) -> str:
     from gearlever._io import read_text_capped
 
     return tomllib.loads(read_text_capped(law_path, "LAW"))["law"]["samples"]
-
-
-def cam_page(path: str, frames: int) -> str:
-    """The page of ``cam view`` (and of ``mechanism view`` given a CAM.toml): the design at a multiple of ``frames``."""
-    import tomllib
-
-    from gearlever._io import read_text_capped
-    from gearlever.cams import load_cam
-    from gearlever.plotting.cam_viewer import cam_viewer_html
-
-    try:
-        stored = tomllib.loads(read_text_capped(path, "CAM")).get("cam", {}).get("points", 3600)
-    except tomllib.TOMLDecodeError:
-        stored = 3600  # load_cam names the error
-    stored = stored if isinstance(stored, int) and not isinstance(stored, bool) and stored > 0 else 3600
-    points = frames * max(1, -(-min(stored, 36_000) // frames))
-    cam = load_cam(path, points=points)
-    return cam_viewer_html(cam, frames=frames, name=Path(path).stem)
 
 
 def _view(args) -> int:

@@ -1,0 +1,47 @@
+"""CAM.toml both ways (gearlever.cams.camfile): what cam_toml writes, load_cam reads as the same design."""
+
+import tomllib
+
+import numpy as np
+import pytest
+
+from gearlever.cams import design_cam, load_cam
+from gearlever.cams.camfile import cam_toml
+from gearlever.laws import law_from_segments
+
+LAW = [
+    {"to": 150, "motion": "cycloidal", "rise": 20},
+    {"to": 210, "motion": "dwell"},
+    {"to": 360, "motion": "harmonic", "rise": -20},
+]
+
+
+@pytest.mark.parametrize(
+    "kind, dims",
+    [
+        ("translating-roller", {"roller_radius": 6.0, "offset": 3.0}),
+        ("translating-flat", {}),
+        ("oscillating-roller", {"roller_radius": 5.0, "arm": 60.0, "pivot_distance": 80.0}),
+    ],
+)
+def test_written_cam_reads_back_as_the_same_design(tmp_path, kind, dims):
+    law = law_from_segments(
+        "angle" if kind.startswith("oscillating") else "displacement",
+        "deg" if kind.startswith("oscillating") else "mm",
+        LAW,
+    )
+    cam = design_cam(law, kind, base_radius=40.0, points=720, **dims)
+    text = cam_toml(
+        cam, law.to_dict(), {"undercut": cam.undercut, "note": "x", "nan": float("nan"), "list": [1]}, "one\ntwo"
+    )
+    assert text.startswith("# one\n# two\n")
+    data = tomllib.loads(text)
+    assert data["report"] == {
+        "undercut": cam.undercut,
+        "note": "x",
+    }  # non-finite numbers and lists left to the JSON report
+    path = tmp_path / "cam.toml"
+    path.write_text(text)
+    back = load_cam(path)
+    assert back.follower == kind and back.theta.size == 720
+    assert np.allclose(back.surface, cam.surface, rtol=1e-11, atol=1e-11 * 40.0)
