@@ -171,3 +171,25 @@ def test_a_write_error_names_the_target_not_the_temporary(tmp_path):
     assert exc.value.errno == errno.ENOSPC and exc.value.filename == str(tmp_path / "x.txt")
     assert "cannot write" in exc.value.strerror
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_one_csv_reader_names_file_row_and_column_in_one_wording(tmp_path):
+    from gearlever._io import read_csv_table
+    from gearlever.errors import GearleverError
+
+    p = tmp_path / "t.csv"
+    p.write_text("a,b\n1,2\n\n# note\n3,x\n")
+    t = read_csv_table(p, "DATA", columns=("a", "b"), comments=True)
+    assert t.header == ["a", "b"] and t.lines == [2, 5]
+    with pytest.raises(GearleverError, match=r"^DATA '.*t\.csv' row 5 column b: not a number \('x'\)$"):
+        t.columns(["b"])
+    p.write_text("a,b\n1,inf\n")
+    with pytest.raises(GearleverError, match=r"row 2 column b: must be finite, got 'inf'"):
+        read_csv_table(p, "DATA").columns(["b"])
+    assert read_csv_table(p, "DATA").columns(["b"], finite=False) == {"b": [float("inf")]}
+    with pytest.raises(GearleverError, match=r"missing column\(s\) c \(header: a,b\)"):
+        read_csv_table(p, "DATA", columns=("a", "c"))
+    p.write_text("1,2\n3,4\n5,6\n")
+    assert read_csv_table(p, "DATA", header=None).header == []
+    with pytest.raises(GearleverError, match="more than 2 rows"):
+        read_csv_table(p, "DATA", header=False, max_rows=2)

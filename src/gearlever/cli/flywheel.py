@@ -15,11 +15,9 @@ exit 2 and one line naming the flag or the CSV row and column.
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 
-from gearlever._io import read_text_capped
+from gearlever._io import read_csv_table
 from gearlever.cli._common import capped_float, emit, flagged, positive_float, to_json
 from gearlever.errors import GearleverError
 
@@ -59,14 +57,12 @@ def read_torque_file(path: str, max_rows: int | None = None):
 
     max_rows = MAX_SAMPLES if max_rows is None else max_rows
     where = f"--torque-file {path!r}"
-    text = read_text_capped(path, "--torque-file", MAX_FILE_BYTES)
+    table = read_csv_table(path, "--torque-file", header=False, comments=True, cap=MAX_FILE_BYTES)
     rows: list[list[float]] = []
     width = None
     seen_data = False
-    for k, record in enumerate(csv.reader(io.StringIO(text)), start=1):
+    for k, record in zip(table.lines, table.rows):
         cells = [c.strip() for c in record]
-        if not any(cells) or cells[0].startswith("#"):
-            continue
         values = []
         for j, cell in enumerate(cells, start=1):
             try:

@@ -8,13 +8,13 @@ The example models (``examples/*.toml`` mechanisms, ``examples/*.csv`` gear
 networks) ship here too: :func:`list_examples` names them and
 :func:`example_path` finds one, from a source checkout or an installed wheel.
 
-Imports only the standard library and :mod:`gearlever.errors`.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import the standard library and gearlever's
+``_io`` (the one CSV reader) and ``errors``.
 """
 
 from __future__ import annotations
 
-import csv
-import io
 from importlib import resources
 
 from gearlever.data._examples import example_path, list_examples
@@ -42,5 +42,7 @@ def read_records(name: str) -> list[dict[str, str]]:
     >>> sorted(rows[0])[:3]
     ['case', 'n', 'p4']
     """
-    lines = [ln for ln in read_text(name).splitlines() if ln and not ln.startswith("#")]
-    return list(csv.DictReader(io.StringIO("\n".join(lines))))
+    from gearlever._io import csv_table
+
+    table = csv_table(read_text(name), name, comments=True)
+    return [dict(zip(table.header, row)) for row in table.rows]

@@ -27,8 +27,6 @@ or ``[law] samples = "law.csv"`` (columns input_deg, output).
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -36,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from gearlever._io import did_you_mean as _did_you_mean
-from gearlever._io import read_text_capped, read_toml_table
+from gearlever._io import read_csv_table, read_toml_table
 from gearlever._result import Result
 from gearlever._validate import finite, finite_array
 from gearlever.errors import GearleverError
@@ -539,29 +537,11 @@ def _sample_column(values, source: str, column: str) -> np.ndarray:
 
 
 def _read_samples(path: Path, source: str) -> tuple[np.ndarray, np.ndarray]:
-    text = read_text_capped(path, f"{source}: samples")
-    reader = csv.DictReader(io.StringIO(text))
-    cols = reader.fieldnames or []
-    for need in ("input_deg", "output"):
-        if need not in cols:
-            raise GearleverError(
-                f"{source}: samples {str(path)!r}: column {need!r} is missing{_did_you_mean(need, cols)}; "
-                f"found {', '.join(cols) or 'no header'}"
-            )
-    xs, ys = [], []
     where = f"{source}: samples {str(path)!r}"
-    for row_no, row in enumerate(reader, 1):
-        if len(xs) >= MAX_SAMPLES:
-            raise GearleverError(f"{where}: at most {MAX_SAMPLES:,} samples")
-        try:
-            xs.append(float(row["input_deg"]))
-            ys.append(float(row["output"]))
-        except (TypeError, ValueError):
-            raise GearleverError(
-                f"{where}: row {row_no}: input_deg and output must be numbers, got "
-                f"{row.get('input_deg')!r}, {row.get('output')!r}"
-            ) from None
-    return np.array(xs), np.array(ys)
+    cols = read_csv_table(
+        path, f"{source}: samples", columns=("input_deg", "output"), max_rows=MAX_SAMPLES, where=where
+    ).columns(("input_deg", "output"), finite=False)  # nan and inf refused with their sample row
+    return np.array(cols["input_deg"]), np.array(cols["output"])
 
 
 def load_law(path) -> MotionLaw:
