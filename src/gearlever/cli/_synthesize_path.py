@@ -29,12 +29,11 @@ while the targets are not reached, and the report says which type was best
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 
+from gearlever._format import below
+from gearlever._progress import TerminalProgress
 from gearlever.cli._common import (
-    StderrProgress,
     capped_int,
     check_output,
     emit,
@@ -114,7 +113,7 @@ def read_targets(path: str):
     """Targets (N, 2) and input angles in degrees (N,) or None from a CSV file (the CLI's reader).
 
     Every refusal names the file and its line: a value that is not a finite
-    number or is beyond :data:`gearlever.synthesis.path.MAX_TARGET_COORDINATE`,
+    number or is beyond :data:`gearlever.synthesis.path_fourbar.MAX_TARGET_COORDINATE`,
     a row with more values than the columns (a header of ``x,y`` and a row
     ``0,0,7`` would silently lose the 7), input angles that do not increase,
     and, without input angles, a target equal to the one before it (the
@@ -122,36 +121,24 @@ def read_targets(path: str):
     """
     import numpy as np
 
-    from gearlever._io import read_text_capped
-    from gearlever.synthesis.path import MAX_TARGET_COORDINATE
+    from gearlever._io import read_csv_table
+    from gearlever.synthesis.path_fourbar import MAX_TARGET_COORDINATE
 
-    text = read_text_capped(path, "POINTS")
-    reader = csv.reader(io.StringIO(text))
-    rows, lines = [], []
-    for r in reader:
-        if any(c.strip() for c in r) and not r[0].lstrip().startswith("#"):
-            rows.append(r)
-            lines.append(reader.line_num)
-    where = f"POINTS {path!r}"
-    if not rows:
+    table = read_csv_table(path, "POINTS", header=None, comments=True)
+    where = table.where
+    if not table.rows and not table.header:
         raise GearleverError(f"{where}: no target rows")
     names = ["x", "y", "input_deg"]
-    first = rows[0]
-    try:
-        float(first[0])
-        has_header = False
-    except ValueError:
-        has_header = True
-    if has_header:
-        header = [c.strip() for c in first]
+    rows, lines = table.rows, table.lines
+    if table.header:
+        header = table.header
         for need in ("x", "y"):
             if need not in header:
                 raise GearleverError(f"{where}: the header must name columns x and y, got {header}")
         cols = [header.index(n) if n in header else None for n in names]
         width = len(header)
-        rows, lines = rows[1:], lines[1:]
     else:
-        width = min(len(first), 3)
+        width = min(len(rows[0]), 3)
         cols = [0, 1, 2 if width >= 3 else None]
         header = names[:width]
     if len(rows) > MAX_TARGETS:
@@ -236,7 +223,7 @@ def _run(args) -> int:
         "kind": "--type",
         "min_transmission": "--min-transmission",
     }
-    bar = StderrProgress("gearlever synthesize path")
+    bar = TerminalProgress("gearlever synthesize path")
     try:
         res = synthesize_path(
             targets,
@@ -267,7 +254,7 @@ def _run(args) -> int:
         raise GearleverError("no buildable linkage meets the constraints: nothing was written")
     comment = (
         f"Synthesized by gearlever synthesize path ({res.kind}, seed {args.seed}, budget {args.budget}); "
-        f"objective {_small(rep['objective'], S * S)}; input at the first target {rep['input_deg'][0]:.10g} deg"
+        f"objective {below(rep['objective'], S * S)}; input at the first target {rep['input_deg'][0]:.10g} deg"
     )
     emit(model_toml(res.model(), comment), args.out)
     if args.report is not None:
@@ -281,15 +268,15 @@ def _run(args) -> int:
         save(ax.figure, args.figure)
     err = max(rep["per_target_error"]) if rep["per_target_error"] else math.nan
     tried = (
-        ", ".join(f"{k} {_small(v, S * S)}" for k, v in rep["types_tried"].items()) if rep["types_tried"] else res.kind
+        ", ".join(f"{k} {below(v, S * S)}" for k, v in rep["types_tried"].items()) if rep["types_tried"] else res.kind
     )
     mu = rep["transmission_deg"]
     emit(
         "\n".join(
             [
                 f"type             {res.kind} (tried: {tried})",
-                f"objective        {_small(rep['objective'], S * S)} (sum of squared distances to the targets)",
-                f"target error     max {_small(err, S)}",
+                f"objective        {below(rep['objective'], S * S)} (sum of squared distances to the targets)",
+                f"target error     max {below(err, S)}",
                 f"grashof          {rep['grashof']}; branch {rep['branch']}",
                 f"transmission     {mu[0]:.4g} .. {mu[1]:.4g} deg",
                 f"evaluations      {rep['evaluations']} (seed {rep['seed']})",
@@ -301,7 +288,7 @@ def _run(args) -> int:
 
 
 def _rounded(rep: dict, targets) -> dict:
-    """The report at the digits its computation determines (:mod:`gearlever._format`), the same text on any machine.
+    """The report at the digits its computation determines (:func:`gearlever._format.rounded_report`).
 
     Distances at :data:`~gearlever._format.DIGITS_DESIGN` digits of the targets' size ``S``, objectives
     (sums of squared distances) at as many of ``S**2``, angles of 360 deg, lengths of the longest link:
@@ -309,25 +296,10 @@ def _rounded(rep: dict, targets) -> dict:
     """
     import numpy as np
 
-    from gearlever._format import DIGITS_DESIGN as D
-    from gearlever._format import rounded
+    from gearlever._format import DIGITS_DESIGN, rounded_report
 
     S = float(np.hypot(*np.ptp(np.asarray(targets, dtype=float), axis=0))) or 1.0
-    out = rounded(rep, D)
-    out["objective"] = rounded(rep["objective"], D, S * S)
-    out["per_target_error"] = rounded(rep["per_target_error"], D, S)
-    out["types_tried"] = {k: rounded(v, D, S * S) for k, v in rep["types_tried"].items()}
-    for key in ("input_deg", "crank_deg_from_ground", "transmission_deg"):
-        out[key] = rounded(rep[key], D, 360.0)
     links = [abs(float(v)) for v in rep["links"].values() if isinstance(v, (int, float))]
-    out["links"] = rounded(rep["links"], D, max(links) if links else 0.0)
-    return out
-
-
-def _small(v, scale: float) -> str:
-    """A quantized distance or objective as printed: ``below`` its last decade when it is 0."""
-    from gearlever._format import DIGITS_DESIGN, decade_unit
-
-    if v is None:
-        return "none"
-    return f"below {decade_unit(scale, DIGITS_DESIGN):g}" if v == 0 else f"{v:.6g}"
+    scales = {"objective": S * S, "per_target_error": S, "types_tried": S * S, "links": max(links) if links else 0.0}
+    scales.update(dict.fromkeys(("input_deg", "crank_deg_from_ground", "transmission_deg"), 360.0))
+    return rounded_report(rep, DIGITS_DESIGN, scales)

@@ -16,14 +16,12 @@ through target points, with or without timing, searched on dask
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import sys
 import time
 import warnings
 
-from gearlever._format import DIGITS_DESIGN, decade_unit, quantize
+from gearlever._format import DIGITS_DESIGN, below, rounded
 from gearlever.cli._common import (
     FIGURE_SUFFIXES,
     capped_float,
@@ -117,29 +115,10 @@ def register(sub) -> None:
 
 def _read_csv(path: str, flag: str, columns: tuple) -> dict:
     """Numeric columns of a CSV file (header row), every error naming the file, row and column."""
-    from gearlever._io import read_text_capped
+    from gearlever._io import read_csv_table
 
-    text = read_text_capped(path, flag)
-    reader = csv.DictReader(io.StringIO(text))
-    header = [h.strip() for h in (reader.fieldnames or [])]
-    missing = [c for c in columns if c not in header]
-    if missing:
-        raise GearleverError(f"{flag} {path!r}: missing column(s) {', '.join(missing)} (header: {','.join(header)})")
-    reader.fieldnames = header
-    out = {c: [] for c in columns}
-    for i, row in enumerate(reader, start=2):
-        if i - 1 > MAX_ROWS:
-            raise GearleverError(f"{flag} {path!r}: more than {MAX_ROWS} rows")
-        for c in columns:
-            cell = (row.get(c) or "").strip()
-            try:
-                v = float(cell)
-            except ValueError:
-                raise GearleverError(f"{flag} {path!r} row {i} column {c}: not a number ({cell!r})") from None
-            if not math.isfinite(v):
-                raise GearleverError(f"{flag} {path!r} row {i} column {c}: must be finite, got {cell!r}")
-            out[c].append(v)
-    return out
+    table = read_csv_table(path, flag, columns=columns, max_rows=MAX_ROWS)
+    return table.columns(columns)
 
 
 def _check_outputs(args) -> None:
@@ -151,27 +130,12 @@ def _check_outputs(args) -> None:
         check_output_folder(args.all, "--all", create=True)
 
 
-def _r(v, digits=DIGITS_DESIGN, scale=0.0):
-    """``v`` at ``digits`` of ``scale`` (of itself when 0): :func:`gearlever._format.quantize`, None for NaN."""
-    if v is None or not math.isfinite(float(v)):
-        return None
-    return quantize(float(v), scale, digits)
-
-
-def _bound(v: float, scale: float) -> str:
-    """A quantized error as printed: ``below 1e-10`` of ``scale`` when it is zero at :data:`DIGITS_DESIGN`."""
-    if v == 0:
-        return f"below {decade_unit(scale, DIGITS_DESIGN):g}"
-    return f"{v:.3g}"
-
-
 def _function(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis.function import MAX_ANGLE, MAX_LENGTH, function_targets, synthesize_function
+    from gearlever.synthesis.function import function_targets, synthesize_function
     from gearlever.synthesis.model import model_toml
-
-    _MAX_PAIR_DEG = round(math.degrees(MAX_ANGLE), -3)  # 57000 deg, within the library's cap
+    from gearlever.synthesis.report import angle_offsets, check_pairs, function_summary
 
     _check_outputs(args)
     t0 = time.perf_counter()
@@ -185,33 +149,9 @@ def _function(args) -> int:
             if any(v is not None for v in formula[1:]):
                 raise GearleverError("--x-range/--input-range/--output-range go with --expr, not with PAIRS.csv")
             cols = _read_csv(args.pairs, "PAIRS", ("input_deg", out_col))
+            check_pairs(cols["input_deg"], cols[out_col], slider=slider, where=f"PAIRS {args.pairs!r}")
             phi = np.radians(cols["input_deg"])
             out = np.asarray(cols[out_col]) if slider else np.radians(cols[out_col])
-            if phi.size < 3:
-                raise GearleverError(
-                    f"PAIRS {args.pairs!r}: function generation needs at least 3 targets, got {phi.size}"
-                )
-            caps = (("input_deg", _MAX_PAIR_DEG), (out_col, MAX_LENGTH if slider else _MAX_PAIR_DEG))
-            for col, cap in caps:
-                big = [(i, v) for i, v in enumerate(cols[col]) if abs(v) > cap]
-                if big:
-                    i, v = big[0]
-                    raise GearleverError(
-                        f"PAIRS {args.pairs!r} row {i + 2} column {col}: must be at most {cap:g} in size, got {v:g}"
-                    )
-            if max(cols["input_deg"]) - min(cols["input_deg"]) >= 360:
-                raise GearleverError(
-                    f"PAIRS {args.pairs!r} column input_deg: the targets span "
-                    f"{max(cols['input_deg']) - min(cols['input_deg']):g} deg; a crank is back in the same pose "
-                    "after a full turn, so they must span less than 360 deg"
-                )
-            seen = {}
-            for i, v in enumerate(cols["input_deg"]):
-                if v in seen:
-                    raise GearleverError(
-                        f"PAIRS {args.pairs!r} row {i + 2} column input_deg: repeats row {seen[v] + 2} ({v!r})"
-                    )
-                seen[v] = i
             desired, targets = None, None
         else:
             for flag, v in zip(("--x-range", "--input-range", "--output-range"), formula[1:]):
@@ -242,9 +182,8 @@ def _function(args) -> int:
     checked = np.concatenate([res.generated, res.dense_generated, [res.structural_error_max]])
     if not np.all(np.isfinite(checked)):  # the engine reached every row (no defect): a gap is a bug, never written
         raise GearleverError("synthesize function: refused, the engine left outputs undefined over the range")
-    conv = (lambda v: v) if slider else math.degrees
     unit = "" if slider else "_deg"
-    offsets = _offsets(res)
+    offsets = angle_offsets(res)
     phi0 = math.degrees(res.input_angle[0])
     comment = (
         f"gearlever synthesize function ({args.kind}): "
@@ -254,56 +193,24 @@ def _function(args) -> int:
     )
     note = res.proportions()
     warn = f"{note}; {_scale_hint(res, args)}" if note else None
-    out_scale = float(np.ptp([conv(float(v)) for v in res.output])) or 1.0  # errors: at digits of the output range
-    size = max(abs(v) for v in res.lengths.values())  # lengths: at digits of the largest
-    rep = {
-        "kind": args.kind,
-        "objective": (
-            "exact through 3 precision points"
-            if res.exact
-            else f"least squares of the design equation through {res.input_angle.size} targets"
-        )
-        + (" (Freudenstein's equation)" if not slider else " (slider-crank loop equation)"),
-        "expression": args.expr,
-        "lengths": {k: _r(v, scale=size) for k, v in res.lengths.items()},
-        "link_ratio": _r(res.link_ratio, 6),
-        "coefficients": [_r(k) for k in res.coefficients],
-        "branch": res.branch,
-        "grashof": res.grashof,
-        "targets": [
-            {
-                "x": _r(targets.x[j]) if targets is not None else None,
-                "input_deg": _r(math.degrees(res.input_angle[j])),
-                "model_input_deg": _r(math.degrees(res.input_angle[j]) + offsets["crank"]),
-                f"output{unit}": _r(conv(res.output[j])),
-                f"generated{unit}": _r(conv(res.generated[j])),
-                f"error{unit}": _r(conv(res.error[j]), scale=out_scale),
-            }
-            for j in range(res.input_angle.size)
-        ],
-        f"max_target_error{unit}": _r(conv(float(np.max(np.abs(res.error)))), scale=out_scale),
-        f"structural_error_max{unit}": _r(conv(res.structural_error_max), 6),
-        f"structural_error_rms{unit}": _r(conv(res.structural_error_rms), 6),
-        "structural_error_samples": int(res.dense_input.size),
-        "transmission_angle_deg": [
-            _r(math.degrees(res.transmission_angle_min), 6),
-            _r(math.degrees(res.transmission_angle_max), 6),
-        ],
-        "defect": res.defect or None,
-        "model_angle_offsets_deg": offsets,
-        "warnings": [warn] if warn else [],
-        "evaluations": res.evaluations,
-        "time_s": round(time.perf_counter() - t0, 2),
-    }
+    out_scale = float(np.ptp([float(v) if slider else math.degrees(v) for v in res.output])) or 1.0
+    rep = function_summary(
+        res,
+        expression=args.expr,
+        x=None if targets is None else targets.x,
+        warnings=[warn] if warn else [],
+        time_s=time.perf_counter() - t0,
+    )
     L = res.lengths
     model_at = f"crank angle at target 1: {phi0:.10g} deg"
     if offsets["crank"]:
         model_at += f"; the model's crank angle there: {phi0 + offsets['crank']:.10g} deg"
     lines = [
         f"type             {args.kind} ({rep['objective']})",
-        "lengths          " + ", ".join(f"{k} {_r(v, scale=size):.10g}" for k, v in L.items()),
+        "lengths          " + ", ".join(f"{k} {rep['lengths'][k]:.10g}" for k in L),
         f"grashof          {res.grashof}; branch {res.branch}",
-        f"target error     max {_bound(rep[f'max_target_error{unit}'], out_scale)}{' deg' if not slider else ''}",
+        f"target error     max {below(rep[f'max_target_error{unit}'], out_scale, fmt='.3g')}"
+        + ("" if slider else " deg"),
         f"structural error max {rep[f'structural_error_max{unit}']:.6g}, rms {rep[f'structural_error_rms{unit}']:.6g}"
         f"{' deg' if not slider else ''} over {res.dense_input.size} crank angles (engine)",
         f"transmission     {rep['transmission_angle_deg'][0]:.4g} .. {rep['transmission_angle_deg'][1]:.4g} deg",
@@ -342,15 +249,6 @@ def _scale_hint(res, args) -> str:
         "the ratios follow from the ranges, not from the scale: other --input-range/--output-range "
         f"(start angles and spans) give other proportions; to size this linkage, {size}"
     )
-
-
-def _offsets(res) -> dict:
-    """The model's crank input minus the design's input angle (a multiple of 180 deg: reversed, whole turns);
-    the model's rocker angle minus the output angle (0 or 180 deg)."""
-    out = {"crank": round(math.degrees(res.input_offset))}
-    if res.kind == "fourbar":
-        out["rocker"] = round(math.degrees(res.output_offset)) % 360
-    return out
 
 
 def _motion(args) -> int:
@@ -407,18 +305,24 @@ def _motion(args) -> int:
     def sol_rec(k, s):
         return {
             "rank": k,
-            "ground_pivots": [[_r(v, scale=s.size) for v in p] for p in (s.crank.ground_pivot, s.rocker.ground_pivot)],
-            "moving_pivots": [[_r(v, scale=s.size) for v in p] for p in (s.crank.moving_pivot, s.rocker.moving_pivot)],
-            "lengths": {k2: _r(v, scale=s.size) for k2, v in s.lengths.items()},
+            "ground_pivots": [
+                [rounded(float(v), DIGITS_DESIGN, s.size) for v in p]
+                for p in (s.crank.ground_pivot, s.rocker.ground_pivot)
+            ],
+            "moving_pivots": [
+                [rounded(float(v), DIGITS_DESIGN, s.size) for v in p]
+                for p in (s.crank.moving_pivot, s.rocker.moving_pivot)
+            ],
+            "lengths": {k2: rounded(float(v), DIGITS_DESIGN, s.size) for k2, v in s.lengths.items()},
             "grashof": s.grashof,
             "crank_turns": s.crank_turns,
-            "input_deg": [_r(math.degrees(q)) for q in s.input_angle],
-            "point_error": [_r(e, scale=s.size) for e in s.point_error],
-            "angle_error_deg": [_r(math.degrees(e), scale=360.0) for e in s.angle_error],
-            "residual_relative": _r(s.residual, scale=1.0),
+            "input_deg": [rounded(float(math.degrees(q)), DIGITS_DESIGN) for q in s.input_angle],
+            "point_error": [rounded(float(e), DIGITS_DESIGN, s.size) for e in s.point_error],
+            "angle_error_deg": [rounded(float(math.degrees(e)), DIGITS_DESIGN, 360.0) for e in s.angle_error],
+            "residual_relative": rounded(float(s.residual), DIGITS_DESIGN, 1.0),
             "transmission_angle_deg": [
-                _r(math.degrees(s.transmission_angle_min), 6),
-                _r(math.degrees(s.transmission_angle_max), 6),
+                rounded(float(math.degrees(s.transmission_angle_min)), 6),
+                rounded(float(math.degrees(s.transmission_angle_max)), 6),
             ],
             "defect": s.defect or None,
         }
@@ -453,7 +357,7 @@ def _motion(args) -> int:
         f"B ({b['moving_pivots'][1][0]:.10g}, {b['moving_pivots'][1][1]:.10g})",
         "lengths          " + ", ".join(f"{k} {v:.10g}" for k, v in b["lengths"].items()),
         f"grashof          {best.grashof}; crank turns fully: {'yes' if best.crank_turns else 'no'}",
-        f"residual         {_bound(b['residual_relative'], 1.0)} of the size (engine, at every pose)",
+        f"residual         {below(b['residual_relative'], 1.0, fmt='.3g')} of the size (engine, at every pose)",
         f"transmission     {b['transmission_angle_deg'][0]:.4g} .. {b['transmission_angle_deg'][1]:.4g} deg",
         "input at poses   " + ", ".join(f"{v:.8g}" for v in b["input_deg"]) + " deg",
         f"model            {args.out}",

@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from gearlever._format import page_numbers
 from gearlever.errors import GearleverError
 from gearlever.plotting.viewer import MAX_PAGE_BYTES, MAX_VIEW_FRAMES, _page, _script_json
 
@@ -25,18 +26,6 @@ __all__ = ["cam_viewer_html", "cam_viewer_data", "MAX_PROFILE_VERTICES", "CAM_DI
 MAX_PROFILE_VERTICES = 7200
 #: Significant digits of the numbers stored in a cam page (the contact is checked to 1e-6 of the stroke).
 CAM_DIGITS = 10
-
-
-def _num(a, scale: float | None = None, digits: int = CAM_DIGITS) -> list:
-    """Finite values to ``digits`` significant digits (None for NaN), as a JSON-ready list.
-
-    Values below ``1e-12 scale`` are rounding noise: written as 0.
-    """
-    a = np.asarray(a, dtype=float).ravel()
-    if scale is not None:
-        a = np.where(np.abs(a) < 1e-12 * scale, 0.0, a)
-    out = [float(f"{v:.{digits}g}") if math.isfinite(v) else None for v in a.tolist()]
-    return [0 if v == 0 else v for v in out]
 
 
 def _rot(x: np.ndarray, ang: np.ndarray) -> np.ndarray:
@@ -95,12 +84,12 @@ def cam_viewer_data(design, frames: int = 360, name: str | None = None) -> dict:
     R = float(np.max(np.hypot(design.surface[:, 0], design.surface[:, 1])))
     L = R
     F = {
-        "s": _num(s * scale),
-        "v": _num(design.v[idx] * scale),
-        "a": _num(design.a[idx] * scale),
-        "phi": _num(np.degrees(design.pressure_angle[idx])),
-        "cx": _num(contact[:, 0], L),
-        "cy": _num(contact[:, 1], L),
+        "s": page_numbers(s * scale, CAM_DIGITS),
+        "v": page_numbers(design.v[idx] * scale, CAM_DIGITS),
+        "a": page_numbers(design.a[idx] * scale, CAM_DIGITS),
+        "phi": page_numbers(np.degrees(design.pressure_angle[idx]), CAM_DIGITS),
+        "cx": page_numbers(contact[:, 0], CAM_DIGITS, L),
+        "cy": page_numbers(contact[:, 1], CAM_DIGITS, L),
     }
     oscillating = math.isfinite(design.pivot_distance)
     pivot = np.array([design.pivot_distance, 0.0]) if oscillating else None
@@ -108,7 +97,7 @@ def cam_viewer_data(design, frames: int = 360, name: str | None = None) -> dict:
     guide = None
     if roller:
         centre = _rot(design.pitch[idx], theta)
-        F["rx"], F["ry"] = _num(centre[:, 0], L), _num(centre[:, 1], L)
+        F["rx"], F["ry"] = page_numbers(centre[:, 0], CAM_DIGITS, L), page_numbers(centre[:, 1], CAM_DIGITS, L)
         pts += [centre - design.roller_radius, centre + design.roller_radius]
         tip = centre
     else:
@@ -136,7 +125,12 @@ def cam_viewer_data(design, frames: int = 360, name: str | None = None) -> dict:
             t0, t1 = design.face_contact_min - margin, design.face_contact_max + margin
             tip = foot
         e0, e1 = foot + t0 * u, foot + t1 * u
-        F["face"] = [_num(e0[:, 0], L), _num(e0[:, 1], L), _num(e1[:, 0], L), _num(e1[:, 1], L)]
+        F["face"] = [
+            page_numbers(e0[:, 0], CAM_DIGITS, L),
+            page_numbers(e0[:, 1], CAM_DIGITS, L),
+            page_numbers(e1[:, 0], CAM_DIGITS, L),
+            page_numbers(e1[:, 1], CAM_DIGITS, L),
+        ]
         pts += [e0, e1]
     if oscillating:
         a0 = np.broadcast_to(pivot, tip.shape)
@@ -151,7 +145,12 @@ def cam_viewer_data(design, frames: int = 360, name: str | None = None) -> dict:
         y0 = float(np.max(tip[:, 1])) + 0.1 * rb
         guide = {"x": x, "w": w, "y0": y0, "y1": y0 + 0.35 * rb}
         pts.append(a1)
-    F["arm"] = [_num(a0[:, 0], L), _num(a0[:, 1], L), _num(a1[:, 0], L), _num(a1[:, 1], L)]
+    F["arm"] = [
+        page_numbers(a0[:, 0], CAM_DIGITS, L),
+        page_numbers(a0[:, 1], CAM_DIGITS, L),
+        page_numbers(a1[:, 0], CAM_DIGITS, L),
+        page_numbers(a1[:, 1], CAM_DIGITS, L),
+    ]
     xy = np.concatenate(pts)
     lo = np.minimum(xy.min(axis=0), -R)
     hi = np.maximum(xy.max(axis=0), R)
@@ -183,10 +182,18 @@ def cam_viewer_data(design, frames: int = 360, name: str | None = None) -> dict:
         "undercut": bool(design.undercut),
         "pivot": None if pivot is None else [float(pivot[0]), 0.0],
         "guide": guide,
-        "theta": _num(theta),
+        "theta": page_numbers(theta, CAM_DIGITS),
         "index": [int(i) for i in idx],
-        "profile": {"x": _num(design.surface[keep, 0], L), "y": _num(design.surface[keep, 1], L)},
-        "pitch": {"x": _num(design.pitch[keep, 0], L), "y": _num(design.pitch[keep, 1], L)} if roller else None,
+        "profile": {
+            "x": page_numbers(design.surface[keep, 0], CAM_DIGITS, L),
+            "y": page_numbers(design.surface[keep, 1], CAM_DIGITS, L),
+        },
+        "pitch": {
+            "x": page_numbers(design.pitch[keep, 0], CAM_DIGITS, L),
+            "y": page_numbers(design.pitch[keep, 1], CAM_DIGITS, L),
+        }
+        if roller
+        else None,
         "F": F,
     }
 

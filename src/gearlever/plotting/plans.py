@@ -16,6 +16,7 @@ import math
 import numpy as np
 from matplotlib.lines import Line2D
 
+from gearlever._format import binary_grid
 from gearlever.loops import (
     acceleration_plan,
     double_slider,
@@ -52,22 +53,10 @@ PLOT_BITS = 30
 
 
 def _rounded(terms) -> list:
-    """``terms`` with values rounded to a power-of-two grid ``2**-PLOT_BITS`` of the largest one.
-
-    A power of two keeps the rounding exact; the grid is chosen from the largest
-    value's binary exponent, which last-bit differences do not change (except
-    at an exact power of two, where both sides then round alike anyway).
-    """
+    """``terms`` on the grid ``2**-PLOT_BITS`` of the largest value (:func:`gearlever._format.binary_grid`)."""
     terms = list(terms)
-    big = max([abs(t.value) for t in terms] + [0.0])
-    if not big > 0 or not math.isfinite(big):
-        return terms
-    grid = 2.0 ** (math.frexp(big)[1] - PLOT_BITS)
-
-    def r(x: float) -> float:
-        return round(x / grid) * grid + 0.0
-
-    return [dataclasses.replace(t, value=complex(r(t.value.real), r(t.value.imag))) for t in terms]
+    values = binary_grid([t.value for t in terms], PLOT_BITS)
+    return [dataclasses.replace(t, value=v) for t, v in zip(terms, values)]
 
 
 def draw_plan(terms, ax=None, *, prefix="a", unit="", labels=None, title=None):

@@ -20,6 +20,7 @@ from importlib import resources
 
 import numpy as np
 
+from gearlever._format import page_numbers
 from gearlever._io import _strict
 from gearlever.errors import GearleverError
 
@@ -60,18 +61,14 @@ SIGNIFICANT_DIGITS = 6
 
 
 def _round(a, scale=None):
-    """Values rounded to :data:`SIGNIFICANT_DIGITS` significant digits (None for NaN); one value if all equal.
+    """Values at :data:`SIGNIFICANT_DIGITS` digits (:func:`gearlever._format.page_numbers`); one if all equal.
 
     Values below ``1e-12 scale`` (default: the array's largest) are rounding noise: written as 0.
     """
     a = np.asarray(a, dtype=float).ravel()
     fin = np.isfinite(a)
-    if fin.any():
-        ref = np.max(np.abs(a[fin])) if scale is None else scale
-        a = np.where(fin & (np.abs(a) < 1e-12 * ref), 0.0, a)
-    out = [float(f"{v:.{SIGNIFICANT_DIGITS}g}") if math.isfinite(v) else None for v in a.tolist()]
-    out = [int(v) if v is not None and v.is_integer() and abs(v) < 1e15 else v for v in out]
-    out = [0 if v == 0 else v for v in out]  # no -0.0
+    ref = (np.max(np.abs(a[fin])) if scale is None else scale) if fin.any() else None
+    out = page_numbers(a, SIGNIFICANT_DIGITS, ref, integers=True)
     if out and all(v == out[0] for v in out):
         return out[0]
     return out
