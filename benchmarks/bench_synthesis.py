@@ -42,7 +42,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from gearlever.data import read_text  # noqa: E402
-from gearlever.synthesis.path import DEFAULT_BUDGET, FourBarPathProblem, _coupler, synthesize_path  # noqa: E402
+from gearlever.synthesis.path import DEFAULT_BUDGET, FourBarPathProblem, synthesize_path  # noqa: E402
+from gearlever.synthesis.path_fourbar import _coupler  # noqa: E402
 
 CASES = tomllib.loads(read_text("path_benchmarks.toml"))["cases"]
 

@@ -224,7 +224,7 @@ def test_budget_in_e_notation_is_the_integer_it_writes():
 
 
 def test_length_range_from_zero_is_any_positive_length():
-    from gearlever.synthesis.path import ZERO_LENGTH_FRACTION, FourBarPathProblem
+    from gearlever.synthesis.path_fourbar import ZERO_LENGTH_FRACTION, FourBarPathProblem
 
     pb = FourBarPathProblem([[0, 0], [1, 0], [2, 1]], length_range=(0, 50), coord_range=(-5, 5))
     lo, hi = pb.length_range

@@ -10,7 +10,8 @@ import pytest
 from gearlever.errors import GearleverError
 from gearlever.loops import fourbar, grashof
 from gearlever.synthesis.model import model_toml
-from gearlever.synthesis.path import FourBarPathProblem, _coupler, synthesize_path
+from gearlever.synthesis.path import FourBarPathProblem, synthesize_path
+from gearlever.synthesis.path_fourbar import _coupler
 
 from ._jacobian import central_differences
 

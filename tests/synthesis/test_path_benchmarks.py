@@ -18,7 +18,8 @@ import numpy as np
 import pytest
 
 from gearlever.data import read_text
-from gearlever.synthesis.path import GRASHOF_MARGIN, _coupler, synthesize_path
+from gearlever.synthesis.path import synthesize_path
+from gearlever.synthesis.path_fourbar import GRASHOF_MARGIN, _coupler
 
 CASES = tomllib.loads(read_text("path_benchmarks.toml"))["cases"]
 SLOW = {"ellipse10"}

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from gearlever.synthesis.model import model_toml
-from gearlever.synthesis.path import _coupler, synthesize_path
+from gearlever.synthesis.path import synthesize_path
+from gearlever.synthesis.path_fourbar import _coupler
 from gearlever.synthesis.sixbar import StephensonSixBarPathProblem
 
 from ._jacobian import check_problem_jacobian

@@ -11,8 +11,9 @@ Mech. Mach. Theory 37 (2002) 1165-1177, is in its docstring;
 exact constraints, objective, polish), the result and the model writer;
 ``auto`` tries them in the registry's order, and ``KINDS`` (read from the
 registry) lists them and ``auto``.  The four-bar problem
-(:class:`FourBarPathProblem`), the result (:class:`PathSynthesis`) and the
-limits on the targets are also importable from here.
+(:class:`FourBarPathProblem`) and the result (:class:`PathSynthesis`) are
+also importable from here; the four-bar's limits and private helpers are in
+:mod:`~gearlever.synthesis.path_fourbar`.
 
 Search of the four-bar (measured by ``benchmarks/bench_synthesis.py`` on the cases of
 ``gearlever/data/path_benchmarks.toml``, 2-core machine, budget 200 000
@@ -64,21 +65,7 @@ import numpy as np
 
 from gearlever.errors import GearleverError
 from gearlever.synthesis import path_kinds
-from gearlever.synthesis.path_fourbar import (  # noqa: F401 (the four-bar's names, importable from here as before)
-    CURVE_SAMPLES,
-    GRASHOF_MARGIN,
-    MAX_TARGET_COORDINATE,
-    MAX_TARGETS,
-    TIMINGS,
-    ZERO_LENGTH_FRACTION,
-    FourBarPathProblem,
-    _backtrack,
-    _coupler,
-    _dyad,
-    _monotone_match,
-    _targets,
-)
-from gearlever.synthesis.path_fourbar import fourbar_result as _result  # noqa: F401
+from gearlever.synthesis.path_fourbar import FourBarPathProblem, _targets
 from gearlever.synthesis.path_kinds import PathSynthesis
 
 __all__ = [
