@@ -16,8 +16,10 @@ What lives here:
 * :mod:`~gearlever.curves.library`: the search's retrieval library stored
   in the user's cache folder (``gearlever curve library build``).
 
-May import numpy, scipy, pymoo, dask and :mod:`gearlever.errors`,
-:mod:`gearlever._io`, :mod:`gearlever.synthesis.model` (model text); never
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, scipy, pymoo, dask and
+gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
+``data``, ``errors``, ``gears``, ``loops``, ``mechanism``, ``synthesis``; never
 matplotlib, pandas or the CLI.  Figures are in :mod:`gearlever.plotting.curves`.
 """
 

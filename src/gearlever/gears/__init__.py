@@ -9,8 +9,10 @@
 - :mod:`~gearlever.gears.chariot`: the Nuttall south-pointing chariot.
 - :mod:`~gearlever.gears.car`: the car (bevel) differential.
 
-Numeric core: may import numpy, :mod:`fractions`, :mod:`gearlever.errors`,
-:mod:`gearlever._validate`, :mod:`gearlever.data`; never pandas or matplotlib.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, :mod:`fractions` and
+gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
+``data``, ``errors``; never pandas or matplotlib.
 """
 
 from gearlever.gears.car import car_differential

@@ -6,9 +6,10 @@ modified sine) and the law itself (:mod:`~gearlever.laws.law`: segments or a
 periodic spline through samples, read from LAW.toml; displacement, velocity,
 acceleration and jerk per radian or per second; continuity check).
 
-Pure numeric core: may import numpy, scipy, the standard library and
-gearlever.errors, gearlever._validate, gearlever._result and gearlever._io's
-readers; never pandas or matplotlib.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, scipy, the standard library and
+gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
+``data``, ``errors``; never pandas or matplotlib.
 """
 
 from gearlever.laws.law import (

@@ -9,7 +9,10 @@
   the ZRDPM double slider.
 - :mod:`~gearlever.loops.plan`: velocity and acceleration plans (numbers).
 
-Pure numpy (no scipy, matplotlib or pandas at import).
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy and gearlever's ``_format``,
+``_io``, ``_progress``, ``_result``, ``_validate``, ``errors``, ``gears`` (no
+scipy, matplotlib or pandas at import).
 """
 
 from gearlever.loops.closed import (

@@ -13,10 +13,13 @@
 - :func:`assemble`: a rough sketch closed to the exact lengths of its
   ``[lengths]`` table (:mod:`gearlever.mechanism.assemble`).
 
-Numeric core: may import numpy, :mod:`gearlever.loops`, :mod:`gearlever.gears`,
-:mod:`gearlever.errors`, :mod:`gearlever._validate`; never pandas or matplotlib.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, scipy and gearlever's
+``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``, ``data``,
+``errors``, ``gears``, ``loops``; never pandas or matplotlib.
 :meth:`Mechanism.load` imports :mod:`gearlever.curves` inside the call, for a
-``.links.json`` linkage only (never at module level: no import circle).
+``.links.json`` linkage only: outside the layering, a circle the test lists
+until the model writer moves beside the reader.
 """
 
 from gearlever.mechanism.assemble import assemble

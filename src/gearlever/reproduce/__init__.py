@@ -10,6 +10,12 @@ is written.  Every file is staged and renamed into place at the end
 (:func:`gearlever._io.output_set`): a step that fails leaves no file written
 and no folder created.  This package may import ``tables``
 (pandas) and ``plotting`` (matplotlib); the numeric modules never do.
+
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import gearlever's ``_format``, ``_io``,
+``_progress``, ``_result``, ``_validate``, ``cams``, ``curves``, ``data``,
+``dynamics``, ``errors``, ``gears``, ``laws``, ``loops``, ``mechanism``,
+``plotting``, ``synthesis``, ``tables``, ``trains``, ``zrdpm``.
 """
 
 from __future__ import annotations

@@ -22,9 +22,11 @@
   :mod:`~gearlever.synthesis.sixbar` (Stephenson six-bar).
 - :mod:`~gearlever.synthesis.law`: law synthesis (its own registry of kinds).
 
-Numeric core: may import numpy, scipy, :mod:`gearlever.loops`,
-:mod:`gearlever.mechanism`, :mod:`gearlever.errors`, :mod:`gearlever._io`
-and (for scale-out) dask; never pandas or matplotlib.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, scipy, (for scale-out) dask and
+gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
+``cams``, ``data``, ``errors``, ``gears``, ``laws``, ``loops``, ``mechanism``;
+never pandas or matplotlib.
 """
 
 from gearlever.synthesis.function import (

@@ -10,8 +10,10 @@
 - :mod:`~gearlever.trains.hooke`: Hooke's (cardan) coupling, single and double
   (radians; ``HookeJoint.from_degrees`` for degrees).
 
-Numeric core: may import numpy, scipy, :mod:`fractions`, :mod:`gearlever.errors`,
-:mod:`gearlever._validate`, :mod:`gearlever.data`; never pandas or matplotlib.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, scipy, :mod:`fractions` and
+gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
+``data``, ``errors``; never pandas or matplotlib.
 """
 
 from gearlever.trains.continued import parse_ratio

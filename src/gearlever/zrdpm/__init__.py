@@ -7,9 +7,10 @@ fast path), :mod:`~gearlever.zrdpm.published` (the published Tables I and II,
 the identification of the constants they were computed with, the recovery of
 analogues from point accelerations).  Radians throughout the API.
 
-Numeric core: may import numpy, scipy, :mod:`gearlever.gears.willis`,
-:mod:`gearlever.loops`, :mod:`gearlever.mechanism.mobility`,
-:mod:`gearlever.data`, :mod:`gearlever.errors`; never pandas or matplotlib.
+Within the layering of the guide's architecture page (held by
+``tests/test_imports.py``) it may import numpy, scipy and gearlever's
+``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``, ``data``,
+``errors``, ``gears``, ``loops``; never pandas or matplotlib.
 """
 
 from gearlever.zrdpm.model import (
