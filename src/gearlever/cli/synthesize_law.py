@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 
+from gearlever._format import rounded
 from gearlever._progress import TerminalProgress
 from gearlever.cli._common import (
     capped_int,
@@ -108,17 +109,6 @@ def register_mechanism_law(ms) -> None:
     p.set_defaults(func=_mechanism_law)
 
 
-def _r(obj, digits: int = 10):
-    """Every float at ``digits`` significant digits (the same text on any machine)."""
-    if isinstance(obj, dict):
-        return {k: _r(v, digits) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_r(v, digits) for v in obj]
-    if isinstance(obj, float):
-        return float(f"{obj:.{digits}g}") if math.isfinite(obj) else None
-    return obj
-
-
 def _run(args) -> int:
     from gearlever.laws import load_law
     from gearlever.synthesis.law import synthesize_law
@@ -167,7 +157,7 @@ def _run(args) -> int:
     rep["law"] = args.law
     rep["time_s"] = round(float(res.seconds), 2)
     rep["cam"] = cam_comparison(law)
-    rep = _r(rep)
+    rep = rounded(rep, 10)
     ang = law.output == "angle"
     unit = "_deg" if ang else ""
     comment = (
@@ -255,7 +245,7 @@ def _mechanism_law(args) -> int:
     for g in segs:
         for key in ("rise", "excursion"):
             g[key] = float(conv(g[key]))
-    rep = _r(
+    rep = rounded(
         {
             "output": ml.output,
             "kind": ml.kind,
