@@ -38,7 +38,7 @@ from gearlever.cli._common import (
     to_json,
 )
 from gearlever.cli._mechanism_view import add_page_arguments, check_page_out
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, a
 
 #: Most profile points.
 MAX_POINTS = 1_000_000
@@ -230,11 +230,11 @@ def _design(args) -> int:
     flags = {"roller_radius": "--roller-radius", "arm": "--arm", "pivot_distance": "--pivot-distance"}
     for name, value in given.items():
         if name in kind.needs and value is None:
-            raise GearleverError(f"{flags[name]} is required for a {kind.name} follower")
+            raise GearleverError(f"{flags[name]} is required for {a(kind.name)} follower")
         if name not in kind.needs and value is not None:
-            raise GearleverError(f"{flags[name]} does not apply to a {kind.name} follower")
+            raise GearleverError(f"{flags[name]} does not apply to {a(kind.name)} follower")
     if args.offset != 0 and "offset" not in kind.needs:
-        raise GearleverError(f"--offset does not apply to a {kind.name} follower")
+        raise GearleverError(f"--offset does not apply to {a(kind.name)} follower")
     dims = {
         "roller_radius": args.roller_radius or 0.0,
         "offset": args.offset,
@@ -364,7 +364,7 @@ def cam_page(path: str, frames: int) -> str:
 
     try:
         stored = tomllib.loads(read_text_capped(path, "CAM")).get("cam", {}).get("points", 3600)
-    except tomllib.TOMLDecodeError:
+    except (tomllib.TOMLDecodeError, RecursionError):
         stored = 3600  # load_cam names the error
     stored = stored if isinstance(stored, int) and not isinstance(stored, bool) and stored > 0 else 3600
     points = frames * max(1, -(-min(stored, 36_000) // frames))
