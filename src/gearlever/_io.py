@@ -103,14 +103,41 @@ def _release_signals(old) -> None:
         signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
+#: Depth of the critical sections open now, and the interruptions they hold back (see :func:`raise_or_defer`).
+_CRITICAL = {"depth": 0, "pending": []}
+
+
+def raise_or_defer(exc_type) -> None:
+    """Raise ``exc_type()`` now, or at the end of the enclosing critical section (:func:`_signals_held`).
+
+    The signal handlers of gearlever (SIGTERM, Ctrl-C) call this instead of
+    raising.  The signal mask of :func:`_hold_signals` holds the main thread
+    only: a signal the kernel hands to another thread (OpenBLAS's workers)
+    still runs Python's handler in the main thread, between any two
+    bytecodes, for instance between a temporary file's creation and the line
+    that records it for removal.  Deferred to the end of the section, the
+    exception is raised where the file is known and cleaned up.
+    """
+    if _CRITICAL["depth"] > 0:
+        _CRITICAL["pending"].append(exc_type)
+        return
+    raise exc_type()
+
+
 @contextlib.contextmanager
 def _signals_held():
-    """Hold SIGTERM and SIGINT for a short critical section."""
+    """Hold SIGTERM and SIGINT for a short critical section: masked, and deferred by :func:`raise_or_defer`."""
     old = _hold_signals()
+    _CRITICAL["depth"] += 1
     try:
         yield
     finally:
+        _CRITICAL["depth"] -= 1
         _release_signals(old)
+        if _CRITICAL["depth"] == 0 and _CRITICAL["pending"]:
+            exc_type = _CRITICAL["pending"].pop(0)
+            _CRITICAL["pending"].clear()
+            raise exc_type()
 
 
 def check_folder(folder, *, create: bool = False) -> Path:
@@ -177,7 +204,7 @@ def _sigterm_unwinds():
         return
 
     def handler(signum, frame):
-        raise _Terminated()
+        raise_or_defer(_Terminated)
 
     old = signal.signal(signal.SIGTERM, handler)
     try:
@@ -305,6 +332,16 @@ def named_error(flag: str | None, path, exc: OSError, what: str = ""):
     return GearleverError(f"{flag} {where!r}: {reason}{culprit}")
 
 
+def _over_input(entry, what: str, text: str):
+    """The refusal of an output that would replace an input file of the same command (names both)."""
+    from gearlever.errors import GearleverError
+
+    out = f"{entry.flag} {entry.text!r}" if entry.flag else repr(entry.text)
+    return GearleverError(
+        f"{out} is the input {what} {text!r}: an output may not replace an input; give it another name"
+    )
+
+
 class _Output:
     """One declared output: its flag, path, identity keys and, once written, its temporary file."""
 
@@ -354,7 +391,29 @@ class OutputSet:
         self._outputs: list[_Output] = []
         self._folders: list[tuple] = []  # (flag, resolved folder)
         self._made: list[Path] = []  # folders created by this set, outermost first
+        self._inputs: list[tuple] = []  # (what, text, identity keys) of every input file read
         self.written: list[Path] = []
+
+    # -- inputs ----------------------------------------------------------------
+    def note_input(self, path, what: str) -> None:
+        """Record that the command read the input file ``path`` (its role ``what``): no output may replace it.
+
+        Refused at once if a declared output already names the same file, and
+        again at :meth:`commit` for outputs declared later (the same path
+        spelt another way, a symbolic link to it, a hard link).
+        """
+        text = os.fspath(path)
+        keys = _identity(Path(path))
+        self._inputs.append((what, text, keys))
+        for e in self._outputs:
+            if e.keys & keys:
+                raise _over_input(e, what, text)
+
+    def _check_inputs(self, entry: _Output) -> None:
+        keys = entry.keys | _identity(entry.path)
+        for what, text, ikeys in self._inputs:
+            if keys & ikeys:
+                raise _over_input(entry, what, text)
 
     # -- declaring -------------------------------------------------------------
     def _label(self, flag, path) -> str | None:
@@ -496,6 +555,12 @@ class OutputSet:
         temporary file is removed and the error names the flag.
         """
         staged = [e for e in self._outputs if e.tmp is not None]
+        try:
+            for e in staged:
+                self._check_inputs(e)
+        except BaseException:
+            self.abort()
+            raise
         done: list[tuple] = []  # (entry, backup or None, existed)
         mode = 0o666 & ~_umask()  # mkstemp makes 0600; give the mode a plain open() would
         with _signals_held():
@@ -652,6 +717,9 @@ def read_text_capped(path, what: str, cap: int = MAX_INPUT_BYTES) -> str:
         raise GearleverError(f"{what} {str(path)!r}: cannot be read: {exc.strerror or exc}") from None
     if len(data) > cap:
         raise GearleverError(f"{what} {str(path)!r}: larger than the cap of {cap:,} bytes")
+    outputs = _ACTIVE.get()
+    if outputs is not None:
+        outputs.note_input(p, what)
     try:
         return data.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError:
@@ -725,6 +793,9 @@ def read_toml_table(path, what: str, table: str, keys, missing: str = "") -> dic
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise GearleverError(f"{source}: not valid TOML: {exc}") from None
+    except RecursionError:
+        # tomllib parses nested arrays and inline tables recursively
+        raise GearleverError(f"{source}: arrays or tables nested too deeply") from None
     found = data.get(table)
     if not isinstance(found, dict):
         raise GearleverError(f"{source}: a [{table}] table is missing{missing}")

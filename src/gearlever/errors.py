@@ -56,6 +56,16 @@ class ClosureError(GearleverError):
     """
 
 
+def a(word: str) -> str:
+    """``word`` with its indefinite article, for messages: ``an oscillating-roller``, ``a translating-flat``.
+
+    >>> a("oscillating-roller"), a("displacement"), a("angle")
+    ('an oscillating-roller', 'a displacement', 'an angle')
+    """
+    word = str(word)
+    return f"{'an' if word[:1].lower() in 'aeio' else 'a'} {word}"
+
+
 class GearleverWarning(UserWarning):
     """Input accepted but probably not meant, e.g. angles that look like degrees where radians are expected.
 

@@ -42,8 +42,8 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever.cams.followers import FOLLOWERS, FollowerParams
-from gearlever.cams.followers._base import need
-from gearlever.errors import GearleverError
+from gearlever.cams.followers._base import Unbuildable, need
+from gearlever.errors import GearleverError, a
 from gearlever.laws import MotionLaw
 
 __all__ = ["CamDesign", "design_cam", "size_base_radius"]
@@ -212,7 +212,7 @@ def _check_law(law: MotionLaw, kind) -> None:
             if kind.law_output == "angle"
             else ('a displacement law (output = "displacement")')
         )
-        raise GearleverError(f"{law.source}: a {kind.name} follower needs {need}, got output = {law.output!r}")
+        raise GearleverError(f"{law.source}: {a(kind.name)} follower needs {need}, got output = {law.output!r}")
     net = law.net_change()
     if net != 0.0:
         shown = f"{math.degrees(net):g} deg" if law.output == "angle" else f"{net:g} {law.units}"
@@ -336,6 +336,8 @@ def _assess(kind, p, base_radius, theta, s, v, a, stroke):
         return f"base radius must be a positive finite length, got {base_radius!r}", None
     try:
         kind.check(p, base_radius, stroke)
+    except Unbuildable:
+        raise
     except GearleverError as exc:
         return str(exc), None
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -529,7 +531,8 @@ def design_cam(
                 why += f"; the smallest base radius without it is {least:.6g}"
             except GearleverError:
                 pass
-        raise GearleverError(f"base radius {rb:g} too small for the stroke {stroke:g}: {why}")
+        shown = f"{math.degrees(stroke):g} deg" if kind.law_output == "angle" else f"{stroke:g}"
+        raise GearleverError(f"base radius {rb:g} too small for the stroke {shown}: {why}")
     rho = r["rho"]
     undercut = bool(np.any(r["undercut"]))
     if undercut and not allow_undercut:

@@ -154,6 +154,35 @@ def _one_line(text: str) -> str:
     return " ".join(lines)
 
 
+def _huge_values(args, parser) -> list:
+    """``--flag value`` of the numeric arguments whose size floating-point arithmetic cannot carry far."""
+    if args is None:
+        return []
+    flags = {}
+    if parser is not None:
+        flags = {a.dest: max(a.option_strings, key=len) for a in parser._actions if a.option_strings}
+    found = []
+    for dest, value in vars(args).items():
+        values = value if isinstance(value, (list, tuple)) else [value]
+        for v in values:
+            if isinstance(v, (list, tuple)):
+                v = next(
+                    (x for x in v if isinstance(x, (int, float)) and not isinstance(x, bool) and abs(x) > 1e100), None
+                )
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and abs(v) > 1e100:
+                found.append(f"{flags.get(dest, dest)} {v:g}")
+                break
+    return found
+
+
+def _overflow_line(args, parser) -> str:
+    """One line for an arithmetic overflow: the flags whose values are too large, never Python's wording."""
+    huge = _huge_values(args, parser)
+    if huge:
+        return f"a value is out of range: {', '.join(huge)} too large for the arithmetic (give a smaller value)"
+    return "a value is out of range: a number of the input is too large for the arithmetic (give smaller values)"
+
+
 def _oserror_line(exc: OSError) -> str:
     reason = exc.strerror or _one_line(exc) or type(exc).__name__
     names = [repr(str(f)) for f in (exc.filename, exc.filename2) if f is not None]
@@ -165,15 +194,31 @@ class Terminated(KeyboardInterrupt):
 
 
 def _on_sigterm(signum, frame):
-    raise Terminated()
+    from gearlever._io import raise_or_defer
+
+    raise_or_defer(Terminated)
+
+
+def _on_sigint(signum, frame):
+    from gearlever._io import raise_or_defer
+
+    raise_or_defer(KeyboardInterrupt)
 
 
 def _install_sigterm():
-    """Install the SIGTERM handler (main thread only); return the old handler, or None."""
+    """Install the SIGTERM and SIGINT handlers (main thread only); return the old ones, or None.
+
+    Both raise (:class:`Terminated`, :class:`KeyboardInterrupt`) so that clean-up runs, but never inside a
+    critical section of the output writers (:func:`gearlever._io.raise_or_defer`): there they raise at its end.
+    """
     if threading.current_thread() is not threading.main_thread():
         return None
     try:
-        return signal.signal(signal.SIGTERM, _on_sigterm)
+        old_int = signal.getsignal(signal.SIGINT)
+        old = signal.signal(signal.SIGTERM, _on_sigterm)
+        if old_int is signal.default_int_handler:
+            signal.signal(signal.SIGINT, _on_sigint)
+        return old, old_int
     except (ValueError, OSError):
         return None
 
@@ -196,7 +241,9 @@ def main(argv=None) -> int:
         return _main(argv)
     finally:
         if old_sigterm is not None:
-            signal.signal(signal.SIGTERM, old_sigterm)
+            signal.signal(signal.SIGTERM, old_sigterm[0])
+            if old_sigterm[1] is not None:
+                signal.signal(signal.SIGINT, old_sigterm[1])
 
 
 def _main(argv) -> int:
@@ -204,6 +251,7 @@ def _main(argv) -> int:
     from gearlever.cli._common import ReaderGone, check_output
 
     chosen = None
+    args = None
     try:
         parser = build_parser()
         args = parser.parse_args(argv)
@@ -243,8 +291,8 @@ def _main(argv) -> int:
     except ValueError as exc:
         _print_error(f"gearlever: error: {_with_flag(_one_line(exc), chosen) or type(exc).__name__}")
         return 2
-    except OverflowError as exc:
-        _print_error(f"gearlever: error: a value is out of range ({_one_line(exc) or 'overflow'})")
+    except OverflowError:
+        _print_error(f"gearlever: error: {_overflow_line(args, chosen)}")
         return 2
     except MemoryError:
         _print_error(

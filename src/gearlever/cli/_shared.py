@@ -55,7 +55,7 @@ def cam_page(path: str, frames: int) -> str:
 
     try:
         stored = tomllib.loads(read_text_capped(path, "CAM")).get("cam", {}).get("points", 3600)
-    except tomllib.TOMLDecodeError:
+    except (tomllib.TOMLDecodeError, RecursionError):
         stored = 3600  # load_cam names the error
     stored = stored if isinstance(stored, int) and not isinstance(stored, bool) and stored > 0 else 3600
     points = frames * max(1, -(-min(stored, 36_000) // frames))

@@ -36,7 +36,7 @@ from gearlever.cli._common import (
     to_json,
 )
 from gearlever.cli._shared import add_page_arguments, cam_page, check_page_out
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, a
 
 #: Most profile points.
 MAX_POINTS = 1_000_000
@@ -119,11 +119,11 @@ def _design(args) -> int:
     flags = {"roller_radius": "--roller-radius", "arm": "--arm", "pivot_distance": "--pivot-distance"}
     for name, value in given.items():
         if name in kind.needs and value is None:
-            raise GearleverError(f"{flags[name]} is required for a {kind.name} follower")
+            raise GearleverError(f"{flags[name]} is required for {a(kind.name)} follower")
         if name not in kind.needs and value is not None:
-            raise GearleverError(f"{flags[name]} does not apply to a {kind.name} follower")
+            raise GearleverError(f"{flags[name]} does not apply to {a(kind.name)} follower")
     if args.offset != 0 and "offset" not in kind.needs:
-        raise GearleverError(f"--offset does not apply to a {kind.name} follower")
+        raise GearleverError(f"--offset does not apply to {a(kind.name)} follower")
     dims = {
         "roller_radius": args.roller_radius or 0.0,
         "offset": args.offset,

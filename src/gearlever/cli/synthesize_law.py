@@ -226,7 +226,7 @@ def _mechanism_law(args) -> int:
 
     thr = DWELL_THRESHOLD if args.threshold is None else args.threshold
     if not 0 < thr < 1:
-        raise GearleverError(f"--threshold must be between 0 and 1, got {thr:g}")
+        raise GearleverError(f"--threshold must be greater than 0 and less than 1, got {thr:g}")
     mech = Mechanism.load(args.model)
     try:
         ml = mechanism_law(mech, args.output, args.samples)
@@ -241,7 +241,7 @@ def _mechanism_law(args) -> int:
     ang = ml.kind == "angle"
     conv = np.degrees if ang else (lambda x: x)
     u = " deg" if ang else ""
-    segs = fit_segments(ml.theta, ml.s, ml.v, thr)
+    segs = fit_segments(ml.theta, ml.s, ml.v, thr, net=ml.net)
     for g in segs:
         for key in ("rise", "excursion"):
             g[key] = float(conv(g[key]))

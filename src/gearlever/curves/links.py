@@ -106,9 +106,15 @@ class SolvePlan:
 
 
 def _int(where: str, v) -> int:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not float(v).is_integer():
-        raise GearleverError(f"{where} must be an integer joint index, got {v!r}")
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or (isinstance(v, float) and not v.is_integer()):
+        raise GearleverError(f"{where} must be an integer joint index, got {_short(v)}")
     return int(v)
+
+
+def _short(v) -> str:
+    """``repr(v)``, cut to 40 characters (a 5,000-digit integer is not echoed whole)."""
+    text = repr(v)
+    return text if len(text) <= 40 else text[:37] + "..."
 
 
 def linkage_from_dict(d, n_max: int = MAX_JOINTS) -> Linkage:
@@ -136,6 +142,8 @@ def linkage_from_dict(d, n_max: int = MAX_JOINTS) -> Linkage:
         x0 = np.array(d["x0"], dtype=float)
     except (TypeError, ValueError):
         raise GearleverError("x0 must be a list of [x, y] pairs of numbers") from None
+    except OverflowError:
+        raise GearleverError(f"x0 must hold finite coordinates of size at most {MAX_COORDINATE:g}") from None
     if x0.ndim != 2 or x0.shape[1] != 2 or x0.shape[0] < 2:
         raise GearleverError(f"x0 must be a list of at least 2 [x, y] pairs, got shape {x0.shape}")
     n = x0.shape[0]

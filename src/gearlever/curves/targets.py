@@ -13,6 +13,7 @@ import io
 
 import numpy as np
 
+from gearlever.curves.links import MAX_COORDINATE
 from gearlever.errors import GearleverError
 
 __all__ = ["MAX_TARGET_ROWS", "MIN_DISTINCT", "SUITE_RMS", "check_target", "known_mechanism", "read_target"]
@@ -41,6 +42,12 @@ def check_target(xy, what: str = "target") -> np.ndarray:
     if not np.isfinite(a).all():
         bad = int(np.flatnonzero(~np.isfinite(a).all(1))[0])
         raise GearleverError(f"{what}: row {bad + 1} is not finite (x, y must be numbers)")
+    if np.abs(a).max() > MAX_COORDINATE:
+        bad = int(np.flatnonzero(np.abs(a).max(1) > MAX_COORDINATE)[0])
+        raise GearleverError(
+            f"{what}: row {bad + 1} has a coordinate larger than {MAX_COORDINATE:g} in size "
+            "(the distances of the score would overflow or lose every digit): scale the curve down"
+        )
     n = len(np.unique(a, axis=0))
     if n < MIN_DISTINCT:
         raise GearleverError(f"{what}: {n} distinct point(s); a curve needs at least {MIN_DISTINCT}")

@@ -37,7 +37,7 @@ from gearlever._io import did_you_mean as _did_you_mean
 from gearlever._io import read_csv_table, read_toml_table
 from gearlever._result import Result
 from gearlever._validate import finite, finite_array
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, a
 from gearlever.laws.motions import MOTIONS
 
 __all__ = [
@@ -73,7 +73,7 @@ def _check_kind(output, units, where: str) -> tuple[str, str]:
     known = tuple(ANGLE_UNITS) if output == "angle" else LENGTH_UNITS
     if units not in known:
         raise GearleverError(
-            f"{where}: units of an {output} law must be one of {', '.join(known)}, got {units!r}"
+            f"{where}: units of {a(output)} law must be one of {', '.join(known)}, got {units!r}"
             + _did_you_mean(units, known)
         )
     return output, units
@@ -570,7 +570,9 @@ def load_law(path) -> MotionLaw:
         if key not in law:
             raise GearleverError(f"{source}: [law] {key} is missing")
     output, units = _check_kind(law["output"], law["units"], source)
-    if ("segment" in law) == ("samples" in law):
+    if "segment" in law and "samples" in law:
+        raise GearleverError(f'{source}: [law] has both [[law.segment]] tables and samples = "FILE.csv": give one')
+    if "segment" not in law and "samples" not in law:
         raise GearleverError(f'{source}: [law] needs either [[law.segment]] tables or samples = "FILE.csv"')
     if "samples" in law:
         if not isinstance(law["samples"], str):

@@ -327,6 +327,13 @@ def _count(where: str, n: int, cap: int) -> None:
         raise GearleverError(f"{where}: {n} entries, more than the cap of {cap}")
 
 
+#: Tables of gearlever's other input files, each with the command that reads it.
+_OTHER_FILES = {
+    "cam": ": this is a CAM file, not a model: open it with gearlever cam view",
+    "law": ": this is a LAW file, not a model: use it with gearlever cam design or gearlever synthesize law",
+}
+
+
 def depth(obj, cap: int = MAX_DEPTH) -> int:
     """Nesting depth of lists and dicts in ``obj`` (1 for a flat dict), refusing beyond ``cap``.
 
@@ -492,7 +499,8 @@ def model_from_dict(d) -> MechanismModel:
         if not isinstance(k, str):
             raise GearleverError(f"table names must be strings, got {_short(k)}")
         if k not in _TOP and k not in _KEPT_TABLES:
-            raise GearleverError(f"unknown table [{k}] (allowed: {', '.join(_TOP + _KEPT_TABLES)})")
+            hint = _OTHER_FILES.get(k, "")
+            raise GearleverError(f"unknown table [{k}] (allowed: {', '.join(_TOP + _KEPT_TABLES)}){hint}")
     extra = {k: d[k] for k in _KEPT_TABLES if k in d}
 
     mech = _table("[mechanism]", d.get("mechanism", {}), _MECH_KEYS + _KEPT_MECH_KEYS)

@@ -18,6 +18,7 @@ CASES = {
 def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     from gearlever.cams import design_cam
     from gearlever.data import example_path
+    from gearlever.errors import a
     from gearlever.laws import load_law
     from gearlever.plotting._common import save
     from gearlever.plotting.cam import cam_design_figure
@@ -29,7 +30,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
         target = Path(figures_dir) / f"cam_{name}.png"
         save(cam_design_figure(cam, law.evaluate(cam.theta)), target, dpi=80)
         out.append(
-            f"cams: {name} with a {follower} follower (base radius {cam.base_radius:g}): "
+            f"cams: {name} with {a(follower)} follower (base radius {cam.base_radius:g}): "
             f"pressure angle max {math.degrees(cam.pressure_angle_max):.2f} deg, "
             f"radius of curvature min {cam.curvature_radius_min:.3f}, undercut {cam.undercut} -> figures/{target.name}"
         )

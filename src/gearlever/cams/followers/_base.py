@@ -14,7 +14,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, a
+
+
+class Unbuildable(GearleverError):
+    """A follower whose dimensions cannot be built whatever the base radius (its arm's pivot inside the cam)."""
 
 
 @dataclass(frozen=True)
@@ -123,5 +127,5 @@ def need(p: FollowerParams, name: str, flag: str, kind: str) -> float:
     """The positive dimension ``name`` of ``p``, or a refusal naming ``flag``."""
     value = getattr(p, name)
     if value is None or not np.isfinite(value) or value <= 0:
-        raise GearleverError(f"{flag} must be a positive length for a {kind} follower, got {value!r}")
+        raise GearleverError(f"{flag} must be a positive length for {a(kind)} follower, got {value!r}")
     return float(value)

@@ -105,14 +105,18 @@ def mechanism_law(mech, output: str, samples: int = 3600) -> MechanismLaw:
     return MechanismLaw(theta, s[:-1], v[:-1], a[:-1], output, kind, res.closed[:-1] & res.closed[-1], net)
 
 
-def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD, min_dwell_deg: float = MIN_DWELL_DEG) -> list:
+def fit_segments(
+    theta, s, v, threshold: float = DWELL_THRESHOLD, min_dwell_deg: float = MIN_DWELL_DEG, net: float = 0.0
+) -> list:
     """Dwells, rises and returns of a periodic output over one turn.
 
     A sample dwells when ``|v|`` is below ``threshold`` times the peak
     ``|v|``; runs of samples of one class (dwell, rise ``v > 0``, return
     ``v < 0``) are the segments, joined across the end of the turn; a
     dwell shorter than ``min_dwell_deg`` (a reversal's stationary point) is
-    counted with the motion around it.
+    counted with the motion around it.  ``net`` is the output's net change
+    over the turn (nonzero for an output that turns fully, as a crank): the
+    rise of a single segment that fills the whole turn.
 
     Returns
     -------
@@ -140,7 +144,9 @@ def fit_segments(theta, s, v, threshold: float = DWELL_THRESHOLD, min_dwell_deg:
     # start at a change of class so that no run wraps
     change = np.flatnonzero(cls != np.roll(cls, 1))
     if change.size == 0:
-        return [{"motion": "dwell" if cls[0] == 0 else "rise", "from_deg": 0.0, "to_deg": 360.0, "rise": 0.0}]
+        motion = "dwell" if cls[0] == 0 else ("rise" if cls[0] > 0 else "return")
+        rise = 0.0 if motion == "dwell" else float(net)
+        return [{"motion": motion, "from_deg": 0.0, "to_deg": 360.0, "rise": rise, "excursion": float(np.ptp(s))}]
     start = int(change[0])
     order = (np.arange(n) + start) % n
     out = []

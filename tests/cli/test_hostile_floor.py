@@ -1,0 +1,265 @@
+"""The floor under the newer commands (issue 33, part 5): one test per class of hostile input.
+
+Each class is tested on every command the issue found it in: an output that is
+also an input of the same command (refused naming both, the input untouched),
+sizes the arithmetic cannot carry (refused, never a silent 0), input files
+nested too deeply for the parser (one line, no RecursionError), a law read off
+a crank that turns fully (no KeyError), messages that name internals or read
+badly (overflow, a huge JSON integer, an open interval, articles, both ways of
+giving a law, a CAM or LAW file given as a model), and a follower that cannot
+be built.  Every test runs :func:`gearlever.cli.main` in-process and checks the
+exit status and the one line on stderr.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+from gearlever.cli import main
+from gearlever.data import example_path
+
+LIFT = example_path("law_lift.toml").read_text()
+ROCK = """[law]
+output = "angle"
+units = "deg"
+[[law.segment]]
+to = 180
+motion = "cycloidal"
+rise = 30
+[[law.segment]]
+to = 360
+motion = "cycloidal"
+rise = -30
+"""
+ROLLER = ["--follower", "translating-roller", "--roller-radius", "5", "--base-radius", "40"]
+
+
+def run(capsys, argv):
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def one_line(err: str) -> str:
+    assert err.endswith("\n") and err.count("\n") == 1, err
+    assert "Traceback" not in err
+    return err
+
+
+@pytest.fixture
+def files(tmp_path):
+    (tmp_path / "fourbar.toml").write_text(example_path("fourbar.toml").read_text())
+    (tmp_path / "lift.toml").write_text(LIFT)
+    x = np.arange(0, 360, 10)
+    (tmp_path / "s.csv").write_text("input_deg,output\n" + "".join(f"{a},{5 - 5 * np.cos(np.radians(a))}\n" for a in x))
+    (tmp_path / "s.toml").write_text('[law]\noutput = "displacement"\nunits = "mm"\nsamples = "s.csv"\n')
+    t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    (tmp_path / "t.csv").write_text("x,y\n" + "".join(f"{np.cos(a) + 4},{np.sin(a)}\n" for a in t))
+    (tmp_path / "d.links.json").write_text(
+        json.dumps(
+            {
+                "x0": [[0, 0], [0, 1], [3, 0], [2, 2]],
+                "edges": [[0, 1], [1, 3], [2, 3]],
+                "fixed_joints": [0, 2],
+                "motor": [0, 1],
+            }
+        )
+    )
+    return tmp_path
+
+
+OVER_INPUT = {
+    "analyze --out MODEL": (["mechanism", "analyze", "{d}/fourbar.toml", "--out", "{d}/fourbar.toml"], "fourbar.toml"),
+    "analyze --out ./MODEL": (
+        ["mechanism", "analyze", "{d}/fourbar.toml", "--out", "{d}/./fourbar.toml"],
+        "fourbar.toml",
+    ),
+    "forces --out MODEL": (["mechanism", "forces", "{d}/fourbar.toml", "--out", "{d}/fourbar.toml"], "fourbar.toml"),
+    "cam design --out LAW": (["cam", "design", "{d}/lift.toml", *ROLLER, "--out", "{d}/lift.toml"], "lift.toml"),
+    "cam design --report LAW": (
+        ["cam", "design", "{d}/lift.toml", *ROLLER, "--out", "{d}/c.toml", "--report", "{d}/lift.toml"],
+        "lift.toml",
+    ),
+    "cam design --profile SAMPLES": (
+        ["cam", "design", "{d}/s.toml", *ROLLER, "--out", "{d}/c.toml", "--profile", "{d}/s.csv"],
+        "s.csv",
+    ),
+    "synthesize law --out LAW": (
+        ["synthesize", "law", "{d}/lift.toml", "--type", "slider-crank", "--out", "{d}/lift.toml"],
+        "lift.toml",
+    ),
+    "curve score --out TARGET": (
+        ["curve", "score", "{d}/d.links.json", "--target", "{d}/t.csv", "--out", "{d}/t.csv"],
+        "t.csv",
+    ),
+}
+
+
+@pytest.mark.parametrize("argv, name", OVER_INPUT.values(), ids=OVER_INPUT.keys())
+def test_an_output_that_is_also_an_input_is_refused_naming_both(files, capsys, argv, name):
+    before = {p.name: p.read_bytes() for p in files.iterdir()}
+    code, _, err = run(capsys, [a.format(d=files) for a in argv])
+    assert code == 2
+    line = one_line(err)
+    assert "an output may not replace an input" in line and line.count(name) >= 2, line
+    assert {p.name: p.read_bytes() for p in files.iterdir()} == before  # nothing written, nothing left
+
+
+def test_an_output_that_is_a_link_to_the_input_is_refused(files, capsys):
+    os.symlink(files / "fourbar.toml", files / "out.csv")
+    before = (files / "fourbar.toml").read_bytes()
+    code, _, err = run(capsys, ["mechanism", "analyze", files / "fourbar.toml", "--out", files / "out.csv"])
+    assert code == 2 and "may not replace an input" in one_line(err)
+    assert (files / "fourbar.toml").read_bytes() == before
+
+
+@pytest.mark.parametrize("scale", [1e300, 1e160, 1e12])
+def test_curve_score_refuses_a_target_the_arithmetic_cannot_carry(files, capsys, scale):
+    t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    (files / "big.csv").write_text("x,y\n" + "".join(f"{scale * np.cos(a)},{scale * np.sin(a)}\n" for a in t))
+    code, out, err = run(capsys, ["curve", "score", files / "d.links.json", "--target", files / "big.csv"])
+    assert code == 2 and out == ""
+    assert "row 1 has a coordinate larger than" in one_line(err)
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["cam", "design", "{d}/deep.toml", *ROLLER, "--out", "{d}/c.toml"],
+        ["cam", "view", "{d}/deep.toml", "--out", "{d}/c.html"],
+        ["synthesize", "law", "{d}/deep.toml", "--type", "fourbar", "--out", "{d}/m.toml"],
+    ],
+    ids=["cam design LAW", "cam view CAM", "synthesize law LAW"],
+)
+def test_a_law_or_cam_file_nested_5000_deep_is_one_line(files, capsys, argv):
+    (files / "deep.toml").write_text(
+        "[law]\noutput = " + "[" * 5000 + "]" * 5000 + "\n[cam]\nx = " + "[" * 5000 + "]" * 5000
+    )
+    code, _, err = run(capsys, [a.format(d=files) for a in argv])
+    assert code == 2
+    assert "RecursionError" not in one_line(err) and "internal error" not in err
+
+
+@pytest.mark.parametrize("example, output", [("fourbar", "crank"), ("whitworth", "lever")])
+def test_mechanism_law_of_an_output_that_turns_fully(tmp_path, capsys, example, output):
+    """A crank's output is one rise over the whole turn: its rise is the net change, 360 deg."""
+    code, out, err = run(
+        capsys, ["mechanism", "law", example_path(f"{example}.toml"), "--output", output, "--format", "json"]
+    )
+    assert code == 0, err
+    rep = json.loads(out)
+    (seg,) = rep["segments"]
+    assert seg["motion"] == "rise" and seg["rise"] == pytest.approx(360.0, abs=1e-6)
+    assert seg["excursion"] == pytest.approx(rep["range_deg"], abs=1e-6)
+
+
+@pytest.mark.parametrize(
+    "argv, flag",
+    [
+        (
+            [
+                "cam",
+                "design",
+                "{d}/lift.toml",
+                "--follower",
+                "translating-roller",
+                "--roller-radius",
+                "5",
+                "--base-radius",
+                "1e308",
+                "--out",
+                "{d}/c.toml",
+            ],
+            "--base-radius",
+        ),
+        (["cam", "design", "{d}/lift.toml", *ROLLER, "--rpm", "1e200", "--out", "{d}/c.toml"], "--rpm"),
+    ],
+    ids=["--base-radius 1e308", "--rpm 1e200"],
+)
+def test_an_overflow_names_the_flag_never_python(files, capsys, argv, flag):
+    code, _, err = run(capsys, [a.format(d=files) for a in argv])
+    line = one_line(err)
+    assert code == 2 and "Numerical result out of range" not in line and "(34," not in line
+    assert flag in line, line
+
+
+def test_a_links_json_integer_too_large_names_the_file_and_key(files, capsys):
+    (files / "h.links.json").write_text(
+        '{"x0": [[0, 0], [0, 1], [3, 0], [2, 2]], "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], '
+        '"motor": [0, ' + "9" * 400 + "]}"
+    )
+    code, _, err = run(capsys, ["curve", "score", files / "h.links.json", "--target", files / "t.csv"])
+    line = one_line(err)
+    assert code == 2 and "h.links.json" in line and "motor" in line and "int too large" not in line
+    (files / "x.links.json").write_text(
+        '{"x0": [[0, 0], [0, ' + "9" * 400 + "]], " + '"edges": [[0, 1]], "fixed_joints": [0], "motor": [0, 1]}'
+    )
+    code, _, err = run(capsys, ["curve", "score", files / "x.links.json", "--target", files / "t.csv"])
+    line = one_line(err)
+    assert code == 2 and "x.links.json" in line and "x0" in line
+
+
+def test_an_open_interval_is_said_as_one(capsys):
+    code, _, err = run(
+        capsys, ["mechanism", "law", example_path("fourbar.toml"), "--output", "rocker", "--threshold", "0"]
+    )
+    assert code == 2 and "greater than 0 and less than 1" in one_line(err)
+
+
+def test_articles_read_right(files, capsys):
+    code, _, err = run(
+        capsys,
+        ["cam", "design", files / "lift.toml", "--follower", "oscillating-roller", "--roller-radius", "5",
+         "--base-radius", "30", "--arm", "40", "--pivot-distance", "60", "--out", files / "c.toml"],
+    )  # fmt: skip
+    assert code == 2 and "an oscillating-roller follower" in one_line(err)
+    (files / "u.toml").write_text('[law]\noutput = "displacement"\nunits = "deg"\nsamples = "s.csv"\n')
+    code, _, err = run(capsys, ["cam", "design", files / "u.toml", *ROLLER, "--out", files / "c.toml"])
+    assert code == 2 and "a displacement law" in one_line(err) and "an displacement" not in err
+
+
+def test_a_law_with_both_segments_and_samples_is_told_so(files, capsys):
+    (files / "both.toml").write_text(LIFT.replace("[law]\n", '[law]\nsamples = "s.csv"\n', 1))
+    code, _, err = run(capsys, ["cam", "design", files / "both.toml", *ROLLER, "--out", files / "c.toml"])
+    line = one_line(err)
+    assert code == 2 and "has both" in line and "needs either" not in line
+
+
+@pytest.mark.parametrize("table, command", [("cam", "cam view"), ("law", "cam design")])
+def test_a_cam_or_law_file_given_as_a_model_points_to_its_command(files, capsys, table, command):
+    (files / "x.toml").write_text(f"[{table}]\nx = 1\n")
+    code, _, err = run(capsys, ["mechanism", "analyze", files / "x.toml"])
+    assert code == 2 and f"unknown table [{table}]" in one_line(err) and command in err
+
+
+def test_an_oscillating_roller_whose_pivot_lies_inside_the_cam_is_refused(files, capsys):
+    (files / "rock.toml").write_text(ROCK)
+    argv = [
+        "cam",
+        "design",
+        files / "rock.toml",
+        "--follower",
+        "oscillating-roller",
+        "--roller-radius",
+        "5",
+        "--arm",
+        "40",
+    ]
+    code, _, err = run(capsys, [*argv, "--base-radius", "30", "--pivot-distance", "30", "--out", files / "c.toml"])
+    assert code == 2 and "pivot lies inside the cam" in one_line(err) and "--pivot-distance" in err
+    assert not (files / "c.toml").exists()
+    code, _, err = run(capsys, [*argv, "--base-radius", "30", "--pivot-distance", "60", "--out", files / "c.toml"])
+    assert code == 0, err
+
+
+def test_a_stroke_of_a_degree_law_is_said_in_degrees(files, capsys):
+    (files / "rock.toml").write_text(ROCK)
+    argv = ["cam", "design", files / "rock.toml", "--follower", "oscillating-roller", "--roller-radius", "5"]
+    code, _, err = run(
+        capsys, [*argv, "--arm", "40", "--pivot-distance", "60", "--base-radius", "3", "--out", files / "c.toml"]
+    )
+    assert code == 2 and "stroke 30 deg" in one_line(err)
