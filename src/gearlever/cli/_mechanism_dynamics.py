@@ -29,7 +29,14 @@ efficiency``); ``--efficiency`` overrides the meshes' efficiency.
 seconds under constant driving torques ``--torque NAME=VALUE`` (force for
 a slider input; inputs not named are free, torque 0), with the model's
 mesh efficiency or ``--efficiency``; ``work``, ``load_work`` and
-``mesh_loss_work`` (lossy meshes) balance the change of kinetic energy.
+``mesh_loss_work`` (lossy meshes; ``loss_work``, meshes and joint friction,
+for a model with ``[friction]``) balance the change of kinetic energy.
+
+Joint friction (``[friction]``, :mod:`gearlever.mechanism.friction`):
+``forces`` adds each pin's friction torque ``pin_K_friction``, each guide's
+friction force ``guide_S_friction`` and the power they dissipate,
+``friction_loss``: input power = power of the loads + rate of kinetic energy
++ ``friction_loss`` (+ the meshes' losses).
 
 Units: lengths in the model's ``[mechanism] units``, masses in kg, time
 in s; forces are in N and torques in N per length unit for a known unit (N mm with ``"mm"``)
@@ -171,6 +178,12 @@ def force_columns(d, mech, t) -> dict:
     for k, v in d.mesh_loss.items():
         if np.any(v != 0):
             cols[f"mesh_{k}_loss_{P}"] = v
+    for k, v in d.friction_torque.items():
+        cols[f"pin_{k}_friction_{T}"] = v
+    for k, v in d.friction_force.items():
+        cols[f"guide_{k}_friction_{F}"] = v
+    if d.friction_loss:
+        cols[f"friction_loss_{P}"] = sum(d.friction_loss.values())
     cols[f"ground_fx_{F}"], cols[f"ground_fy_{F}"] = d.ground_force[:, 0], d.ground_force[:, 1]
     return cols
 
@@ -300,7 +313,9 @@ def _simulate(args) -> int:
     cols[f"kinetic_energy_{E}"] = s.kinetic_energy
     cols[f"work_{E}"] = s.work
     cols[f"load_work_{E}"] = s.load_work
-    if np.any(s.loss_work != 0):
+    if mech.model.extra.get("friction") and np.any(s.loss_work != 0):
+        cols[f"loss_work_{E}"] = s.loss_work  # the meshes' and the joints' friction
+    elif np.any(s.loss_work != 0):
         cols[f"mesh_loss_work_{E}"] = s.loss_work
     meta = {
         "mechanism": mech.model.name,

@@ -152,7 +152,16 @@ class Mechanism:
         return instant_centres(self.solve(q, qdot))
 
     def inverse_dynamics(
-        self, q, qdot=None, qddot=None, loads=None, masses=None, gravity=None, pressure_angle=None, efficiency=None
+        self,
+        q,
+        qdot=None,
+        qddot=None,
+        loads=None,
+        masses=None,
+        gravity=None,
+        pressure_angle=None,
+        efficiency=None,
+        friction=None,
     ):
         """Driver torques and pair forces (:func:`~gearlever.mechanism.dynamics.inverse_dynamics`)."""
         from gearlever.mechanism.dynamics import inverse_dynamics
@@ -167,6 +176,7 @@ class Mechanism:
             gravity=gravity,
             pressure_angle=pressure_angle,
             efficiency=efficiency,
+            friction=friction,
         )
 
     def reduced_inertia(self, q, masses=None):
@@ -194,6 +204,7 @@ class Mechanism:
         atol: float = 1e-12,
         max_evals: int | None = None,
         efficiency=None,
+        friction=None,
     ):
         """Motion under driving torques, one per input (:func:`~gearlever.mechanism.dynamics.simulate`).
 
@@ -215,6 +226,7 @@ class Mechanism:
             atol=atol,
             max_evals=MAX_EVALS if max_evals is None else max_evals,
             efficiency=efficiency,
+            friction=friction,
         )
 
     def constraint_labels(self) -> tuple:

@@ -177,6 +177,10 @@ class InverseDynamics(Result):
     mesh_driven : mesh -> (N,) which gear the mesh drives relative to its carrier (1 the first, 2 the
         second, 0 none or no loss); the losses are charged on that side.
     indeterminate : labels of the multipliers the equilibrium does not fix (redundant constraints).
+    friction_torque : key of :attr:`reaction` -> (N,) friction torque of the pin on its second link
+        (the first gets the opposite); pins with friction only.
+    friction_force : slider -> (N,) friction force of the guide on the sliding link, along the guide.
+    friction_loss : pin key or slider -> (N,) power the joint's friction dissipates (>= 0).
     ok : (N,) rows where the mechanism is closed and the equilibrium system is consistent.
     pressure_angle : rad.
     """
@@ -201,6 +205,9 @@ class InverseDynamics(Result):
     labels: tuple = field(repr=False)
     multipliers: np.ndarray = field(repr=False)
     kinematics: object = field(repr=False, compare=False)
+    friction_torque: dict = field(default_factory=dict)
+    friction_force: dict = field(default_factory=dict)
+    friction_loss: dict = field(default_factory=dict)
 
     def _frame_columns(self) -> dict:
         cols = {}
@@ -218,6 +225,8 @@ class InverseDynamics(Result):
             cols[f"{k}_tooth"] = v
         for k, v in self.mesh_loss.items():
             cols[f"{k}_loss"] = v
+        for k, v in self.friction_loss.items():
+            cols[f"{k}_friction_loss"] = v
         return cols
 
 
@@ -244,14 +253,23 @@ def _inputs_rows(asm, r):
     return rows, members
 
 
-def _solve_equilibrium(A, Q, L, n3):
-    """Solve ``A^T y = -Q`` per row by SVD; return y, undetermined mask (N, R), consistent (N,)."""
+def _solve_equilibrium(A, Q, L, n3, cache=None):
+    """Solve ``A^T y = -Q`` per row by SVD; return y, undetermined mask (N, R), consistent (N,).
+
+    ``cache`` (a dict) keeps the SVD of each ``A`` met, for the friction passes that solve again with another ``Q``.
+    """
     N, R, _ = A.shape
     scale = np.ones(n3)
     scale[2::3] = 1.0 / L
     M = np.transpose(A, (0, 2, 1)) * scale[None, :, None]  # (N, 3n, R)
     b = -Q * scale[None, :]
-    U, s, Vt = np.linalg.svd(M, full_matrices=True)
+    key = ("svd", A.shape, hash(A.tobytes())) if cache is not None else None
+    if key is not None and key in cache:
+        U, s, Vt = cache[key]
+    else:
+        U, s, Vt = np.linalg.svd(M, full_matrices=True)
+        if key is not None:
+            cache[key] = (U, s, Vt)
     smax = s[:, :1] if s.size else np.zeros((N, 1))
     keep = s > RANK_RTOL * np.maximum(smax, 1e-300)
     rank = keep.sum(axis=1)
@@ -308,6 +326,7 @@ def inverse_dynamics(
     gravity=None,
     pressure_angle=None,
     efficiency=None,
+    friction=None,
     _driven=None,
 ) -> InverseDynamics:
     """Driver torques and joint, guide and tooth forces that produce the prescribed motion.
@@ -331,6 +350,10 @@ def inverse_dynamics(
     efficiency : float or dict, optional
         Tooth efficiency of the meshes, one number or ``{mesh: number}``
         (:func:`~gearlever.mechanism.loads.mesh_efficiency_of`); default the model's, else 1.
+    friction : dict, optional
+        Coulomb friction at the pins and sliders, a table as the model's
+        ``[friction]`` (:mod:`gearlever.mechanism.friction`); default the
+        model's, else none.
 
     Returns
     -------
@@ -381,19 +404,148 @@ def inverse_dynamics(
     Forces beyond the float range (a huge mass, load or speed) are refused,
     naming the element (``masses.crank.mass``, ``loads[0].force``), never
     returned as ``inf`` or ``nan``.
+
+    Joint friction (Coulomb, :mod:`gearlever.mechanism.friction`): a pin's
+    friction torque ``rho |R|`` and a slider's friction force ``mu |N|``
+    depend on the reactions they change, so the equilibrium is implicit.  It
+    is solved by fixed-point passes: the friction of the reactions of the
+    last pass is applied as a known load and the equilibrium solved again,
+    until the reactions agree to 1e-12 of their size; each pass changes the
+    reactions by about ``rho / L`` (friction-circle radius over link length)
+    times the last change, so a few passes suffice.  Where the passes do not
+    settle (friction circles as large as the links) the row is refused as
+    self-locking.  The friction's dissipated power is
+    :attr:`InverseDynamics.friction_loss`, and
+    ``sum tau_i qdot_i + power of loads, weights and inertia forces = sum of mesh_loss + sum of friction_loss``.
     """
+    from gearlever.mechanism.friction import parse_friction
+
+    spec = parse_friction(mech.model, friction)
     # overflow is not warned about here: the final check refuses it, naming the input
     with np.errstate(over="ignore", invalid="ignore"):
-        return _inverse_dynamics(
-            mech, q, qdot, qddot, loads, masses, gravity, pressure_angle, efficiency, _driven=_driven
-        )
+        d = _inverse_dynamics(mech, q, qdot, qddot, loads, masses, gravity, pressure_angle, efficiency, _driven=_driven)
+        if spec:
+            d = _with_friction(mech, d, spec, (loads, masses, gravity, pressure_angle, efficiency), _driven)
+        return d
+
+
+#: Largest number of fixed-point passes of the friction equilibrium.
+FRICTION_PASSES = 200
+#: The passes end when no multiplier changes by more than this fraction of the largest.
+FRICTION_RTOL = 1e-12
+
+
+def _friction_terms(mech, d, spec):
+    """Generalized friction forces (N, 3n) of the reactions of ``d``, and the friction torques, forces, losses."""
+    r = d.kinematics
+    m = mech.model
+    asm = _Assembly(mech, r)
+    N = asm.N
+    spin = np.nan_to_num(r.pose_velocity)[..., 2]
+
+    def omega(link):
+        return np.zeros(N) if link == GROUND else spin[:, asm.col[link] // 3]
+
+    Qf = np.zeros((N, asm.n3))
+    torque, force, loss = {}, {}, {}
+    scale = max(float(np.max(np.abs(np.nan_to_num(r.qdot)), initial=0.0)), 1e-300)
+    for key, (a, b) in d.pins.items():
+        p = key.split(":")[0]
+        if p not in spec.pins:
+            continue
+        rho = spec.pins[p][2]
+        R = np.linalg.norm(np.nan_to_num(d.reaction[key]), axis=1)
+        w = omega(b) - omega(a)
+        sgn = np.where(np.abs(w) > 1e-12 * scale, np.sign(w), 0.0)
+        Tb = -rho * R * sgn  # on the second link, opposing its turning relative to the first
+        asm.add_torque(Qf, b, Tb)
+        asm.add_torque(Qf, a, -Tb)
+        torque[key] = Tb
+        loss[key] = rho * R * np.abs(w) * (sgn != 0)
+    for s in m.sliders:
+        if s.name not in spec.sliders:
+            continue
+        mu = spec.sliders[s.name]
+        Nn = np.abs(np.nan_to_num(d.slider_force[s.name]))
+        v = np.nan_to_num(r.slider_velocity[s.name])
+        vs = max(float(np.max(np.abs(v), initial=0.0)), 1e-300)
+        sgn = np.where(np.abs(v) > 1e-12 * vs, np.sign(v), 0.0)
+        turn = asm.angle(s.on) - m.links[s.on].angle0
+        u = _rot(turn, s.direction)
+        P = asm.world(s.link, m.links[s.link].local[s.point])
+        F = -mu * Nn * sgn  # along the guide, on the sliding link
+        asm.add_force(Qf, s.link, P, F[:, None] * u)
+        asm.add_force(Qf, s.on, P, -F[:, None] * u)
+        force[s.name] = F
+        loss[s.name] = mu * Nn * np.abs(v) * (sgn != 0)
+    return Qf, torque, force, loss
+
+
+def _with_friction(mech, d0, spec, args, _driven):
+    """The equilibrium with joint friction: fixed-point passes from the frictionless one ``d0``."""
+    loads, masses, gravity, pressure_angle, efficiency = args
+    r = d0.kinematics
+    for key in d0.pins:
+        if key.split(":")[0] in spec.pins and np.any(np.isnan(d0.reaction[key][d0.ok])):
+            raise GearleverError(
+                f"friction.pins.{key.split(':')[0]}: the pin's reaction is statically indeterminate (redundant "
+                "constraints), so its friction is not determined: give it no friction"
+            )
+    for name in spec.sliders:
+        if np.any(np.isnan(d0.slider_force[name][d0.ok])):
+            raise GearleverError(
+                f"friction.sliders.{name}: the guide's normal force is statically indeterminate, so its friction is "
+                "not determined: give it no friction"
+            )
+    d = d0
+    cache: dict = {}
+    ref = max(float(np.max(np.abs(np.nan_to_num(d0.multipliers)), initial=0.0)), 1e-300)
+    prev, growth = None, np.zeros(r.q.shape[0], dtype=int)
+    tol = FRICTION_RTOL * ref
+    for _ in range(FRICTION_PASSES):
+        Qf, torque, force, loss = _friction_terms(mech, d, spec)
+        new = _inverse_dynamics(
+            mech, r.q, r.qdot, r.qddot, loads, masses, gravity, pressure_angle, efficiency,
+            _driven=_driven, _extra=Qf, _kin=r, _cache=cache,
+        )  # fmt: skip
+        y_new, y_old = np.nan_to_num(new.multipliers), np.nan_to_num(d.multipliers)
+        change = np.max(np.abs(y_new - y_old), axis=1) if y_new.size else np.zeros(r.q.shape[0])
+        d = new
+        if np.all(change <= tol):
+            Qf, torque, force, loss = _friction_terms(mech, d, spec)
+            return replace(d, friction_torque=torque, friction_force=force, friction_loss=loss)
+        if prev is not None:  # diverging: the change grew by half again, three passes running
+            growth = np.where((change > tol) & (change > 1.5 * prev), growth + 1, 0)
+            if np.any((growth >= 3) & d.ok):
+                break
+        prev = change
+    i = int(np.argmax(change))
+    raise GearleverError(
+        f"self-locking: at input row {i} (q = {np.round(r.q[i], 9).tolist()}) the joint friction admits no "
+        "equilibrium (the friction circles are too large for the links: the mechanism locks)"
+    )
 
 
 def _inverse_dynamics(
-    mech, q, qdot, qddot, loads, masses, gravity, pressure_angle, efficiency, _driven=None
+    mech,
+    q,
+    qdot,
+    qddot,
+    loads,
+    masses,
+    gravity,
+    pressure_angle,
+    efficiency,
+    _driven=None,
+    _extra=None,
+    _kin=None,
+    _cache=None,
 ) -> InverseDynamics:
-    qa, qd_, qdd_ = _rows_of(mech, q, qdot, qddot)
-    r = mech.solve(qa, qd_, qdd_)
+    if _kin is None:
+        qa, qd_, qdd_ = _rows_of(mech, q, qdot, qddot)
+        r = mech.solve(qa, qd_, qdd_)
+    else:
+        r = _kin
     m = mech.model
     N = r.q.shape[0]
     masses_ = parse_masses(m, masses)
@@ -404,11 +556,23 @@ def _inverse_dynamics(
     asm = _Assembly(mech, r)
     n3 = asm.n3
 
-    # generalized applied + inertia forces
-    Q = _applied(asm, r, masses_, loads_, g, inertia=True)
+    # generalized applied + inertia forces (and the joint friction of the last pass, :func:`_with_friction`)
+    if _cache is not None and "Q" in _cache:
+        Q = _cache["Q"]
+    else:
+        Q = _applied(asm, r, masses_, loads_, g, inertia=True)
+        if _cache is not None:
+            _cache["Q"] = Q
+    if _extra is not None:
+        Q = Q + _extra
 
     # rows: pins and sliders from the constraint Jacobian, meshes as rolling rows, drivers
-    Jfull = constraint_jacobian(m, asm.pose)  # (N, m, 3n)
+    if _cache is not None and "J" in _cache:
+        Jfull = _cache["J"]
+    else:
+        Jfull = constraint_jacobian(m, asm.pose)  # (N, m, 3n)
+        if _cache is not None:
+            _cache["J"] = Jfull
     labels_all = constraint_labels(m)
     n_ps = 2 * len(m.joints) + 2 * len(m.sliders)
     rows = [Jfull[:, i, :] for i in range(n_ps)]
@@ -450,7 +614,7 @@ def _inverse_dynamics(
     A = np.stack(rows, axis=1) if rows else np.zeros((N, 0, n3))
     base = n_ps
 
-    y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3)
+    y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3, _cache)
     ok = r.closed & np.all(np.isfinite(r.xddot), axis=1) & consistent
     lossy = [j for j, lo in enumerate(loss) if lo[0] < 1.0]
     driven = np.zeros((N, len(m.meshes)), dtype=np.int8)  # 0 no loss, 1 gear a driven, 2 gear b driven
@@ -461,7 +625,7 @@ def _inverse_dynamics(
         for j in lossy:
             A[:, base + j] += np.where(driven[:, j, None] == 1, loss[j][1], 0.0)
             A[:, base + j] += np.where(driven[:, j, None] == 2, loss[j][2], 0.0)
-        y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3)
+        y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3, _cache)
         lost = ok & ~consistent
         if lost.any():
             i = int(np.argmax(lost))
@@ -532,7 +696,7 @@ def _inverse_dynamics(
                 asm.add_force(Qg, other.link, P, -fr)
             elif other.link == GROUND:
                 asm.add_force(Qg, ext.link, P, fr)
-        yr, und_r, _ = _solve_equilibrium(A, Qr, m.length_scale, n3)
+        yr, und_r, _ = _solve_equilibrium(A, Qr, m.length_scale, n3, _cache)
         y = y + yr
         und = und | und_r
     y_any = np.where(ok[:, None], y, 0.0)  # one particular solution: the frame's total action is the same for all
@@ -886,7 +1050,7 @@ class Simulation(Result):
     work : (N,) work done by the drivers since ``t[0]``.
     load_work : (N,) work done by the loads and weights since ``t[0]``.
     inputs : names of the inputs.
-    loss_work : (N,) energy the meshes dissipated since ``t[0]`` (zero for ideal meshes):
+    loss_work : (N,) energy the meshes and the joints' friction dissipated since ``t[0]`` (zero without losses):
         ``kinetic_energy - kinetic_energy[0] = work + load_work - loss_work`` (energy balance).
     """
 
@@ -983,6 +1147,7 @@ def simulate(
     grid: int = SIM_GRID,
     max_evals: int = MAX_EVALS,
     efficiency=None,
+    friction=None,
 ) -> Simulation:
     """Integrate the equations of motion ``M(q) q'' + b(q, q') = tau(t, q, q')`` in the inputs.
 
@@ -1015,6 +1180,12 @@ def simulate(
         at every evaluation by a fixed point (:func:`inverse_dynamics`); the
         equations are then only piecewise smooth (slower integration where a
         direction switches), and a train that locks is refused.
+    friction : dict, optional
+        Joint friction as the model's ``[friction]`` (default the model's):
+        at every evaluation ``q''`` solves ``tau(q'') = tau`` of the
+        inverse dynamics with friction (:func:`inverse_dynamics`) by Newton
+        steps on finite-difference slopes; its dissipated power joins
+        ``loss_work``.
 
     Returns
     -------
@@ -1069,7 +1240,10 @@ def simulate(
         raise GearleverError(f"grid must be between 16 and 100000, got {grid}")
     max_evals = V.positive_int("max_evals", max_evals)
     effs = mesh_efficiency_of(m, efficiency)
-    lossy = any(e < 1.0 for e in effs.values())
+    from gearlever.mechanism.friction import parse_friction
+
+    fr = parse_friction(m, friction)
+    lossy = any(e < 1.0 for e in effs.values()) or bool(fr)
     ms = parse_masses(m, masses)
     lds = parse_loads(m, loads, 1)
     _constant_only(lds)
@@ -1078,6 +1252,8 @@ def simulate(
     # overflow is not warned about: every evaluation is checked and a non-finite one refused
     with np.errstate(over="ignore", invalid="ignore"):
         raw = dict(masses=masses, loads=loads, gravity=g, efficiency=effs) if lossy else None
+        if fr:
+            raw["friction"] = friction
         return _simulate_any(mech, m, W, tt, q0a, qd0a, tau, ms, lds, g, rtol, atol, grid, max_evals, raw)
 
 
@@ -1142,6 +1318,8 @@ def _lossy_acceleration(mech, time, q, qd, tq, qdd, raw):
     new ``q''``, repeat until they agree.
     """
     W = q.size
+    if raw.get("friction") is not None or mech.model.extra.get("friction"):
+        return _friction_acceleration(mech, time, q, qd, tq, qdd, raw)
     for _ in range(MAX_PASSES):
         d = inverse_dynamics(mech, q[None, :], qd[None, :], qdd[None, :], **raw)
         drv = np.array([[v[0] for v in d.mesh_driven.values()]], dtype=np.int8)
@@ -1163,6 +1341,33 @@ def _lossy_acceleration(mech, time, q, qd, tq, qdd, raw):
     raise GearleverError(  # pragma: no cover - the directions settle in a pass or two away from switching points
         f"self-locking: at t = {time:.6g} s the power flow through the meshes does not settle (the train locks)"
     )
+
+
+def _friction_acceleration(mech, time, q, qd, tq, qdd, raw):
+    """``q''`` and the dissipated power with joint friction: Newton steps on ``tau(q'') = tq``.
+
+    ``tau(q'')`` is the inverse dynamics with friction (and mesh losses); its
+    slopes are finite differences of ``W`` rows ``h`` apart around the
+    current ``q''`` (piecewise linear in ``q''``: the friction magnitudes are
+    norms of reactions linear in it), so the steps end in a few passes.
+    """
+    W = q.size
+    for _ in range(4 * MAX_PASSES):
+        h = 1e-3 * (1.0 + np.abs(qdd).max())
+        rows = qdd[None, :] + np.vstack([np.zeros(W), h * np.eye(W)])
+        dd = inverse_dynamics(mech, np.repeat(q[None, :], W + 1, 0), np.repeat(qd[None, :], W + 1, 0), rows, **raw)
+        c = dd.input_force[0]
+        A = (dd.input_force[1:] - c).T / h
+        if not np.all(np.isfinite(A)) or not np.all(np.isfinite(c)):
+            raise GearleverError(f"simulate: at t = {time:.6g} s the equations with friction have no solution (locks)")
+        step = np.linalg.solve(A, tq - c)
+        new = qdd + step
+        if np.allclose(step, 0.0, rtol=0, atol=1e-11 * (1.0 + np.abs(new).max())):
+            d = inverse_dynamics(mech, q[None, :], qd[None, :], new[None, :], **raw)
+            loss = sum(float(v[0]) for v in d.mesh_loss.values()) + sum(float(v[0]) for v in d.friction_loss.values())
+            return new, loss
+        qdd = new
+    raise GearleverError(f"self-locking: at t = {time:.6g} s the motion with joint friction does not settle (locks)")
 
 
 class WorkCapError(GearleverError):

@@ -326,7 +326,12 @@ def validate_extra(model: MechanismModel) -> None:
     not only the ones that use them; the messages name the file element
     (``masses.crank.mass``, ``loads[0].link``, ``mechanism.pressure_angle``).
     """
-    for key, where in (("masses", "masses"), ("loads", "loads"), ("gravity", "mechanism.gravity")):
+    for key, where in (
+        ("masses", "masses"),
+        ("loads", "loads"),
+        ("gravity", "mechanism.gravity"),
+        ("friction", "friction"),
+    ):
         if key in model.extra:
             _no_huge_ints(where, model.extra[key])
     _no_huge_ints("mechanism.pressure_angle", model.extra.get("pressure_angle"))
@@ -339,6 +344,9 @@ def validate_extra(model: MechanismModel) -> None:
         _num("mechanism.gravity[0]", g[0], cap=MAX_LOAD)
         _num("mechanism.gravity[1]", g[1], cap=MAX_LOAD)
     pressure_angle_of(model)
+    from gearlever.mechanism.friction import parse_friction
+
+    parse_friction(model)
 
 
 def _no_huge_ints(where: str, obj) -> None:

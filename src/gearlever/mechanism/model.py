@@ -82,7 +82,7 @@ GROUND = "ground"
 
 NEWLINE = b"\n"
 _TOP = ("mechanism", "points", "links", "sliders", "gears", "meshes", "inputs")
-_KEPT_TABLES = ("masses", "loads", "lengths")
+_KEPT_TABLES = ("masses", "loads", "lengths", "friction")
 _MECH_KEYS = ("name", "units", "module")
 _KEPT_MECH_KEYS = ("gravity", "pressure_angle", "mesh_efficiency")
 
