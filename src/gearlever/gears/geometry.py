@@ -651,9 +651,9 @@ def _tip_thickness_at(m: float, z: int, x: float, a_n: float, beta: float, da: f
     d = mt * z
     db = d * math.cos(at)
     if not internal:
-        st = mt * (math.pi / 2 + 2 * x * math.tan(at))
+        st = mt * math.pi / 2 + 2 * x * m * math.tan(at)
     else:
-        st = mt * (math.pi / 2 - 2 * x * math.tan(at))
+        st = mt * math.pi / 2 - 2 * x * m * math.tan(at)
     if da <= db:
         if internal:
             da = db
@@ -664,3 +664,678 @@ def _tip_thickness_at(m: float, z: int, x: float, a_n: float, beta: float, da: f
     sat = da * (st / d + sign * (involute(at) - involute(a_a)))
     beta_a = math.atan(math.tan(beta) * da / d)
     return sat * math.cos(beta_a)
+
+
+# --------------------------------------------------------------------------- meshes
+
+KINDS = ("external", "internal", "rack")
+#: Least transverse contact ratio of a mesh (below it the teeth lose contact).
+MIN_CONTACT_RATIO = 1.0
+
+
+def _generating_addendum(rack: BasicRack, alpha_n: float) -> float:
+    """The rack's straight-flank addendum that cuts the flank: ``h_fP* - rho_fP* (1 - sin alpha_n)``."""
+    return rack.dedendum - rack.root_radius * (1.0 - math.sin(alpha_n))
+
+
+def min_teeth_no_undercut(
+    shift: float = 0.0,
+    *,
+    pressure_angle: float = _DEG20,
+    helix: float = 0.0,
+    dedendum: float = 1.25,
+    root_radius: float = 0.38,
+) -> int:
+    """The fewest teeth a gear of profile shift ``shift`` can have without undercut.
+
+    Notes
+    -----
+    The straight flank of the generating rack must end (at its tip round)
+    inside the interference point of the line of action: ``(h_a0 - x) m_n <=
+    r sin^2 alpha_t``, ``h_a0 = h_fP* - rho_fP* (1 - sin alpha_n)``, i.e. ``z
+    >= 2 (h_a0 - x) cos beta / sin^2 alpha_t`` (ISO 21771:2007, 5.5; KHK,
+    *Gear Technical Reference*, undercut; Niemann/Winter, *Maschinenelemente*
+    II, eq. 21.20).  ISO 53 profile A gives ``h_a0 = 0.99997``, ``z_min = 17.097``, so
+    18 teeth (KHK's and Niemann's "17" rounds down, accepting a trace of undercut).
+
+    Examples
+    --------
+    >>> min_teeth_no_undercut(), min_teeth_no_undercut(0.5)
+    (18, 9)
+    """
+    x = finite("shift", shift)
+    a_n, beta = _pressure(pressure_angle), _helix(helix)
+    rack = BasicRack(1.0, dedendum, root_radius)
+    at = math.atan(math.tan(a_n) / math.cos(beta))
+    zmin = 2.0 * (_generating_addendum(rack, a_n) - x) * math.cos(beta) / math.sin(at) ** 2
+    return max(1, math.ceil(zmin - 1e-9))
+
+
+def min_shift_no_undercut(
+    teeth: int,
+    *,
+    pressure_angle: float = _DEG20,
+    helix: float = 0.0,
+    dedendum: float = 1.25,
+    root_radius: float = 0.38,
+) -> float:
+    """The least profile shift that avoids undercut: ``x_min = h_a0 - z sin^2 alpha_t / (2 cos beta)``.
+
+    Notes
+    -----
+    The condition of :func:`min_teeth_no_undercut` solved for ``x``.
+
+    Examples
+    --------
+    >>> round(min_shift_no_undercut(12), 4)
+    0.2981
+    """
+    z = _teeth("teeth", teeth)
+    a_n, beta = _pressure(pressure_angle), _helix(helix)
+    rack = BasicRack(1.0, dedendum, root_radius)
+    at = math.atan(math.tan(a_n) / math.cos(beta))
+    return _generating_addendum(rack, a_n) - z * math.sin(at) ** 2 / (2.0 * math.cos(beta))
+
+
+def working_pressure_angle(
+    teeth1: int, teeth2: int, shift1: float, shift2: float, *, pressure_angle=_DEG20, helix=0.0, internal: bool = False
+) -> float:
+    """Transverse working pressure angle ``alpha_wt`` of a pair from its profile shifts.
+
+    Notes
+    -----
+    ``inv alpha_wt = inv alpha_t + 2 tan alpha_n (x_1 + x_2)/(z_1 + z_2)``
+    (external), ``... (x_2 - x_1)/(z_2 - z_1)`` (internal; gear 2 the ring),
+    solved by Newton's method on the involute function (:func:`inverse_involute`;
+    ISO 21771:2007, eq. 61; KHK, *Gear Technical Reference*, Table 4-6 and 4-15).
+
+    Examples
+    --------
+    >>> round(math.degrees(working_pressure_angle(12, 24, 0.6, 0.36)), 4)
+    26.0886
+    """
+    z1, z2 = _teeth("teeth1", teeth1), _teeth("teeth2", teeth2)
+    x1, x2 = finite("shift1", shift1), finite("shift2", shift2)
+    a_n, beta = _pressure(pressure_angle), _helix(helix)
+    at = math.atan(math.tan(a_n) / math.cos(beta))
+    if internal:
+        if z2 <= z1:
+            raise GearleverError(f"teeth2 (the ring) must exceed teeth1, got {z1} and {z2}")
+        v = involute(at) + 2 * math.tan(a_n) * (x2 - x1) / (z2 - z1)
+    else:
+        v = involute(at) + 2 * math.tan(a_n) * (x1 + x2) / (z1 + z2)
+    if v <= 0:
+        raise GearleverError(f"shift1 and shift2 give no working pressure angle (inv alpha_wt = {v:.6g} <= 0)")
+    return inverse_involute(v)
+
+
+def shifts_for_center_distance(
+    center_distance: float,
+    module: float,
+    teeth1: int,
+    teeth2: int,
+    *,
+    pressure_angle: float = _DEG20,
+    helix: float = 0.0,
+    internal: bool = False,
+    split: str = "proportional",
+) -> tuple[float, float]:
+    """Profile shifts ``(x_1, x_2)`` that give a pair the centre distance ``center_distance``.
+
+    The sum follows from the working pressure angle ``cos alpha_wt = a_0 cos
+    alpha_t / a`` and the involute equation; it is split by ``split``:
+
+    ``"proportional"`` (default)
+        ``x_i = sum z_i/(z_1 + z_2)``... in the inverse sense, the smaller gear
+        the larger share: ``x_1 = sum * z_2/(z_1 + z_2)`` for an external pair
+        (the rule of the ISO/TR 4467 note and of Maag's Gear Book for balanced
+        specific sliding in speed-reducing drives: the shift split inversely to the
+        tooth numbers); for an internal pair ``x_1 = 0``... see below.
+    ``"equal"``
+        ``x_1 = x_2 = sum / 2``.
+    ``"pinion"``
+        all on gear 1 (``x_2 = 0``).
+
+    For an internal pair the ring takes the difference: ``x_2 - x_1`` is fixed;
+    ``"proportional"`` and ``"pinion"`` put it on the pinion (``x_2 = 0``,
+    ``x_1 = -(x_2 - x_1)``), ``"equal"`` splits it as ``x_1 = -d/2, x_2 = d/2``.
+
+    Notes
+    -----
+    ISO 21771:2007, eq. 61-62 for the sum; the split is a design choice (KHK,
+    *Gear Technical Reference*, Table 4-7 gives the sum and leaves the split
+    to the designer).
+
+    Examples
+    --------
+    >>> x1, x2 = shifts_for_center_distance(56.4999, 3.0, 12, 24)
+    >>> round(x1 + x2, 4)
+    0.96
+    """
+    a = positive("center_distance", center_distance)
+    m = positive("module", module)
+    z1, z2 = _teeth("teeth1", teeth1), _teeth("teeth2", teeth2)
+    a_n, beta = _pressure(pressure_angle), _helix(helix)
+    if split not in ("proportional", "equal", "pinion"):
+        raise GearleverError(f"split must be proportional, equal or pinion, got {split!r}")
+    mt, at = _transverse(m, a_n, beta)
+    zs = (z2 - z1) if internal else (z1 + z2)
+    if internal and z2 <= z1:
+        raise GearleverError(f"teeth2 (the ring) must exceed teeth1, got {z1} and {z2}")
+    a0 = zs * mt / 2.0
+    c = a0 * math.cos(at) / a
+    if not 0.0 < c < 1.0:
+        raise GearleverError(f"center_distance {a:.6g} cannot be reached by profile shifts (reference {a0:.6g})")
+    awt = math.acos(c)
+    total = (involute(awt) - involute(at)) * zs / (2 * math.tan(a_n))
+    if internal:
+        if split == "equal":
+            return -total / 2, total / 2
+        return -total, 0.0
+    if split == "equal":
+        return total / 2, total / 2
+    if split == "pinion":
+        return total, 0.0
+    return total * z2 / (z1 + z2), total * z1 / (z1 + z2)
+
+
+@dataclass(frozen=True)
+class GearMesh(Result):
+    """Geometry of a gear pair (gear 1 the pinion; gear 2 the mating gear, the ring or the rack).
+
+    Per-gear fields are arrays of two, in the order (gear 1, gear 2); a rack's
+    diameters are NaN.  Lengths in the module's unit, angles in radians.
+
+    Attributes
+    ----------
+    kind : ``"external"``, ``"internal"`` or ``"rack"``.
+    module, pressure_angle, helix : normal module, normal pressure angle, helix angle.
+    transverse_module, transverse_pressure_angle : ``m_t``, ``alpha_t``.
+    teeth : (2,) tooth numbers (a rack's is 0).
+    shift : (2,) profile shift coefficients (normal section).
+    working_pressure_angle : transverse working pressure angle ``alpha_wt``.
+    center_distance, reference_center_distance : ``a``, ``a_0`` (a rack's: gear centre to the rack's reference line).
+    center_distance_modification : ``y = (a - a_0) / m_n``.
+    tip_shortening : ``k = x_1 + x_2 - y`` by which both tips are shortened (0 when off, internal or rack).
+    reference_diameter, base_diameter, tip_diameter, root_diameter, working_diameter : (2,).
+    tooth_thickness : (2,) normal tooth thickness at the reference circle.
+    tip_thickness : (2,) normal tooth thickness at the tip circle.
+    contact_ratio_transverse, contact_ratio_overlap, contact_ratio_total : ``eps_alpha, eps_beta, eps_gamma``.
+    face_width : ``b`` (NaN when not given; then the overlap ratio is NaN).
+    undercut : (2,) whether the generating rack undercuts the gear.
+    min_teeth_no_undercut : (2,) the fewest teeth without undercut at each gear's shift.
+    min_shift_no_undercut : (2,) the least shift without undercut at each gear's teeth.
+    interference : (2,) whether the mate's tip reaches below this gear's base circle (involute interference).
+    """
+
+    kind: str
+    module: float
+    pressure_angle: float
+    helix: float
+    transverse_module: float
+    transverse_pressure_angle: float
+    teeth: np.ndarray
+    shift: np.ndarray
+    working_pressure_angle: float
+    center_distance: float
+    reference_center_distance: float
+    center_distance_modification: float
+    tip_shortening: float
+    reference_diameter: np.ndarray
+    base_diameter: np.ndarray
+    tip_diameter: np.ndarray
+    root_diameter: np.ndarray
+    working_diameter: np.ndarray
+    tooth_thickness: np.ndarray
+    tip_thickness: np.ndarray
+    contact_ratio_transverse: float
+    contact_ratio_overlap: float
+    contact_ratio_total: float
+    face_width: float
+    undercut: np.ndarray
+    min_teeth_no_undercut: np.ndarray
+    min_shift_no_undercut: np.ndarray
+    interference: np.ndarray
+    addendum: float = 1.0
+    dedendum: float = 1.25
+    root_radius: float = 0.38
+
+    def record(self) -> dict:
+        """The ``gearlever gear mesh --json`` keys: angles in degrees, per-gear values as two-element lists."""
+
+        def lst(a):
+            return [None if (isinstance(v, float) and not math.isfinite(v)) else v for v in np.asarray(a).tolist()]
+
+        def num(v):
+            return None if not math.isfinite(v) else float(v)
+
+        return {
+            "working_pressure_angle_deg": math.degrees(self.working_pressure_angle),
+            "center_distance": self.center_distance,
+            "center_distance_modification": self.center_distance_modification,
+            "tip_shortening": self.tip_shortening,
+            "shift": lst(self.shift),
+            "reference_diameter": lst(self.reference_diameter),
+            "base_diameter": lst(self.base_diameter),
+            "tip_diameter": lst(self.tip_diameter),
+            "root_diameter": lst(self.root_diameter),
+            "contact_ratio_transverse": self.contact_ratio_transverse,
+            "contact_ratio_overlap": num(self.contact_ratio_overlap),
+            "contact_ratio_total": num(self.contact_ratio_total),
+            "undercut": [bool(v) for v in self.undercut],
+            "min_teeth_no_undercut": [int(v) for v in self.min_teeth_no_undercut],
+            "interference": [bool(v) for v in self.interference],
+            "tip_thickness": lst(self.tip_thickness),
+        }
+
+
+def mesh(
+    module: float,
+    teeth1: int,
+    teeth2: int | None,
+    shift1: float = 0.0,
+    shift2: float = 0.0,
+    *,
+    kind: str = "external",
+    center_distance: float | None = None,
+    split: str = "proportional",
+    pressure_angle: float = _DEG20,
+    helix: float = 0.0,
+    face_width: float | None = None,
+    addendum: float = 1.0,
+    dedendum: float = 1.25,
+    root_radius: float = 0.38,
+    tip_shortening: bool = True,
+    check: bool = True,
+) -> GearMesh:
+    """The geometry of a spur or helical pair: external, internal (gear 2 the ring) or rack (``teeth2=None``).
+
+    Parameters
+    ----------
+    module : normal module ``m_n`` (> 0).
+    teeth1, teeth2 : tooth numbers; ``teeth2`` is None (or ignored) for a rack.
+    shift1, shift2 : profile shift coefficients (normal section); ignored when ``center_distance`` is given.
+    kind : ``"external"``, ``"internal"`` or ``"rack"``.
+    center_distance : a wanted centre distance: the shifts are found by
+        :func:`shifts_for_center_distance` with ``split``.
+    pressure_angle, helix : normal pressure angle and helix angle (rad).
+    face_width : ``b`` for the overlap ratio (> 0).
+    addendum, dedendum, root_radius : the basic rack in modules.
+    tip_shortening : shorten both tips by ``k = x_1 + x_2 - y`` to keep the
+        standard bottom clearance (external pairs; on by default).
+    check : refuse a mesh with a pointed tooth (tip thickness < 0.2 module), a
+        transverse contact ratio below 1, or an internal pair whose tips interfere.
+
+    Notes
+    -----
+    Normal and transverse quantities kept apart: ``m_t = m_n/cos beta``,
+    ``tan alpha_t = tan alpha_n / cos beta``, shifts in the normal section.
+    External: ``inv alpha_wt = inv alpha_t + 2 tan alpha_n (x_1+x_2)/(z_1+z_2)``,
+    ``a = (z_1+z_2) m_t cos alpha_t / (2 cos alpha_wt)``, ``y = (a - a_0)/m_n``,
+    ``k = x_1 + x_2 - y``, ``d_a = d + 2 (h_a* + x - k) m_n``, ``d_f = d - 2
+    (h_f* - x) m_n``; transverse contact ratio ``eps_alpha = (sqrt(r_a1^2 -
+    r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a sin alpha_wt)/(pi m_t cos alpha_t)``,
+    overlap ``eps_beta = b sin beta / (pi m_n)`` (ISO 21771:2007, eq. 12-24,
+    61-64, 84-88; KHK, *Gear Technical Reference*, Tables 4-6, 4-15, 4-20).
+    Internal (KHK Table 4-15): ``inv alpha_wt = inv alpha_t + 2 tan alpha_n
+    (x_2 - x_1)/(z_2 - z_1)``, ``d_a2 = d_2 - 2 (h_a* - x_2) m_n``, ``d_f2 =
+    d_a2 + 2 (h_a* + h_f*) m_n``, ``eps_alpha = (sqrt(r_a1^2 - r_b1^2) -
+    sqrt(r_a2^2 - r_b2^2) + a sin alpha_wt)/(pi m_t cos alpha_t)``.  Rack:
+    ``eps_alpha = (sqrt(r_a1^2 - r_b1^2) - r_1 sin alpha_t + (h_a* - x_1)
+    m_n / sin alpha_t)/(pi m_t cos alpha_t)``.
+
+    Examples
+    --------
+    KHK's profile-shifted spur pair (m = 3, z = 12/24, x = 0.6/0.36):
+
+    >>> g = mesh(3.0, 12, 24, 0.6, 0.36)
+    >>> round(math.degrees(g.working_pressure_angle), 4), round(g.center_distance, 4)
+    (26.0886, 56.4999)
+    >>> [round(float(v), 2) for v in g.tip_diameter]
+    [44.84, 79.4]
+    """
+    if kind not in KINDS:
+        raise GearleverError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    m = positive("module", module)
+    z1 = _teeth("teeth1", teeth1)
+    internal, rack_mesh = kind == "internal", kind == "rack"
+    z2 = 0 if rack_mesh else _teeth("teeth2", teeth2)
+    a_n, beta = _pressure(pressure_angle), _helix(helix)
+    rack = BasicRack(addendum, dedendum, root_radius)
+    b = float("nan") if face_width is None else positive("face_width", face_width)
+    mt, at = _transverse(m, a_n, beta)
+    if internal and z2 <= z1:
+        raise GearleverError(f"teeth2 (the ring) must exceed teeth1, got {z1} and {z2}")
+    if center_distance is not None:
+        if rack_mesh:
+            a_w = positive("center_distance", center_distance)
+            x1, x2 = (a_w - z1 * mt / 2) / m, 0.0
+        else:
+            x1, x2 = shifts_for_center_distance(
+                center_distance, m, z1, z2, pressure_angle=a_n, helix=beta, internal=internal, split=split
+            )
+    else:
+        x1 = finite("shift1", shift1)
+        x2 = 0.0 if rack_mesh else finite("shift2", shift2)
+    ha, hf = rack.addendum, rack.dedendum
+    d1 = z1 * mt
+    db1 = d1 * math.cos(at)
+    if rack_mesh:
+        awt = at
+        a0 = d1 / 2
+        a = d1 / 2 + x1 * m
+        y, k = x1, 0.0
+        d2 = db2 = da2 = df2 = dw2 = float("nan")
+        dw1 = d1
+        da1 = d1 + 2 * (ha + x1) * m
+    else:
+        d2 = z2 * mt
+        db2 = d2 * math.cos(at)
+        awt = working_pressure_angle(z1, z2, x1, x2, pressure_angle=a_n, helix=beta, internal=internal)
+        zs = (z2 - z1) if internal else (z1 + z2)
+        a0 = zs * mt / 2
+        a = a0 * math.cos(at) / math.cos(awt)
+        y = (a - a0) / m
+        if internal:
+            k = 0.0
+            da1 = d1 + 2 * (ha + x1) * m
+            da2 = d2 - 2 * (ha - x2) * m
+            df2 = da2 + 2 * (ha + hf) * m
+            dw1, dw2 = 2 * a * z1 / zs, 2 * a * z2 / zs
+        else:
+            k = (x1 + x2 - y) if tip_shortening else 0.0
+            da1 = d1 + 2 * (ha + x1 - k) * m
+            da2 = d2 + 2 * (ha + x2 - k) * m
+            df2 = d2 - 2 * (hf - x2) * m
+            dw1, dw2 = 2 * a * z1 / zs, 2 * a * z2 / zs
+    df1 = d1 - 2 * (hf - x1) * m
+    # contact ratios
+    ga1 = math.sqrt(max(da1 * da1 - db1 * db1, 0.0)) / 2
+    pbt = math.pi * mt * math.cos(at)
+    if rack_mesh:
+        g_len = ga1 - d1 / 2 * math.sin(at) + (ha - x1) * m / math.sin(at)
+    else:
+        ga2 = math.sqrt(max(da2 * da2 - db2 * db2, 0.0)) / 2
+        g_len = (ga1 - ga2 + a * math.sin(awt)) if internal else (ga1 + ga2 - a * math.sin(awt))
+    eps_a = g_len / pbt
+    eps_b = b * math.sin(abs(beta)) / (math.pi * m)
+    # thickness
+    s1 = m * (math.pi / 2 + 2 * x1 * math.tan(a_n))
+    s2 = m * (math.pi / 2 + (-2 if internal else 2) * x2 * math.tan(a_n))
+    st1 = _tip_thickness_at(m, z1, x1, a_n, beta, da1, internal=False)
+    if rack_mesh:
+        st2 = m * (math.pi / 2 - 2 * ha * math.tan(a_n))
+        s2 = m * math.pi / 2
+    else:
+        st2 = _tip_thickness_at(m, z2, x2, a_n, beta, da2, internal=internal)
+    # undercut (a rack does not undercut; an internal gear is not cut by a rack: reported False)
+    kw = {"pressure_angle": a_n, "helix": beta, "dedendum": hf, "root_radius": rack.root_radius}
+    zmin1 = min_teeth_no_undercut(x1, **kw)
+    xmin1 = min_shift_no_undercut(z1, **kw)
+    if rack_mesh or internal:
+        zmin2, xmin2, uc2 = 0, float("nan"), False
+    else:
+        zmin2, xmin2 = min_teeth_no_undercut(x2, **kw), min_shift_no_undercut(z2, **kw)
+        uc2 = x2 < xmin2 - 1e-12
+    uc1 = x1 < xmin1 - 1e-12
+    # interference: the mate's tip past this gear's interference point T on the line of action
+    t1 = d1 / 2 * math.sin(at) if rack_mesh else None
+    if rack_mesh:
+        int1 = (ha - x1) * m > d1 / 2 * math.sin(at) ** 2 + 1e-12 * m
+        int2 = False
+    elif internal:
+        # pinion root: ring tip beyond T1 (ring tip inside the pinion's interference point)
+        ga2_len = math.sqrt(max(da2 * da2 - db2 * db2, 0.0)) / 2
+        int1 = ga2_len - a * math.sin(awt) < -1e-12 * m
+        int2 = ga1 > ga2_len + 1e-12 * m  # pinion tip beyond the ring's interference point... see tip interference
+        int2 = bool(da2 < db2 - 1e-12)
+    else:
+        ga2_len = math.sqrt(max(da2 * da2 - db2 * db2, 0.0)) / 2
+        int1 = ga2_len > a * math.sin(awt) + 1e-12 * m
+        int2 = ga1 > a * math.sin(awt) + 1e-12 * m
+    del t1
+    result = GearMesh(
+        kind=kind,
+        module=m,
+        pressure_angle=a_n,
+        helix=beta,
+        transverse_module=mt,
+        transverse_pressure_angle=at,
+        teeth=np.array([z1, z2]),
+        shift=np.array([x1, x2]),
+        working_pressure_angle=awt,
+        center_distance=a,
+        reference_center_distance=a0,
+        center_distance_modification=y,
+        tip_shortening=k,
+        reference_diameter=np.array([d1, d2]),
+        base_diameter=np.array([db1, db2]),
+        tip_diameter=np.array([da1, da2]),
+        root_diameter=np.array([df1, df2]),
+        working_diameter=np.array([dw1, dw2]),
+        tooth_thickness=np.array([s1, s2]),
+        tip_thickness=np.array([st1, st2]),
+        contact_ratio_transverse=eps_a,
+        contact_ratio_overlap=eps_b,
+        contact_ratio_total=eps_a + eps_b,
+        face_width=b,
+        undercut=np.array([uc1, uc2]),
+        min_teeth_no_undercut=np.array([zmin1, zmin2]),
+        min_shift_no_undercut=np.array([xmin1, xmin2]),
+        interference=np.array([bool(int1), bool(int2)]),
+        addendum=ha,
+        dedendum=hf,
+        root_radius=rack.root_radius,
+    )
+    if check:
+        _check_mesh(result)
+    return result
+
+
+def _check_mesh(g: GearMesh) -> None:
+    m = g.module
+    names = ("shift1", "shift2")
+    for i in range(1 if g.kind == "rack" else 2):
+        st = float(g.tip_thickness[i])
+        if not st >= MIN_TIP_THICKNESS * m - 1e-12:
+            internal = g.kind == "internal" and i == 1
+            if internal:
+                raise GearleverError(
+                    f"{names[i]} {g.shift[i]:.6g} points the ring's teeth: tip thickness {st / m:.4g} module "
+                    f"< {MIN_TIP_THICKNESS}"
+                )
+            largest = max_shift_for_tip(
+                m,
+                int(g.teeth[i]),
+                pressure_angle=g.pressure_angle,
+                helix=g.helix,
+                addendum=g.addendum,
+                tip_shortening=g.tip_shortening,
+            )
+            raise GearleverError(
+                f"{names[i]} {g.shift[i]:.6g} points the tooth: tip thickness {st / m:.4g} module < "
+                f"{MIN_TIP_THICKNESS}; largest shift {largest:.4g}"
+            )
+    if not g.contact_ratio_transverse >= MIN_CONTACT_RATIO:
+        raise GearleverError(
+            f"contact ratio {g.contact_ratio_transverse:.4g} < 1: not a mesh (teeth {g.teeth[0]}, {g.teeth[1]}, "
+            f"shifts {g.shift[0]:.4g}, {g.shift[1]:.4g})"
+        )
+    if g.kind == "internal":
+        tip = internal_interference(g)
+        if tip["tip"]:
+            raise GearleverError(
+                f"teeth2 - teeth1 = {int(g.teeth[1] - g.teeth[0])}: the internal pair's tips interfere "
+                f"(involute interference at the ring tip)"
+            )
+
+
+def internal_interference(g: GearMesh) -> dict:
+    """Involute and trochoid interference of an internal pair (gear 2 the ring).
+
+    Returns a dict of booleans ``involute``, ``trochoid`` and ``tip`` (either)
+    and the margins ``involute_margin`` and ``trochoid_margin`` (>= 0 is clear).
+
+    Notes
+    -----
+    Involute interference: the ring's tip must not reach past the pinion's
+    interference point, ``z_1/z_2 >= 1 - tan alpha_a2 / tan alpha_w``, and the
+    ring's tip circle must lie outside its base circle.  Trochoid interference
+    (the pinion tip hits the ring tip as it leaves the mesh): ``theta_1 z_1/z_2
+    + inv alpha_w - inv alpha_a2 >= theta_2`` with ``cos theta_1 = (r_a2^2 -
+    r_a1^2 - a^2)/(2 a r_a1) + inv alpha_a1 - inv alpha_w``... (the arc cosine
+    plus ``inv alpha_a1 - inv alpha_w``), ``cos theta_2 = (a^2 + r_a2^2 - r_a1^2)/(2 a
+    r_a2)`` (KHK, *Gear Technical Reference*, internal gears, interference;
+    G. Niemann and H. Winter, *Maschinenelemente* II, 1983, 22.2).
+
+    Examples
+    --------
+    >>> g = mesh(3.0, 16, 24, 0.0, 0.5, kind="internal", check=False)
+    >>> internal_interference(g)["trochoid"]
+    False
+    """
+    if g.kind != "internal":
+        raise GearleverError(f"kind must be internal, got {g.kind!r}")
+    z1, z2 = int(g.teeth[0]), int(g.teeth[1])
+    ra1, ra2 = g.tip_diameter / 2
+    rb1, rb2 = g.base_diameter / 2
+    a, aw = g.center_distance, g.working_pressure_angle
+    below_base = ra2 < rb2
+    aa2 = math.acos(min(1.0, rb2 / ra2))
+    aa1 = math.acos(min(1.0, rb1 / ra1))
+    inv_margin = z1 / z2 - (1 - math.tan(aa2) / math.tan(aw))
+    c1 = (ra2 * ra2 - ra1 * ra1 - a * a) / (2 * a * ra1)
+    c2 = (a * a + ra2 * ra2 - ra1 * ra1) / (2 * a * ra2)
+    if abs(c1) > 1 or abs(c2) > 1:
+        troch_margin = float("inf")  # the tip circles do not cross: the tips never meet
+    else:
+        th1 = math.acos(c1) + involute(aa1) - involute(aw)
+        th2 = math.acos(c2)
+        troch_margin = th1 * z1 / z2 + involute(aw) - involute(aa2) - th2
+    involute_i = bool(below_base or inv_margin < -1e-12)
+    trochoid_i = bool(troch_margin < -1e-12)
+    return {
+        "involute": involute_i,
+        "trochoid": trochoid_i,
+        "tip": involute_i or trochoid_i,
+        "involute_margin": inv_margin,
+        "trochoid_margin": troch_margin,
+    }
+
+
+def max_mating_teeth(teeth: int, *, pressure_angle: float = _DEG20, addendum: float = 1.0) -> int | None:
+    """The largest gear that meshes with a standard pinion of ``teeth`` without interference (None: any, a rack too).
+
+    Notes
+    -----
+    The gear's tip must not pass the pinion's interference point:
+    ``N_G <= (N_P^2 sin^2 phi - 4 k^2)/(4 k - 2 N_P sin^2 phi)`` (k the addendum
+    in modules), R. G. Budynas and J. K. Nisbett, *Shigley's Mechanical
+    Engineering Design*, 9th ed., 2011, eq. (13-11).  When ``N_P >= 2k/sin^2
+    phi`` every gear and the rack fit (eq. 13-12 with an infinite gear).
+
+    Examples
+    --------
+    >>> max_mating_teeth(13), max_mating_teeth(16), max_mating_teeth(18)
+    (16, 101, None)
+    """
+    n = _teeth("teeth", teeth)
+    phi = _pressure(pressure_angle)
+    k = positive("addendum", addendum)
+    s2 = math.sin(phi) ** 2
+    den = 4 * k - 2 * n * s2
+    if den <= 0:
+        return None
+    ng = (n * n * s2 - 4 * k * k) / den
+    return int(math.floor(ng + 1e-9)) if ng >= 1 else 0
+
+
+def min_pinion_teeth(ratio: float = 1.0, *, pressure_angle: float = _DEG20, addendum: float = 1.0) -> int:
+    """The fewest pinion teeth without interference for a gear ratio ``ratio`` = N_G/N_P (inf: a rack).
+
+    Notes
+    -----
+    ``N_P = 2k/((1 + 2m) sin^2 phi) (m + sqrt(m^2 + (1 + 2m) sin^2 phi))``,
+    rounded up (Budynas and Nisbett, *Shigley's*, 9th ed., eq. 13-10; for
+    ``m = 1`` eq. 13-11... the rack ``N_P = 2k/sin^2 phi``, eq. 13-12).
+
+    Examples
+    --------
+    >>> min_pinion_teeth(1), min_pinion_teeth(4), min_pinion_teeth(math.inf)
+    (13, 16, 18)
+    """
+    phi = _pressure(pressure_angle)
+    k = positive("addendum", addendum)
+    s2 = math.sin(phi) ** 2
+    if ratio == math.inf:
+        npn = 2 * k / s2
+    else:
+        mg = positive("ratio", ratio)
+        npn = 2 * k / ((1 + 2 * mg) * s2) * (mg + math.sqrt(mg * mg + (1 + 2 * mg) * s2))
+    return math.ceil(npn - 1e-9)
+
+
+def backlash(g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0), center_distance_change: float = 0.0):
+    """Backlash of a mesh from tooth-thickness allowances and a centre-distance change.
+
+    Parameters
+    ----------
+    g : the mesh (:func:`mesh`).
+    thickness_allowance : (2,) reduction of each gear's normal tooth thickness (length, >= 0 thins the tooth).
+    center_distance_change : ``delta a`` from the mesh's centre distance (length; > 0 opens an external mesh).
+
+    Returns
+    -------
+    dict with ``circumferential`` (transverse, on the working circle), ``normal`` (along the line of action,
+    normal section) and ``working_pressure_angle`` at the changed centre distance.
+
+    Notes
+    -----
+    With the pair at ``a + delta a`` the working pressure angle is ``cos
+    alpha_wt' = a_0 cos alpha_t / (a + delta a)`` and the transverse
+    circumferential backlash on the working circle of gear 1 is ``j_wt = d_w1'
+    (inv alpha_wt' - inv alpha_wt0) (z_1 + z_2)/z_1 + (E_1 + E_2)/cos beta *
+    d_w1'/d_1``... in closed form ``j_bt = (inv alpha_wt' - inv alpha_t) z_s
+    m_t cos alpha_t - (s_bt1 + s_bt2 - p_bt)`` along the base tangent, where the
+    tooth thicknesses are the generated ones less the allowances (ISO
+    21771:2007, 5.7; ISO/TR 10064-2; KHK, *Gear Technical Reference*, backlash,
+    ``j_n = 2 delta a sin alpha`` for a small change).
+
+    Examples
+    --------
+    >>> g = mesh(2.0, 20, 40)
+    >>> round(backlash(g, center_distance_change=0.1)["normal"], 6)
+    0.068832
+    """
+    e1, e2 = (finite("thickness_allowance", v) for v in thickness_allowance)
+    da = finite("center_distance_change", center_distance_change)
+    mt, at, m, beta = g.transverse_module, g.transverse_pressure_angle, g.module, g.helix
+    cbb = math.cos(math.atan(math.tan(beta) * math.cos(at)))  # cos beta_b
+    allowance = (e1 + e2) * math.cos(at) / math.cos(beta)  # normal thinning -> transverse arc on the base circle
+    if g.kind == "rack":
+        awt = at
+        jbt = 2 * da * math.sin(at) + allowance
+    else:
+        z1, z2 = (int(v) for v in g.teeth)
+        x1, x2 = (float(v) for v in g.shift)
+        a_new = g.center_distance + da
+        c = g.reference_center_distance * math.cos(at) / a_new if a_new > 0 else 2.0
+        if not 0 < c < 1:
+            raise GearleverError(f"center_distance_change {da:.6g} leaves no working pressure angle")
+        awt = math.acos(c)
+        pbt = math.pi * mt * math.cos(at)
+        tan_n = math.tan(g.pressure_angle)
+        sbt1 = g.base_diameter[0] * ((math.pi / 2 * mt + 2 * x1 * m * tan_n) / g.reference_diameter[0] + involute(at))
+        if g.kind == "internal":
+            # the ring's space is the external tooth of the same shift
+            ebt2 = g.base_diameter[1] * (
+                (math.pi / 2 * mt + 2 * x2 * m * tan_n) / g.reference_diameter[1] + involute(at)
+            )
+            jbt = ebt2 - sbt1 - (z2 - z1) * mt * math.cos(at) * involute(awt)
+        else:
+            sbt2 = g.base_diameter[1] * (
+                (math.pi / 2 * mt + 2 * x2 * m * tan_n) / g.reference_diameter[1] + involute(at)
+            )
+            jbt = (z1 + z2) * mt * math.cos(at) * involute(awt) + pbt - sbt1 - sbt2
+        jbt += allowance
+    return {"normal": float(jbt * cbb), "circumferential": float(jbt / math.cos(awt)), "working_pressure_angle": awt}
