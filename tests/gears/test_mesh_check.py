@@ -147,3 +147,37 @@ def test_bad_input_is_refused_naming_it():
     mech = Mechanism.load(example_path("zrdpm_gear_contour.toml"))
     with pytest.raises(GearleverError, match="unknown mesh 'z8-z9'"):
         check_mechanism(mech, adjust={"z8-z9": (44.0, 46.0)})
+
+
+@pytest.mark.parametrize(
+    "teeth, shift, internal, helix",
+    [
+        ((20, 30), (0.3, -0.1), (False, False), 0.0),
+        ((17, 45), (0.2, 0.4), (False, False), 0.3),
+        ((16, 24), (0.0, 0.5), (False, True), 0.0),
+        ((60, 18), (0.2, 0.1), (True, False), 0.2),
+    ],
+)
+def test_centre_distance_sweep_agrees_with_gears_geometry(teeth, shift, internal, helix):
+    # the vectorised sweep against gears.geometry's scalar mesh and backlash (its own derivation of j_bt)
+    from gearlever.gears.geometry import backlash, mesh
+
+    ring = internal[0]
+    order = (1, 0) if ring else (0, 1)
+    kind = "internal" if any(internal) else "external"
+    ref = mesh(
+        2.0, teeth[order[0]], teeth[order[1]], shift[order[0]], shift[order[1]], kind=kind, helix=helix, check=False
+    )
+    deltas = np.array([0.0, 0.05, -0.05, 0.2])
+    g = mesh_geometry(2.0, teeth, shift, internal, helix=helix, center_distance=ref.center_distance + deltas)
+    assert g.tight_center_distance == pytest.approx(ref.center_distance, rel=1e-12)
+    assert g.working_pressure_angle[0] == pytest.approx(ref.working_pressure_angle, rel=1e-12)
+    assert g.contact_ratio_transverse[0] == pytest.approx(ref.contact_ratio_transverse, rel=1e-12)
+    assert g.backlash[0] == pytest.approx(0.0, abs=1e-12)  # the tight mesh has none, by definition
+    for dlt, j, aw in zip(deltas, g.backlash, g.working_pressure_angle):
+        b = backlash(ref, center_distance_change=float(dlt))
+        assert aw == pytest.approx(b["working_pressure_angle"], rel=1e-12)
+        if helix == 0:
+            # (helical: gears.geometry.backlash at commit 399a667 gives -0.003 mm at the tight mesh, its
+            # transverse thickness taking 2 x m_n tan(alpha_n) for 2 x m_t tan(alpha_n); reported to its author)
+            assert j == pytest.approx(b["circumferential"], abs=1e-12)

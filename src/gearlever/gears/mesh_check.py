@@ -26,7 +26,7 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever.errors import GearleverError
-from gearlever.mechanism.model import MechanismModel, Mesh, tight_centre_distance
+from gearlever.mechanism.model import MechanismModel, Mesh
 
 __all__ = ["ADDENDUM", "DEDENDUM", "MeshGeometry", "MeshCheck", "mesh_geometry", "check_mechanism", "involute"]
 
@@ -66,11 +66,13 @@ class MeshGeometry(Result):
     reference_diameter, base_diameter, tip_diameter, root_diameter : ndarray
         Per gear ``(2,)``, for a ring its inside tip and root.
     tip_thickness : ndarray
-        Per gear, transverse tooth thickness at the tip (NaN for a ring).
+        Per gear, normal tooth thickness at the tip.
     undercut : ndarray of bool
         Per gear: the rack cutting it undercuts (never for a ring).
     interference : ndarray of bool
-        ``(N,)``: the involute of a gear's tip acts below the mate's base circle.
+        ``(N,)``: the involute of a gear's tip acts below the mate's base circle (and, for a ring
+        at its tight centre distance, the trochoid interference of
+        :func:`gearlever.gears.geometry.internal_interference`).
     """
 
     center_distance: np.ndarray
@@ -135,6 +137,9 @@ def mesh_geometry(
 
     Notes
     -----
+    The tight mesh's diameters, tip thicknesses and undercut are
+    :func:`gearlever.gears.geometry.mesh`'s; what changes with the centre
+    distance is computed here for every centre distance at once.
     ISO 21771:2007 (KHK, *Gear Technical Reference*, sections 4.3-4.5 and
     5.1): ``cos alpha_wt = a_0 cos alpha_t / a`` with ``a_0 = m_t (z_1 +- z_2)
     / 2``; the transverse contact ratio ``eps_alpha = (sqrt(r_a1^2 - r_b1^2)
@@ -172,36 +177,38 @@ def mesh_geometry(
     cb = math.cos(helix)
     mt = module / cb
     at = math.atan(math.tan(pressure_angle) / cb)
-    d = mt * z
-    db = d * math.cos(at)
     sign = -1.0 if is_internal else 1.0
-    if is_internal:
-        k_ring = int(np.argmax(ring))
-        zsum = z[k_ring] - z[1 - k_ring]
-        if zsum <= 0:
-            raise GearleverError(f"internal: the ring needs more teeth than its pinion, got {teeth!r}")
-    else:
-        zsum = z.sum()
-    from gearlever.mechanism.model import Gear
+    # the tight mesh's per-gear geometry: gears.geometry.mesh (gear 2 is the ring of an internal pair)
+    from gearlever.gears.geometry import internal_interference
+    from gearlever.gears.geometry import mesh as tight_mesh
 
-    ga = Gear("a", "", "", int(z[0]), bool(ring[0]), float(x[0]), None, helix)
-    gb = Gear("b", "", "", int(z[1]), bool(ring[1]), float(x[1]), None, helix)
-    a_tight = tight_centre_distance(module, ga, gb, pressure_angle)
-    a0 = mt * zsum / 2.0
-    inv_tight = float(involute(math.acos(min(a0 * math.cos(at) / a_tight, 1.0))))
-    # tip and root diameters (ISO 53: h_a = m, h_f = 1.25 m); a ring's teeth point inwards
-    da = np.where(ring, d - 2 * module * (ADDENDUM - x), d + 2 * module * (ADDENDUM + x))
-    df = np.where(ring, d + 2 * module * (DEDENDUM + x), d - 2 * module * (DEDENDUM - x))
-    if tip_shortening and not is_internal:
-        k = x.sum() - (a_tight - a0) / module
-        if k > 0:
-            da = da - 2 * k * module
-    # tooth thickness at the tip (external gears)
-    s = mt * (np.pi / 2 + 2 * x * math.tan(pressure_angle))
-    with np.errstate(invalid="ignore"):
-        aa = np.arccos(np.clip(db / da, -1.0, 1.0))
-        sa = np.where(ring, np.nan, da * (s / d + float(involute(at)) - involute(aa)))
-    undercut = (~ring) & (ADDENDUM - x > z * math.sin(at) ** 2 / (2 * cb))
+    order = [1, 0] if ring[0] else [0, 1]
+    k_ring = int(np.argmax(ring)) if is_internal else None
+    tight = tight_mesh(
+        module,
+        int(z[order[0]]),
+        int(z[order[1]]),
+        float(x[order[0]]),
+        float(x[order[1]]),
+        kind="internal" if is_internal else "external",
+        pressure_angle=pressure_angle,
+        helix=helix,
+        face_width=face_width,
+        tip_shortening=tip_shortening,
+        check=False,
+    )
+    back = np.argsort(order)  # per-gear arrays back in the order given
+
+    def given(arr):
+        return np.asarray(arr, dtype=float)[back]
+
+    d, db, da = given(tight.reference_diameter), given(tight.base_diameter), given(tight.tip_diameter)
+    df, sa = given(tight.root_diameter), given(tight.tip_thickness)
+    undercut = np.asarray(tight.undercut, dtype=bool)[back]
+    a_tight = float(tight.center_distance)
+    a0 = float(tight.reference_center_distance)
+    inv_tight = float(involute(tight.working_pressure_angle))
+    trochoid = bool(is_internal and internal_interference(tight)["trochoid"])
     a = np.atleast_1d(np.asarray(a_tight if center_distance is None else center_distance, dtype=float))
     if not (np.isfinite(a) & (a > 0)).all():
         raise GearleverError("center_distance must be positive and finite")
@@ -216,6 +223,8 @@ def mesh_geometry(
         p, r = 1 - k_ring, k_ring
         approach = g[p] - g[r] + line
         interference = (g[r] < line) | (ra[r] < rb[r])
+        if trochoid and np.isclose(a, a_tight, rtol=_TIGHT, atol=0).any():
+            interference = interference | np.isclose(a, a_tight, rtol=_TIGHT, atol=0)
     else:
         approach = g[0] + g[1] - line
         interference = (g[0] > line) | (g[1] > line)
