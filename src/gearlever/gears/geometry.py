@@ -35,6 +35,20 @@ __all__ = [
     "tip_thickness",
     "tooth_profile",
     "tooth_outline",
+    "KINDS",
+    "SPLITS",
+    "GearMesh",
+    "PlanetaryGeometry",
+    "mesh",
+    "working_pressure_angle",
+    "shifts_for_center_distance",
+    "min_teeth_no_undercut",
+    "min_shift_no_undercut",
+    "internal_interference",
+    "max_mating_teeth",
+    "min_pinion_teeth",
+    "backlash",
+    "planetary_geometry",
 ]
 
 #: Largest tooth number accepted (the outline has ~60 points a tooth).
@@ -669,6 +683,8 @@ def _tip_thickness_at(m: float, z: int, x: float, a_n: float, beta: float, da: f
 # --------------------------------------------------------------------------- meshes
 
 KINDS = ("external", "internal", "rack")
+#: Rules that split a sum of profile shifts between the two gears (:func:`shifts_for_center_distance`).
+SPLITS = ("inverse", "proportional", "equal", "pinion")
 #: Least transverse contact ratio of a mesh (below it the teeth lose contact).
 MIN_CONTACT_RATIO = 1.0
 
@@ -765,7 +781,7 @@ def working_pressure_angle(
     else:
         v = involute(at) + 2 * math.tan(a_n) * (x1 + x2) / (z1 + z2)
     if v <= 0:
-        raise GearleverError(f"shift1 and shift2 give no working pressure angle (inv alpha_wt = {v:.6g} <= 0)")
+        raise GearleverError(f"shift {x1:.6g}, {x2:.6g} gives no working pressure angle (inv alpha_wt = {v:.6g} <= 0)")
     return inverse_involute(v)
 
 
@@ -778,46 +794,46 @@ def shifts_for_center_distance(
     pressure_angle: float = _DEG20,
     helix: float = 0.0,
     internal: bool = False,
-    split: str = "proportional",
+    split: str = "inverse",
 ) -> tuple[float, float]:
     """Profile shifts ``(x_1, x_2)`` that give a pair the centre distance ``center_distance``.
 
     The sum follows from the working pressure angle ``cos alpha_wt = a_0 cos
-    alpha_t / a`` and the involute equation; it is split by ``split``:
+    alpha_t / a`` and the involute equation (ISO 21771:2007, eq. 61-62); the
+    standard fixes only the sum.  It is split by ``split``:
 
-    ``"proportional"`` (default)
-        ``x_i = sum z_i/(z_1 + z_2)``... in the inverse sense, the smaller gear
-        the larger share: ``x_1 = sum * z_2/(z_1 + z_2)`` for an external pair
-        (the rule of the ISO/TR 4467 note and of Maag's Gear Book for balanced
-        specific sliding in speed-reducing drives: the shift split inversely to the
-        tooth numbers); for an internal pair ``x_1 = 0``... see below.
+    ``"inverse"`` (default)
+        in inverse proportion to the tooth numbers, ``x_1 = sum z_2/(z_1 +
+        z_2)``: the smaller gear, the one that undercuts first and is weaker
+        at the root, takes the larger share (the direction of the DIN 3992 /
+        Niemann recommendation, whose split is read from charts and is not
+        reproduced here).
+    ``"proportional"``
+        in proportion to the tooth numbers, ``x_i = sum z_i/(z_1 + z_2)``:
+        each profile moves by the same fraction of its reference radius.
     ``"equal"``
         ``x_1 = x_2 = sum / 2``.
     ``"pinion"``
         all on gear 1 (``x_2 = 0``).
 
-    For an internal pair the ring takes the difference: ``x_2 - x_1`` is fixed;
-    ``"proportional"`` and ``"pinion"`` put it on the pinion (``x_2 = 0``,
-    ``x_1 = -(x_2 - x_1)``), ``"equal"`` splits it as ``x_1 = -d/2, x_2 = d/2``.
-
-    Notes
-    -----
-    ISO 21771:2007, eq. 61-62 for the sum; the split is a design choice (KHK,
-    *Gear Technical Reference*, Table 4-7 gives the sum and leaves the split
-    to the designer).
+    For an internal pair the difference ``x_2 - x_1`` is fixed: ``"equal"``
+    gives ``(-d/2, d/2)``, every other rule puts it on the ring (``x_1 = 0``,
+    ``x_2 = d``), where it does not thin the pinion.
 
     Examples
     --------
+    KHK's shifted pair back from its centre distance (the sum 0.96):
+
     >>> x1, x2 = shifts_for_center_distance(56.4999, 3.0, 12, 24)
-    >>> round(x1 + x2, 4)
-    0.96
+    >>> round(x1 + x2, 4), round(x1, 4)
+    (0.96, 0.64)
     """
     a = positive("center_distance", center_distance)
     m = positive("module", module)
     z1, z2 = _teeth("teeth1", teeth1), _teeth("teeth2", teeth2)
     a_n, beta = _pressure(pressure_angle), _helix(helix)
-    if split not in ("proportional", "equal", "pinion"):
-        raise GearleverError(f"split must be proportional, equal or pinion, got {split!r}")
+    if split not in SPLITS:
+        raise GearleverError(f"split must be one of {', '.join(SPLITS)}, got {split!r}")
     mt, at = _transverse(m, a_n, beta)
     zs = (z2 - z1) if internal else (z1 + z2)
     if internal and z2 <= z1:
@@ -831,11 +847,13 @@ def shifts_for_center_distance(
     if internal:
         if split == "equal":
             return -total / 2, total / 2
-        return -total, 0.0
+        return 0.0, total
     if split == "equal":
         return total / 2, total / 2
     if split == "pinion":
         return total, 0.0
+    if split == "proportional":
+        return total * z1 / (z1 + z2), total * z2 / (z1 + z2)
     return total * z2 / (z1 + z2), total * z1 / (z1 + z2)
 
 
@@ -938,7 +956,7 @@ def mesh(
     *,
     kind: str = "external",
     center_distance: float | None = None,
-    split: str = "proportional",
+    split: str = "inverse",
     pressure_angle: float = _DEG20,
     helix: float = 0.0,
     face_width: float | None = None,
@@ -1134,14 +1152,13 @@ def mesh(
 
 def _check_mesh(g: GearMesh) -> None:
     m = g.module
-    names = ("shift1", "shift2")
     for i in range(1 if g.kind == "rack" else 2):
         st = float(g.tip_thickness[i])
         if not st >= MIN_TIP_THICKNESS * m - 1e-12:
             internal = g.kind == "internal" and i == 1
             if internal:
                 raise GearleverError(
-                    f"{names[i]} {g.shift[i]:.6g} points the ring's teeth: tip thickness {st / m:.4g} module "
+                    f"shift {g.shift[i]:.6g} points the ring's teeth: tip thickness {st / m:.4g} module "
                     f"< {MIN_TIP_THICKNESS}"
                 )
             largest = max_shift_for_tip(
@@ -1153,7 +1170,7 @@ def _check_mesh(g: GearMesh) -> None:
                 tip_shortening=g.tip_shortening,
             )
             raise GearleverError(
-                f"{names[i]} {g.shift[i]:.6g} points the tooth: tip thickness {st / m:.4g} module < "
+                f"shift {g.shift[i]:.6g} points the tooth of gear {i + 1}: tip thickness {st / m:.4g} module < "
                 f"{MIN_TIP_THICKNESS}; largest shift {largest:.4g}"
             )
     if not g.contact_ratio_transverse >= MIN_CONTACT_RATIO:
@@ -1164,9 +1181,10 @@ def _check_mesh(g: GearMesh) -> None:
     if g.kind == "internal":
         tip = internal_interference(g)
         if tip["tip"]:
+            kinds = " and ".join(k for k in ("involute", "trochoid") if tip[k])
             raise GearleverError(
-                f"teeth2 - teeth1 = {int(g.teeth[1] - g.teeth[0])}: the internal pair's tips interfere "
-                f"(involute interference at the ring tip)"
+                f"teeth {int(g.teeth[0])} and {int(g.teeth[1])}: the internal pair's tips interfere "
+                f"({kinds} interference; margins {tip['involute_margin']:.4g}, {tip['trochoid_margin']:.4g})"
             )
 
 
@@ -1339,3 +1357,103 @@ def backlash(g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0),
             jbt = (z1 + z2) * mt * math.cos(at) * involute(awt) + pbt - sbt1 - sbt2
         jbt += allowance
     return {"normal": float(jbt * cbb), "circumferential": float(jbt / math.cos(awt)), "working_pressure_angle": awt}
+
+
+# --------------------------------------------------------------------------- planetary sets
+
+
+@dataclass(frozen=True)
+class PlanetaryGeometry(Result):
+    """Assembly conditions of a simple planetary set with shifted gears (sun, planet, ring).
+
+    Attributes
+    ----------
+    sun_planet, planet_ring : the two meshes (:class:`GearMesh`, unchecked).
+    center_distance : (2,) working centre distances of sun-planet and planet-ring.
+    coaxial : the two agree (to 1e-9 of the module).
+    ring_shift_for_coaxial : the ring shift that makes them agree with the sun's and planet's shifts.
+    equal_spacing : ``(z_s + z_r) / N`` is an integer.
+    adjacency_clearance : ``2 a sin(pi/N) - d_a,planet`` (> 0: neighbouring planets clear).
+    adjacent : ``adjacency_clearance > 0``.
+    ok : all three hold.
+    """
+
+    sun_planet: GearMesh
+    planet_ring: GearMesh
+    center_distance: np.ndarray
+    coaxial: bool
+    ring_shift_for_coaxial: float
+    equal_spacing: bool
+    adjacency_clearance: float
+    adjacent: bool
+    ok: bool
+
+
+def planetary_geometry(
+    module: float,
+    sun: int,
+    planet: int,
+    ring: int,
+    planets: int,
+    shifts: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    *,
+    pressure_angle: float = _DEG20,
+    helix: float = 0.0,
+    addendum: float = 1.0,
+    dedendum: float = 1.25,
+) -> PlanetaryGeometry:
+    """Coaxial centre distances, equal spacing and adjacency of a simple planetary set with shifted gears.
+
+    Notes
+    -----
+    Coaxial: the sun-planet (external) and planet-ring (internal) working
+    centre distances are equal, each from its working pressure angle
+    (:func:`mesh`); with unshifted gears this is ``z_r = z_s + 2 z_p``.  Equal
+    spacing: ``(z_s + z_r)/N`` integer.  Adjacency: the planets' tip circles
+    clear, ``2 a sin(pi/N) > d_a,p`` (J. E. Shigley and J. J. Uicker, *Theory
+    of Machines and Mechanisms*, planetary trains; KHK, *Gear Technical
+    Reference*, planetary gear assembly conditions; H. W. Mueller, *Epicyclic
+    Drive Trains*, 1982, ch. 2).  These are the conditions
+    :func:`gearlever.gears.planetary.design_planetary` checks for unshifted
+    gears, here with the shifted geometry.
+
+    Examples
+    --------
+    >>> p = planetary_geometry(1.0, 12, 15, 42, 3)
+    >>> p.coaxial, p.equal_spacing, p.adjacent
+    (True, True, True)
+    >>> p = planetary_geometry(1.0, 12, 15, 43, 3)   # one tooth more on the ring: shift it to stay coaxial
+    >>> round(p.ring_shift_for_coaxial, 4)
+    -0.4215
+    """
+    zs, zp, zr = _teeth("sun", sun), _teeth("planet", planet), _teeth("ring", ring)
+    n = positive_int("planets", planets)
+    if n < 1 or n > 64:
+        raise GearleverError(f"planets must be in [1, 64], got {n}")
+    xs, xp, xr = (finite(k, v) for k, v in zip(("sun shift", "planet shift", "ring shift"), shifts))
+    kw = {"pressure_angle": pressure_angle, "helix": helix, "addendum": addendum, "dedendum": dedendum, "check": False}
+    sp = mesh(module, zs, zp, xs, xp, **kw)
+    pr = mesh(module, zp, zr, xp, xr, kind="internal", **kw)
+    a1, a2 = sp.center_distance, pr.center_distance
+    coax = abs(a1 - a2) <= 1e-9 * sp.module
+    # ring shift for coaxial: internal pair at the sun-planet centre distance, the planet's shift kept
+    mt, at = sp.transverse_module, sp.transverse_pressure_angle
+    c = (zr - zp) * mt / 2 * math.cos(at) / a1
+    if 0 < c < 1:
+        d = (involute(math.acos(c)) - involute(at)) * (zr - zp) / (2 * math.tan(sp.pressure_angle))
+        xr_co = xp + d
+    else:
+        xr_co = float("nan")
+    clearance = 2 * a1 * math.sin(math.pi / n) - float(sp.tip_diameter[1]) if n > 1 else float("inf")
+    spacing = (zs + zr) % n == 0
+    return PlanetaryGeometry(
+        sun_planet=sp,
+        planet_ring=pr,
+        center_distance=np.array([a1, a2]),
+        coaxial=bool(coax),
+        ring_shift_for_coaxial=xr_co,
+        equal_spacing=bool(spacing),
+        adjacency_clearance=clearance,
+        adjacent=bool(clearance > 0),
+        ok=bool(coax and spacing and clearance > 0),
+    )
