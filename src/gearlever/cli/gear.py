@@ -225,9 +225,9 @@ def _mesh(args) -> int:
         f"root diameter                         {pair('root_diameter', 'mm')}",
         f"tip thickness (normal)                {pair('tip_thickness', 'mm')}",
         f"contact ratio transverse              {_num(rec['contact_ratio_transverse'])}",
-        f"contact ratio overlap                 "
+        "contact ratio overlap                 "
         + (_num(rec["contact_ratio_overlap"]) if rec["contact_ratio_overlap"] is not None else "- (give --face-width)"),
-        f"contact ratio total                   "
+        "contact ratio total                   "
         + (_num(rec["contact_ratio_total"]) if rec["contact_ratio_total"] is not None else "-"),
         f"undercut                              {pair('undercut')}",
         f"fewest teeth without undercut         {' / '.join(str(v) for v in rec['min_teeth_no_undercut'])}",
@@ -261,7 +261,10 @@ def _interference(args) -> int:
             )
         )
         return 0
-    head = f"pinion of {args.teeth} teeth, pressure angle {_num(args.pressure_angle)} deg, addendum {_num(args.addendum)} module"
+    head = (
+        f"pinion of {args.teeth} teeth, pressure angle {_num(args.pressure_angle)} deg, "
+        f"addendum {_num(args.addendum)} module"
+    )
     if rack_fits:
         body = "meshes any gear and a rack without interference"
     elif largest < args.teeth:
