@@ -1342,7 +1342,7 @@ def backlash(g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0),
             raise GearleverError(f"center_distance_change {da:.6g} leaves no working pressure angle")
         awt = math.acos(c)
         pbt = math.pi * mt * math.cos(at)
-        tan_n = math.tan(g.pressure_angle)
+        tan_n = math.tan(at)  # x m_n tan alpha_t: the shift's share of the transverse thickness
         sbt1 = g.base_diameter[0] * ((math.pi / 2 * mt + 2 * x1 * m * tan_n) / g.reference_diameter[0] + involute(at))
         if g.kind == "internal":
             # the ring's space is the external tooth of the same shift
