@@ -98,6 +98,18 @@ def test_meshing_teeth_interleave_without_overlap():
     assert Path(g2).contains_points(turned, radius=-1e-3 * 2).sum() > 10
 
 
+@pytest.mark.parametrize("deg", [30.0, 77.0, 200.0])
+def test_gears_still_mesh_at_a_pose(deg):
+    # the gears turn with their links (20 : 30 teeth), so the teeth stay interleaved at any crank angle
+    from matplotlib.path import Path
+
+    mech = Mechanism.load(example_path("geared_fivebar.toml"))
+    d = mechanism_drawing(mech, {"left": math.radians(deg)})
+    g1 = next(p for p in d.parts if p.name == "left").outlines[0]
+    g2 = next(p for p in d.parts if p.name == "right").outlines[0]
+    assert not Path(g2).contains_points(g1, radius=-1e-3 * 2).any()
+
+
 def test_bad_input_is_named():
     mech = Mechanism.load(example_path("fourbar.toml"))
     with pytest.raises(GearleverError, match="inputs: unknown input 'crnak'"):

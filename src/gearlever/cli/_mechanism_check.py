@@ -175,7 +175,6 @@ def check_text(report: dict) -> str:
         pair = " ".join(str(z) for z in d["teeth"])
         shifts = " ".join(_fmt(x) for x in d["shift"])
         lines += [
-            "",
             f"mesh {d['mesh']} ({kind}; teeth {pair}; shifts {shifts})",
             f"  centre distance        {_fmt(s['center_distance'])} {u} at the sketch "
             f"(tight mesh {_fmt(d['tight_center_distance'])} {u}; shift sum for a tight mesh there "

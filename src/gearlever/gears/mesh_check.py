@@ -334,7 +334,7 @@ def _flags(geo: MeshGeometry, where) -> list:
     for what, mask in (
         ("loses contact (contact ratio {v} < 1)", geo.lost_contact),
         ("jams (centre distance {a} on the tight side of {t})", geo.jammed),
-        ("interferes (a tip acts below the mate's base circle)", geo.interference),
+        ("interferes (involute interference: a tip acts past the mate's interference point)", geo.interference),
     ):
         idx = np.flatnonzero(mask)
         if idx.size:
