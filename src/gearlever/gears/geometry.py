@@ -404,6 +404,12 @@ class ToothProfile(Result):
     flank : (2,) index range ``[i0, i1)`` of the involute points of the flank at negative y
         (the one at positive y is its mirror).
     reference_radius, base_radius, tip_radius, root_radius, form_radius : radii of the gear.
+
+    Examples
+    --------
+    >>> p = tooth_profile(2.0, 20)
+    >>> p.points.shape[1], round(p.tip_radius, 6), round(p.form_radius, 4)
+    (2, 22.0, 18.8201)
     """
 
     points: np.ndarray
@@ -884,6 +890,12 @@ class GearMesh(Result):
     min_teeth_no_undercut : (2,) the fewest teeth without undercut at each gear's shift.
     min_shift_no_undercut : (2,) the least shift without undercut at each gear's teeth.
     interference : (2,) whether the mate's tip reaches below this gear's base circle (involute interference).
+
+    Examples
+    --------
+    >>> g = mesh(2.0, 20, 40, helix=math.radians(15), face_width=20.0)
+    >>> round(g.transverse_module, 6), round(g.contact_ratio_total, 4)
+    (2.070552, 2.3848)
     """
 
     kind: str
@@ -1376,6 +1388,11 @@ class PlanetaryGeometry(Result):
     adjacency_clearance : ``2 a sin(pi/N) - d_a,planet`` (> 0: neighbouring planets clear).
     adjacent : ``adjacency_clearance > 0``.
     ok : all three hold.
+
+    Examples
+    --------
+    >>> planetary_geometry(1.0, 12, 15, 42, 3).ok
+    True
     """
 
     sun_planet: GearMesh

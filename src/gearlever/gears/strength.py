@@ -446,6 +446,14 @@ class MeshStress(Result):
     angle : (N,) the first input's value at each row (rad or length).
     form_factor : (2,) Lewis ``Y`` of each gear (from the generated tooth).
     module, face_width : used.
+
+    Examples
+    --------
+    >>> ms = MeshStress("m", ("a", "b"), np.array([10.0]), np.array([[1.0, 0.8]]), np.array([50.0]),
+    ...                 np.array([[200.0, 250.0]]), np.array([18.0]), 0, np.array([0.0]), np.array([0.3, 0.35]),
+    ...                 2.0, 10.0)
+    >>> ms.bending_safety[0].tolist()
+    [200.0, 250.0]
     """
 
     mesh: str
