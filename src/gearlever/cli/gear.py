@@ -230,7 +230,8 @@ def _mesh(args) -> int:
         "contact ratio total                   "
         + (_num(rec["contact_ratio_total"]) if rec["contact_ratio_total"] is not None else "-"),
         f"undercut                              {pair('undercut')}",
-        f"fewest teeth without undercut         {' / '.join(str(v) for v in rec['min_teeth_no_undercut'])}",
+        "fewest teeth without undercut         "
+        + " / ".join("-" if v is None else str(v) for v in rec["min_teeth_no_undercut"]),
         f"interference                          {pair('interference')}",
     ]
     emit("\n".join(lines), args.out)

@@ -887,7 +887,8 @@ class GearMesh(Result):
     contact_ratio_transverse, contact_ratio_overlap, contact_ratio_total : ``eps_alpha, eps_beta, eps_gamma``.
     face_width : ``b`` (NaN when not given; then the overlap ratio is NaN).
     undercut : (2,) whether the generating rack undercuts the gear.
-    min_teeth_no_undercut : (2,) the fewest teeth without undercut at each gear's shift.
+    min_teeth_no_undercut : (2,) the fewest teeth without undercut at each gear's shift (0: a ring or rack,
+        which the rack does not cut).
     min_shift_no_undercut : (2,) the least shift without undercut at each gear's teeth.
     interference : (2,) whether the mate's tip reaches below this gear's base circle (involute interference).
 
@@ -953,7 +954,7 @@ class GearMesh(Result):
             "contact_ratio_overlap": num(self.contact_ratio_overlap),
             "contact_ratio_total": num(self.contact_ratio_total),
             "undercut": [bool(v) for v in self.undercut],
-            "min_teeth_no_undercut": [int(v) for v in self.min_teeth_no_undercut],
+            "min_teeth_no_undercut": [int(v) if v > 0 else None for v in self.min_teeth_no_undercut],
             "interference": [bool(v) for v in self.interference],
             "tip_thickness": lst(self.tip_thickness),
         }
