@@ -192,6 +192,7 @@ def _half_tooth_polar(
     n_fillet: int,
     n_arc: int,
     name_shift: str = "shift",
+    mn: float = 1.0,
 ):
     """Half a generated external tooth in polar coordinates ``(R, theta)`` from the tooth centreline.
 
@@ -219,7 +220,11 @@ def _half_tooth_polar(
     yc = yt + rho
     uc = p / 4.0 + (yd - yc) * tan_a + rho / math.cos(alpha_t)
     if uc > p / 2.0 + 1e-12 * p:
-        raise GearleverError("root_radius too large: the cutter's tip fillets overlap")
+        rho_max = (p / 4.0 - hf_len * tan_a) / (1.0 / math.cos(alpha_t) - tan_a)
+        raise GearleverError(
+            f"root_radius too large: the rack's tip rounds overlap (at most {rho_max / mn:.4g} "
+            f"module at this pressure angle and dedendum)"
+        )
     # fillet envelope: cutter points c + rho*(-cos tau, -sin tau), tau in [alpha_t, pi/2]
     tau = np.linspace(alpha_t, math.pi / 2.0, max(4 * n_fillet, 200))
 
@@ -294,6 +299,7 @@ def _internal_half_space_polar(
     n_flank: int,
     n_fillet: int,
     n_arc: int,
+    mn: float = 1.0,
 ):
     """Half a space of an internal gear in polar coordinates from the space centreline.
 
@@ -323,7 +329,7 @@ def _internal_half_space_polar(
     e_root = math.sqrt((r_root / rb) ** 2 - 1.0)
     e_tip = math.sqrt(max((r_tip / rb) ** 2 - 1.0, 0.0))
     if psi + inv_a - (e_root - math.atan(e_root)) <= 0:
-        raise GearleverError("shift makes the internal gear's space pointed at its root")
+        raise GearleverError(f"shift {shift_len / mn:.6g} makes the internal gear's space pointed at its root")
 
     def fillet(rho):
         """The fillet arc of radius rho: roll of its flank end, arc points (R, theta), theta of its root end."""
@@ -334,7 +340,9 @@ def _internal_half_space_polar(
             R, th = point(e)
             q = cart(R, th)
             t_pt = cart(rb, th - math.atan(e))  # the involute's normal touches the base circle there
-            nrm = (t_pt - q) / np.linalg.norm(t_pt - q)
+            span = float(np.linalg.norm(t_pt - q))
+            # on the base circle (e = 0) the normal is the circle's tangent, toward smaller theta
+            nrm = (t_pt - q) / span if span > 1e-12 * rb else np.array([-math.cos(th), math.sin(th)])
             c = q + rho * nrm
             if math.atan2(c[0], c[1]) > th:
                 c = q - rho * nrm
@@ -495,7 +503,7 @@ def tooth_profile(
                 f"largest shift {largest:.4g}"
             )
         R, th, fl, r_form, rf = _half_tooth_polar(
-            z, mt, at, sh, rack.addendum * m, rack.dedendum * m, rack.root_radius * m, ra, n, max(4, n // 2), 4
+            z, mt, at, sh, rack.addendum * m, rack.dedendum * m, rack.root_radius * m, ra, n, max(4, n // 2), 4, mn=m
         )
         tip_r = ra
         # right half: theta from 0 (tooth centre) to pi/z; the profile runs from the space at -pi/z to +pi/z
@@ -506,7 +514,7 @@ def tooth_profile(
     else:
         ra = r - (rack.addendum - x) * m if tip_diameter is None else positive("tip_diameter", tip_diameter) / 2
         R, th, fl, tip_r, rf = _internal_half_space_polar(
-            z, mt, at, sh, rack.addendum * m, rack.dedendum * m, rack.root_radius * m, ra, n, max(4, n // 2), 4
+            z, mt, at, sh, rack.addendum * m, rack.dedendum * m, rack.root_radius * m, ra, n, max(4, n // 2), 4, mn=m
         )
         r_form = tip_r
         th_full = np.concatenate([-th[::-1], th[1:]])
