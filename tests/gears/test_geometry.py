@@ -188,12 +188,12 @@ def test_backlash_derivative_is_twice_sine_of_working_angle_fd():
     for kind, teeth, shifts in (("external", (14, 37), (0.3, -0.1)), ("internal", (18, 71), (0.1, 0.4))):
         gm = g.mesh(2.0, *teeth, *shifts, kind=kind, helix=math.radians(12), check=False)
         h = 1e-6
-        jp = g.backlash(gm, center_distance_change=h)["normal"]
-        jm = g.backlash(gm, center_distance_change=-h)["normal"]
+        jp = g.backlash(gm, center_distance_change=h).normal
+        jm = g.backlash(gm, center_distance_change=-h).normal
         cbb = math.cos(math.atan(math.tan(gm.helix) * math.cos(gm.transverse_pressure_angle)))
         expected = 2 * math.sin(gm.working_pressure_angle) * cbb * (1 if kind == "external" else -1)
         assert (jp - jm) / (2 * h) == pytest.approx(expected, rel=1e-6)
-        assert g.backlash(gm)["normal"] == pytest.approx(0.0, abs=1e-12)
+        assert g.backlash(gm).normal == pytest.approx(0.0, abs=1e-12)
 
 
 def test_centre_distance_and_shifts_are_inverse():

@@ -49,6 +49,8 @@ __all__ = [
     "min_pinion_teeth",
     "backlash",
     "planetary_geometry",
+    "Backlash",
+    "InternalInterference",
 ]
 
 #: Largest tooth number accepted (the outline has ~60 points a tooth).
@@ -1201,19 +1203,61 @@ def _check_mesh(g: GearMesh) -> None:
         )
     if g.kind == "internal":
         tip = internal_interference(g)
-        if tip["tip"]:
-            kinds = " and ".join(k for k in ("involute", "trochoid") if tip[k])
+        if tip.tip:
+            kinds = " and ".join(k for k in ("involute", "trochoid") if getattr(tip, k))
             raise GearleverError(
                 f"teeth {int(g.teeth[0])} and {int(g.teeth[1])}: the internal pair's tips interfere "
-                f"({kinds} interference; margins {tip['involute_margin']:.4g}, {tip['trochoid_margin']:.4g})"
+                f"({kinds} interference; margins {tip.involute_margin:.4g}, {tip.trochoid_margin:.4g})"
             )
 
 
-def internal_interference(g: GearMesh) -> dict:
+@dataclass(frozen=True)
+class InternalInterference(Result):
+    """Tip interference of an internal pair: ``involute``, ``trochoid``, ``tip`` (either), margins (>= 0 clear).
+
+    Examples
+    --------
+    >>> internal_interference(mesh(1.0, 20, 26, kind="internal", check=False)).tip
+    True
+    """
+
+    involute: bool
+    trochoid: bool
+    tip: bool
+    involute_margin: float
+    trochoid_margin: float
+
+    def __getitem__(self, key: str):
+        """``r["tip"]`` as ``r.tip`` (the dict this function returned before it was a Result)."""
+        return getattr(self, key)
+
+
+@dataclass(frozen=True)
+class Backlash(Result):
+    """Backlash of a mesh: ``normal`` (along the line of action, normal section), ``circumferential``
+    (transverse, on the working circle) and the ``working_pressure_angle`` at the changed centre distance.
+
+    Examples
+    --------
+    >>> round(backlash(mesh(2.0, 20, 40), (0.05, 0.05)).circumferential, 6)
+    0.1
+    """
+
+    normal: float
+    circumferential: float
+    working_pressure_angle: float
+
+    def __getitem__(self, key: str):
+        """``b["normal"]`` as ``b.normal`` (the dict this function returned before it was a Result)."""
+        return getattr(self, key)
+
+
+def internal_interference(g: GearMesh) -> InternalInterference:
     """Involute and trochoid interference of an internal pair (gear 2 the ring).
 
-    Returns a dict of booleans ``involute``, ``trochoid`` and ``tip`` (either)
-    and the margins ``involute_margin`` and ``trochoid_margin`` (>= 0 is clear).
+    Returns an :class:`InternalInterference`: ``involute``, ``trochoid`` and
+    ``tip`` (either) and the margins ``involute_margin`` and ``trochoid_margin``
+    (>= 0 is clear).
 
     Notes
     -----
@@ -1230,7 +1274,7 @@ def internal_interference(g: GearMesh) -> dict:
     Examples
     --------
     >>> g = mesh(3.0, 16, 24, 0.0, 0.5, kind="internal", check=False)
-    >>> internal_interference(g)["trochoid"]
+    >>> internal_interference(g).trochoid
     False
     """
     if g.kind != "internal":
@@ -1253,13 +1297,7 @@ def internal_interference(g: GearMesh) -> dict:
         troch_margin = th1 * z1 / z2 + involute(aw) - involute(aa2) - th2
     involute_i = bool(below_base or inv_margin < -1e-12)
     trochoid_i = bool(troch_margin < -1e-12)
-    return {
-        "involute": involute_i,
-        "trochoid": trochoid_i,
-        "tip": involute_i or trochoid_i,
-        "involute_margin": inv_margin,
-        "trochoid_margin": troch_margin,
-    }
+    return InternalInterference(involute_i, trochoid_i, involute_i or trochoid_i, inv_margin, troch_margin)
 
 
 def max_mating_teeth(teeth: int, *, pressure_angle: float = _DEG20, addendum: float = 1.0) -> int | None:
@@ -1314,7 +1352,9 @@ def min_pinion_teeth(ratio: float = 1.0, *, pressure_angle: float = _DEG20, adde
     return math.ceil(npn - 1e-9)
 
 
-def backlash(g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0), center_distance_change: float = 0.0):
+def backlash(
+    g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0), center_distance_change: float = 0.0
+) -> Backlash:
     """Backlash of a mesh from tooth-thickness allowances and a centre-distance change.
 
     Parameters
@@ -1325,8 +1365,9 @@ def backlash(g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0),
 
     Returns
     -------
-    dict with ``circumferential`` (transverse, on the working circle), ``normal`` (along the line of action,
-    normal section) and ``working_pressure_angle`` at the changed centre distance.
+    Backlash
+        ``circumferential`` (transverse, on the working circle), ``normal`` (along the line of action,
+        normal section) and ``working_pressure_angle`` at the changed centre distance.
 
     Notes
     -----
@@ -1343,7 +1384,7 @@ def backlash(g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0),
     Examples
     --------
     >>> g = mesh(2.0, 20, 40)
-    >>> round(backlash(g, center_distance_change=0.1)["normal"], 6)
+    >>> round(backlash(g, center_distance_change=0.1).normal, 6)
     0.068832
     """
     e1, e2 = (finite("thickness_allowance", v) for v in thickness_allowance)
@@ -1377,7 +1418,7 @@ def backlash(g: GearMesh, thickness_allowance: tuple[float, float] = (0.0, 0.0),
             )
             jbt = (z1 + z2) * mt * math.cos(at) * involute(awt) + pbt - sbt1 - sbt2
         jbt += allowance
-    return {"normal": float(jbt * cbb), "circumferential": float(jbt / math.cos(awt)), "working_pressure_angle": awt}
+    return Backlash(float(jbt * cbb), float(jbt / math.cos(awt)), awt)
 
 
 # --------------------------------------------------------------------------- planetary sets

@@ -470,19 +470,35 @@ class MeshStress(Result):
     face_width: float
 
 
-def _material(allowables, gear: str, mesh: str) -> tuple[float, float]:
-    """(bending, contact) allowables of ``gear``: from ``{gear: {...}}``, ``{mesh: {...}}`` or one dict."""
-    if allowables is None:
+def _material(allowables, gear, mesh: str) -> tuple[float, float]:
+    """(bending, contact) allowables of ``gear`` (a model Gear).
+
+    In order: ``allowables`` given to :func:`mesh_stresses` (one dict
+    ``{bending, contact}`` or per gear or mesh name), the gear's own
+    ``allowables`` or ``material`` attribute when the model carries one (a
+    dict with ``bending`` and ``contact``, read with ``getattr``/``get`` so
+    models without them work), else NaN.
+    """
+    name = gear.name
+    a = None
+    if allowables is not None:
+        if not isinstance(allowables, dict):
+            raise GearleverError("allowables must be a dict {bending, contact} or {gear or mesh name: {...}}")
+        a = allowables.get(name, allowables.get(mesh, allowables))
+    else:
+        for attr in ("allowables", "material"):
+            v = getattr(gear, attr, None)
+            if isinstance(v, dict) and ("bending" in v or "contact" in v):
+                a = v
+                break
+    if a is None:
         return float("nan"), float("nan")
-    if not isinstance(allowables, dict):
-        raise GearleverError("allowables must be a dict {bending, contact} or {gear or mesh name: {...}}")
-    a = allowables.get(gear, allowables.get(mesh, allowables))
     if not isinstance(a, dict):
-        raise GearleverError(f"allowables for {gear} must be a dict with bending and contact")
+        raise GearleverError(f"allowables for {name} must be a dict with bending and contact")
     b = a.get("bending")
     c = a.get("contact")
-    b = float("nan") if b is None else positive(f"allowables.{gear}.bending", b)
-    c = float("nan") if c is None else positive(f"allowables.{gear}.contact", c)
+    b = float("nan") if b is None else positive(f"allowables.{name}.bending", b)
+    c = float("nan") if c is None else positive(f"allowables.{name}.contact", c)
     return b, c
 
 
@@ -506,8 +522,9 @@ def mesh_stresses(
     module : the module; default the model's ``[mechanism] module`` (required one way or the other).
     face_width : default each gear's ``face_width`` in the model (the smaller of the pair), required otherwise.
     allowables : ``{"bending": S_b, "contact": S_c}`` for every gear, or per gear or mesh name
-        ``{name: {"bending", "contact"}}``, in the stress unit; the model's ``[[gears]]`` ``material``
-        allowables are read when present (key ``allowables`` of the model's extra data).
+        ``{name: {"bending", "contact"}}``, in the stress unit; default the model's: its extra data's
+        ``allowables``, else each gear's ``allowables`` or ``material`` (``{bending, contact}``) when the
+        model carries them; NaN safety factors without any.
     elastic_coefficient : ``C_p`` (sqrt of the stress unit; 189.8 sqrt(MPa) for steel on steel).
     velocity_factor : ``K_v`` applied to every row.
     root_radius : the basic rack's root radius (modules) for the Lewis form factor.
@@ -547,8 +564,8 @@ def mesh_stresses(
     if tangential is None:
         raise GearleverError("result must be an InverseDynamics (mechanism forces) with mesh tooth forces")
     phi = float(getattr(result, "pressure_angle", _DEG20))
-    model_allow = model.extra.get("allowables") if isinstance(getattr(model, "extra", None), dict) else None
-    allow = allowables if allowables is not None else model_allow
+    extra = getattr(model, "extra", None)
+    allow = allowables if allowables is not None else (extra.get("allowables") if isinstance(extra, dict) else None)
     q = np.asarray(result.q, dtype=float)
     angle = q[:, 0] if q.ndim == 2 else q
     out = {}
@@ -570,7 +587,7 @@ def mesh_stresses(
             )
             ys.append(y)
             sb.append(lewis_bending_stress(w, b, m, y, velocity_factor))
-            ab, ac = _material(allow, g.name, mesh.name)
+            ab, ac = _material(allow, g, mesh.name)
             sb_allow.append(ab)
             sc_allow.append(ac)
         internal = ga.internal or gb.internal
