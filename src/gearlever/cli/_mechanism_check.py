@@ -161,14 +161,14 @@ def _fmt(v, digits: int = 6) -> str:
 def check_text(report: dict) -> str:
     """The text of ``mechanism check``: one block per mesh, quantities named with their units."""
     u = report["units"] or "length units"
-    mod = _fmt(report["module"]) if report["module"] is not None else "n/a"
+    if not report["meshes"]:
+        return f"mechanism {report['mechanism']!r}: no gear meshes"
+    mod = _fmt(report["module"])
     how = "given" if report["module_given"] else "none given: from the first mesh's centre distance"
     lines = [
         f"mechanism {report['mechanism']!r}: module {mod} {u} ({how}), "
         f"pressure angle {_fmt(report['pressure_angle_deg'])} deg, ISO 53 basic rack"
     ]
-    if not report["meshes"]:
-        lines.append("no gear meshes")
     for d in report["meshes"]:
         s = d["sketch"]
         kind = "internal" if d["internal"] else "external"
