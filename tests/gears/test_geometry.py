@@ -278,3 +278,14 @@ def test_mesh_refusals_name_the_parameter():
         g.mesh(1.0, 20, 26, kind="internal")
     with pytest.raises(GearleverError, match="center_distance 10 cannot be reached"):
         g.mesh(1.0, 12, 24, center_distance=10.0)
+
+
+def test_tip_thickness_agrees_with_the_drawn_tooth():
+    """tip_thickness (ISO 21771 eq. 66-70) equals the drawn tooth's tip arc, times cos beta_a for a helical gear."""
+    for z, x, beta in ((12, 0.3, 0.0), (25, -0.2, 0.0), (18, 0.5, math.radians(20))):
+        p = g.tooth_profile(2.0, z, x, helix=beta)
+        th_tip = abs(float(np.arctan2(p.points[p.flank[1] - 1, 1], p.points[p.flank[1] - 1, 0])))
+        d = 2.0 * z / math.cos(beta)
+        beta_a = math.atan(math.tan(beta) * 2 * p.tip_radius / d)
+        expected = 2 * p.tip_radius * th_tip * math.cos(beta_a)
+        assert g.tip_thickness(2.0, z, x, helix=beta) == pytest.approx(expected, rel=1e-12)
