@@ -539,7 +539,9 @@ def mesh_stresses(
     computes (:attr:`InverseDynamics.mesh_tangential`, equilibrium of every
     link; its line-of-action force is ``|W_t| / cos phi``).  Bending stress
     per gear by :func:`lewis_bending_stress` with ``Y`` from
-    :func:`lewis_form_factor_geometry` of the gear's teeth and shift;
+    :func:`lewis_form_factor_geometry` of the gear's teeth and shift (a ring's
+    ``Y`` is that of an external gear of its teeth, unshifted: conservative,
+    a ring's tooth is thicker at its root);
     contact stress by :func:`hertz_contact_stress` on the reference diameters
     at the model's pressure angle.  The worst row is the one of the largest
     ``|W_t|`` (both stresses grow with it).
