@@ -453,7 +453,7 @@ def tooth_profile(
     teeth : number of teeth (positive integer, at most :data:`MAX_TEETH`).
     shift : profile shift coefficient ``x`` (normal section, in modules).
     pressure_angle : normal pressure angle of the basic rack (rad).
-    helix : helix angle ``beta`` (rad, |beta| < 45 deg); the profile is the transverse section.
+    helix : helix angle ``beta`` (rad, ``|beta| < 45 deg``); the profile is the transverse section.
     addendum, dedendum, root_radius : basic rack in modules (ISO 53: 1, 1.25, 0.38).
     internal : an internal gear (ring): the space is the external tooth of the same shift.
     tip_diameter : tip diameter (default ``d + 2 (addendum + x) m``; internal ``d - 2 (addendum - x) m``),
