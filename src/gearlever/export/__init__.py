@@ -38,6 +38,17 @@ def export(mech, path, inputs=None, pin_diameter=None) -> Drawing:
     """Write ``mech`` at the sketch (or at ``inputs``) to ``path`` (.dxf or .svg); return the drawing.
 
     Parameters as for :func:`~gearlever.export.outline.mechanism_drawing`.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, ezdxf
+    >>> from gearlever.mechanism import Mechanism
+    >>> from gearlever.data import example_path
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "zrdpm.dxf"
+    >>> _ = export(Mechanism.load(example_path("zrdpm_gear_contour.toml")), out, inputs={"gear9": 0.5})
+    >>> doc = ezdxf.readfile(out)
+    >>> sorted(layer.dxf.name for layer in doc.layers if layer.dxf.name[0].islower()), doc.audit().has_errors
+    (['gear8', 'gear9', 'ground', 'lever1'], False)
     """
     fmt = Path(path).suffix.lower().lstrip(".")
     if fmt not in FORMATS:
@@ -48,7 +59,17 @@ def export(mech, path, inputs=None, pin_diameter=None) -> Drawing:
 
 
 def export_parts(drawing: Drawing, folder) -> list:
-    """One DXF per part in ``folder`` (``<link>.dxf``), each in its own body frame; return the paths."""
+    """One DXF per part in ``folder`` (``<link>.dxf``), each in its own body frame; return the paths.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from gearlever.mechanism import Mechanism
+    >>> from gearlever.data import example_path
+    >>> d = mechanism_drawing(Mechanism.load(example_path("slider_crank.toml")))
+    >>> [p.name for p in export_parts(d, tempfile.mkdtemp())]
+    ['ground.dxf', 'crank.dxf', 'rod.dxf', 'piston.dxf']
+    """
     paths = []
     for part in drawing.parts:
         one = Drawing(drawing.name, drawing.units, (part.local(),), drawing.pin_diameter, drawing.inputs)

@@ -60,6 +60,13 @@ class Part:
         World position of the part's body frame (its first point).
     angle : float
         World angle (rad) of the body frame's x axis.
+
+    Examples
+    --------
+    >>> p = Part("crank", (slot((10, 10), (10, 20), 1.0),), (((10.0, 10.0), 0.5), ((10.0, 20.0), 0.5)),
+    ...          origin=(10.0, 10.0), angle=math.pi / 2)
+    >>> [tuple(round(v, 9) + 0.0 for v in c) for c, r in p.local().holes]
+    [(0.0, 0.0), (10.0, 0.0)]
     """
 
     name: str
@@ -110,6 +117,16 @@ class Drawing(Result):
         Input label -> value at this pose (rad for a link, length for a slider).
     notes : tuple of str
         What was drawn in a simpler form (a gear with too many teeth, a gear with no module).
+
+    Examples
+    --------
+    >>> from gearlever.mechanism import Mechanism
+    >>> from gearlever.data import example_path
+    >>> d = mechanism_drawing(Mechanism.load(example_path("ferguson.toml")))
+    >>> d.notes[0]
+    "no module in the model: module 1 from the first mesh's centre distance"
+    >>> [p.name for p in d.parts]
+    ['ground', 'arm', 'planet', 'g99', 'g100', 'g101']
     """
 
     name: str
