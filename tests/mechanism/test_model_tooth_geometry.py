@@ -60,6 +60,7 @@ def test_helical_centre_distance_uses_the_transverse_module():
         ({"face_width": -2}, {}, "gears.ga.face_width must be positive"),
         ({"helix": 45}, {"helix": 45}, "gears.ga.helix must be in [0, 45) deg"),
         ({"helix": 10}, {}, "meshes[0] (ga-gb): the helix angles differ"),
+        ({"shift": -3}, {"shift": -3}, "meshes[0] (ga-gb): the shifts -3, -3 leave no working pressure angle"),
     ],
 )
 def test_bad_values_name_the_element(ga, gb, words):

@@ -699,7 +699,10 @@ def model_from_dict(d) -> MechanismModel:
         if module is not None:
             dist = math.dist(points[ga.centre], points[gb.centre])
             internal = ga.internal or gb.internal
-            want = tight_centre_distance(module, ga, gb, alpha)
+            try:
+                want = tight_centre_distance(module, ga, gb, alpha)
+            except GearleverError as exc:
+                raise GearleverError(f"{where}: {exc}") from None
             if abs(dist - want) > 1e-6 * max(want, 1.0):
                 shifted = ga.shift != 0 or gb.shift != 0 or ga.helix != 0
                 plain = f"m (z_a {'-' if internal else '+'} z_b) / 2"
