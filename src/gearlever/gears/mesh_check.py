@@ -303,16 +303,19 @@ class MeshCheck(Result):
 def _pair_geometry(model: MechanismModel, module: float, mesh: Mesh, alpha: float, center_distance) -> MeshGeometry:
     ga, gb = model.gears[mesh.a], model.gears[mesh.b]
     widths = [w for w in (ga.face_width, gb.face_width) if w is not None]
-    return mesh_geometry(
-        module,
-        (ga.teeth, gb.teeth),
-        shift=(ga.shift, gb.shift),
-        internal=(ga.internal, gb.internal),
-        pressure_angle=alpha,
-        helix=ga.helix,
-        face_width=min(widths) if widths else None,
-        center_distance=center_distance,
-    )
+    try:
+        return mesh_geometry(
+            module,
+            (ga.teeth, gb.teeth),
+            shift=(ga.shift, gb.shift),
+            internal=(ga.internal, gb.internal),
+            pressure_angle=alpha,
+            helix=ga.helix,
+            face_width=min(widths) if widths else None,
+            center_distance=center_distance,
+        )
+    except GearleverError as exc:
+        raise GearleverError(f"meshes ({mesh.name}): {exc}") from None
 
 
 def _shift_sum(model, module, mesh, alpha, a) -> float:
