@@ -328,6 +328,7 @@ def _svg(xy) -> str:
 
 def _dxf(xy, path, layer: str) -> None:
     import ezdxf
+    import numpy as np
 
     from gearlever._io import atomic_path
 
@@ -336,7 +337,12 @@ def _dxf(xy, path, layer: str) -> None:
     try:
         doc = ezdxf.new("R2010", units=4)  # $INSUNITS 4: millimetres
         doc.layers.add(layer, color=1)
-        doc.modelspace().add_lwpolyline([(float(x), float(y)) for x, y in xy], close=True, dxfattribs={"layer": layer})
+        poly = doc.modelspace().add_lwpolyline([], close=True, dxfattribs={"layer": layer})
+        # one extend of (x, y, start width, end width, bulge) rows: ezdxf's per-point append copies the array
+        # each time (quadratic: 13 s for 26k points)
+        rows = np.zeros((len(xy), 5))
+        rows[:, :2] = xy
+        poly.lwpoints.extend(rows)
         with atomic_path(path) as tmp:
             doc.saveas(tmp)
     finally:

@@ -26,6 +26,7 @@ from gearlever.errors import GearleverError
 
 __all__ = [
     "MAX_TEETH",
+    "MAX_OUTLINE_POINTS",
     "MIN_TIP_THICKNESS",
     "involute",
     "inverse_involute",
@@ -55,6 +56,8 @@ __all__ = [
 
 #: Largest tooth number accepted (the outline has ~60 points a tooth).
 MAX_TEETH = 10000
+#: Most points of a whole gear's outline (teeth times the points of one tooth).
+MAX_OUTLINE_POINTS = 2_000_000
 #: Least tip thickness, in modules, of a tooth that is not pointed.
 MIN_TIP_THICKNESS = 0.2
 _DEG20 = math.radians(20.0)
@@ -577,6 +580,10 @@ def tooth_outline(
     )
     z = int(teeth)
     one = prof.points[:-1]  # the last point is the next tooth's first
+    if z * len(one) > MAX_OUTLINE_POINTS:
+        raise GearleverError(
+            f"points {points} with {z} teeth gives {z * len(one)} outline points, at most {MAX_OUTLINE_POINTS}"
+        )
     out = []
     for k in range(z):
         a = 2 * math.pi * k / z
