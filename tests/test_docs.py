@@ -142,7 +142,8 @@ def test_guide_toml_fragments_parse_and_use_known_tables_and_keys(body):
         "inputs": {"link", "relative_to", "slider"},
         "loads": {"link", "point", "force", "torque"},
     }
-    entries = {"gears": {"link", "centre", "teeth", "internal"}, "masses": {"mass", "centre", "inertia"}}
+    gear_keys = {"link", "centre", "teeth", "internal", "shift", "face_width", "helix"}
+    entries = {"gears": gear_keys, "masses": {"mass", "centre", "inertia"}}
     for table, value in data.items():
         assert table in schema._TOP + schema._KEPT_TABLES, table
         rows = value if isinstance(value, list) else [value]

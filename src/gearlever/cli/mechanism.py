@@ -138,6 +138,12 @@ def register(sub) -> None:
     from gearlever.cli._mechanism_view import register_view
 
     register_view(ms)
+    from gearlever.cli._mechanism_check import register_check
+
+    register_check(ms)
+    from gearlever.cli._mechanism_export import register_export
+
+    register_export(ms)
     from gearlever.cli.synthesize_law import register_mechanism_law
 
     register_mechanism_law(ms)

@@ -8,6 +8,9 @@
 - :mod:`~gearlever.gears.planetary`: planetary sets, assembly conditions, tooth search.
 - :mod:`~gearlever.gears.chariot`: the Nuttall south-pointing chariot.
 - :mod:`~gearlever.gears.car`: the car (bevel) differential.
+- :mod:`~gearlever.gears.geometry`: involute tooth geometry of spur and helical
+  pairs (external, internal, rack), tooth outlines, planetary sets with shifted gears.
+- :mod:`~gearlever.gears.strength`: Lewis, Hertz and AGMA tooth stresses, over a mechanism's cycle.
 
 Within the layering of the guide's architecture page (held by
 ``tests/test_imports.py``) it may import numpy, :mod:`fractions` and
@@ -18,8 +21,10 @@ gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
 from gearlever.gears.car import car_differential
 from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate
 from gearlever.gears.epicyclic import TabularMethod, tabular_method
+from gearlever.gears.geometry import GearMesh, PlanetaryGeometry, ToothProfile, planetary_geometry, tooth_outline
 from gearlever.gears.networks import Differential, Gear, Mesh, Network, SameShaft, parse_network
 from gearlever.gears.planetary import PlanetaryDesign, PlanetarySet, design_planetary, planetary_network
+from gearlever.gears.strength import MeshStress, mesh_stresses
 
 __all__ = [
     "Differential",
@@ -38,4 +43,11 @@ __all__ = [
     "design_nuttall",
     "simulate",
     "car_differential",
+    "GearMesh",
+    "ToothProfile",
+    "PlanetaryGeometry",
+    "tooth_outline",
+    "planetary_geometry",
+    "MeshStress",
+    "mesh_stresses",
 ]

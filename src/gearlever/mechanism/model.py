@@ -15,7 +15,7 @@ Schema (top-level tables)::
     [points]     NAME = [x, y]
     [links]      NAME = ["P1", "P2", ...]        (the link "ground" is the frame)
     [[sliders]]  link, on, point, direction [, name]
-    [gears]      NAME = { link, centre, teeth [, internal] }
+    [gears]      NAME = { link, centre, teeth [, internal] [, shift] [, face_width] [, helix] }
     [[meshes]]   gears = ["a", "b"] [, carrier] [, efficiency (0, 1], see mechanism.dynamics)]
     [[inputs]]   link [, relative_to]   or   slider
     [lengths]    LINK = length   or   "LINK.P-Q" = length   (see below)
@@ -38,6 +38,18 @@ can make the analysis hang): file size :data:`MAX_MODEL_BYTES`, nesting depth
 :data:`MAX_ELEMENTS` sliders, gears, meshes or inputs each, teeth at most
 :data:`MAX_TEETH`, coordinates at most :data:`MAX_COORDINATE` in size, and
 no link shorter than ``1 /`` :data:`MAX_SCALE_RATIO` of the model's size.
+
+Tooth geometry (optional, read by :mod:`gearlever.gears.mesh_check` and
+:mod:`gearlever.export`): ``[mechanism] module`` (the normal module of a
+helical gear) and ``pressure_angle`` (deg, default 20); per gear ``shift``
+(profile shift coefficient x, a number in [-:data:`MAX_SHIFT`,
+:data:`MAX_SHIFT`], default 0), ``face_width`` (> 0, model units) and
+``helix`` (helix angle, deg, in [0, 45), default 0; the two gears of a mesh
+have the same).  With a module, a mesh's centre distance must be the tight
+(zero-backlash) working centre distance of its teeth, shifts and helix
+(ISO 21771:2007, eq. for the working pressure angle ``inv alpha_wt = inv
+alpha_t + 2 tan alpha_n (x_1 + x_2) / (z_1 + z_2)``); without shifts and helix
+that is ``m (z_1 +- z_2) / 2``.
 
 ``[lengths]`` (optional) gives exact link lengths for a rough sketch, read by
 :func:`gearlever.mechanism.assemble.assemble`: ``crank = 10.0`` is the
@@ -71,6 +83,7 @@ __all__ = [
     "Slider",
     "Gear",
     "Mesh",
+    "tight_centre_distance",
     "InputSpec",
     "MechanismModel",
     "load_model",
@@ -107,6 +120,10 @@ MAX_POINTS = 5000
 MAX_ELEMENTS = 1000
 #: Most teeth of a gear.
 MAX_TEETH = 100_000
+#: Largest profile shift coefficient (in size): a shift beyond 2 points every real tooth.
+MAX_SHIFT = 5.0
+#: Helix angle limit (deg, excluded): the issue's and the handbooks' bound for helical spur-type gears.
+MAX_HELIX_DEG = 45.0
 #: Largest coordinate size (model units): beyond it squared distances lose the
 #: precision the rank decision needs next to lengths of order 1.
 MAX_COORDINATE = 1e12
@@ -161,13 +178,20 @@ class Slider:
 
 @dataclass(frozen=True)
 class Gear:
-    """A gear rigid on ``link``, centred at ``centre``; ``internal`` for a ring."""
+    """A gear rigid on ``link``, centred at ``centre``; ``internal`` for a ring.
+
+    ``shift`` is the profile shift coefficient x, ``face_width`` the face
+    width (model units, None when not given), ``helix`` the helix angle (rad).
+    """
 
     name: str
     link: str
     centre: str
     teeth: int
     internal: bool = False
+    shift: float = 0.0
+    face_width: float | None = None
+    helix: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -268,7 +292,7 @@ class MechanismModel:
         """
         g = self.gears[gear]
         if self.module is not None:
-            return self.module * g.teeth / 2.0
+            return self.module * g.teeth / (2.0 * math.cos(g.helix))
         for m in self.meshes:
             if gear in (m.a, m.b):
                 ga, gb = self.gears[m.a], self.gears[m.b]
@@ -609,7 +633,8 @@ def model_from_dict(d) -> MechanismModel:
     for gname, t in gtab.items():
         _name("[gears]", gname)
         where = f"gears.{gname}"
-        _table(where, t, ("link", "centre", "teeth", "internal"), ("link", "centre", "teeth"))
+        keys = ("link", "centre", "teeth", "internal", "shift", "face_width", "helix")
+        _table(where, t, keys, ("link", "centre", "teeth"))
         link = _str(f"{where}.link", t["link"])
         if link not in links:
             raise GearleverError(f"{where}.link: unknown link {link!r}")
@@ -624,10 +649,23 @@ def model_from_dict(d) -> MechanismModel:
         internal = t.get("internal", False)
         if not isinstance(internal, bool):
             raise GearleverError(f"{where}.internal must be true or false, got {internal!r}")
-        gears[gname] = Gear(gname, link, centre, int(z), internal)
+        shift = _num(f"{where}.shift", t["shift"]) if "shift" in t else 0.0
+        if abs(shift) > MAX_SHIFT:
+            raise GearleverError(f"{where}.shift must be in [-{MAX_SHIFT:g}, {MAX_SHIFT:g}], got {_short(t['shift'])}")
+        width = None
+        if "face_width" in t:
+            width = _num(f"{where}.face_width", t["face_width"])
+            if not 0.0 < width <= MAX_COORDINATE:
+                raise GearleverError(f"{where}.face_width must be positive, got {_short(t['face_width'])}")
+        helix = _num(f"{where}.helix", t["helix"]) if "helix" in t else 0.0
+        if not 0.0 <= helix < MAX_HELIX_DEG:
+            raise GearleverError(f"{where}.helix must be in [0, {MAX_HELIX_DEG:g}) deg, got {_short(t['helix'])}")
+        gears[gname] = Gear(gname, link, centre, int(z), internal, shift, width, math.radians(helix))
 
     # meshes
     meshes = []
+    pa = mech.get("pressure_angle", 20.0)  # validated later (loads.validate_extra); 20 deg meanwhile if out of range
+    alpha = math.radians(float(pa)) if _is_num(pa) and 0.0 < pa < 60.0 else math.radians(20.0)
     mtab = _array_of_tables("meshes", d.get("meshes", []))
     _count("[[meshes]]", len(mtab), MAX_ELEMENTS)
     for i, t in enumerate(mtab):
@@ -662,14 +700,23 @@ def model_from_dict(d) -> MechanismModel:
             if len(cands) > 1:
                 raise GearleverError(f"{where}: two or more carriers {cands}; name one with carrier = ...")
             carrier = cands[0]
+        if ga.helix != gb.helix:
+            raise GearleverError(
+                f"{where}: the helix angles differ ({math.degrees(ga.helix):g} and {math.degrees(gb.helix):g} deg)"
+            )
         if module is not None:
             dist = math.dist(points[ga.centre], points[gb.centre])
             internal = ga.internal or gb.internal
-            want = module * (abs(ga.teeth - gb.teeth) if internal else ga.teeth + gb.teeth) / 2.0
+            try:
+                want = tight_centre_distance(module, ga, gb, alpha)
+            except GearleverError as exc:
+                raise GearleverError(f"{where}: {exc}") from None
             if abs(dist - want) > 1e-6 * max(want, 1.0):
+                shifted = ga.shift != 0 or gb.shift != 0 or ga.helix != 0
+                plain = f"m (z_a {'-' if internal else '+'} z_b) / 2"
+                rule = "the working centre distance of its shifts and helix" if shifted else plain
                 raise GearleverError(
-                    f"{where}: centre distance {dist:.9g} does not match module {module:g}: "
-                    f"m (z_a {'-' if internal else '+'} z_b) / 2 = {want:.9g}"
+                    f"{where}: centre distance {dist:.9g} does not match module {module:g}: {rule} = {want:.9g}"
                 )
         eff = None
         if "efficiency" in t:
@@ -737,6 +784,54 @@ def model_from_dict(d) -> MechanismModel:
 
     validate_extra(model)
     return model
+
+
+def _inv_involute(value: float) -> float:
+    """The angle ``a`` in [0, pi/2) with ``tan a - a = value`` (Newton from Cheng's start), ``value >= 0``."""
+    if value <= 0.0:
+        return 0.0
+    a = min(1.441 * value ** (1.0 / 3.0) - 0.366 * value, 1.5)
+    for _ in range(60):
+        step = (math.tan(a) - a - value) / math.tan(a) ** 2
+        a -= step
+        a = min(max(a, 1e-12), math.pi / 2 - 1e-12)
+        if abs(step) < 1e-15:
+            break
+    return a
+
+
+def tight_centre_distance(module: float, ga: Gear, gb: Gear, alpha: float = math.radians(20.0)) -> float:
+    """The zero-backlash working centre distance of gears ``ga``, ``gb`` (shifts, helix) at normal module ``module``.
+
+    Notes
+    -----
+    ISO 21771:2007; KHK, *Gear Technical Reference*, "Calculation of profile
+    shifted spur gears" (m 3, z 12 and 24, x 0.6 and 0.36: alpha_w 26.0886 deg, a 56.4999 mm):
+    ``alpha_t = atan(tan alpha_n / cos beta)``, ``inv alpha_wt = inv alpha_t + 2 tan
+    alpha_n (x_1 + x_2) / (z_1 + z_2)`` (an internal pair: differences, ring
+    second), ``a_w = m_n (z_1 + z_2) cos alpha_t / (2 cos beta cos alpha_wt)``.
+
+    Examples
+    --------
+    >>> g1, g2 = Gear("a", "l1", "O", 12, shift=0.6), Gear("b", "l2", "C", 24, shift=0.36)
+    >>> round(tight_centre_distance(3.0, g1, g2), 4)      # KHK's shifted spur example prints 56.4999 mm
+    56.4999
+    """
+    internal = ga.internal or gb.internal
+    if internal:
+        ring, pin = (ga, gb) if ga.internal else (gb, ga)
+        zsum, xsum = ring.teeth - pin.teeth, ring.shift - pin.shift
+    else:
+        zsum, xsum = ga.teeth + gb.teeth, ga.shift + gb.shift
+    cb = math.cos(ga.helix)
+    at = math.atan(math.tan(alpha) / cb)
+    if zsum == 0:
+        return 0.0
+    inv_w = math.tan(at) - at + 2.0 * math.tan(alpha) * xsum / zsum
+    if inv_w < 0:
+        raise GearleverError(f"the shifts {ga.shift:g}, {gb.shift:g} leave no working pressure angle (inv < 0)")
+    aw = _inv_involute(inv_w)
+    return module * zsum * math.cos(at) / (2.0 * cb * math.cos(aw))
 
 
 def _check_scale(points, links) -> None:

@@ -1,0 +1,291 @@
+"""Tests of gearlever.gears.geometry: tooth outline, mesh geometry and published worked examples."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from gearlever.errors import GearleverError
+from gearlever.gears import geometry as g
+
+CASES = [
+    (3.0, 12, 0.6, {}),
+    (2.0, 20, 0.0, {}),
+    (1.0, 8, 0.0, {}),  # undercut
+    (1.0, 10, 0.2, {}),  # undercut
+    (1.0, 40, -0.3, {}),
+    (2.0, 30, 0.1, {"helix": math.radians(20)}),
+    (2.0, 60, 0.0, {"internal": True}),
+    (2.0, 24, 0.3, {"internal": True}),
+    (1.5, 45, -0.2, {"internal": True, "helix": math.radians(15)}),
+]
+
+
+def _crossings(xy, radius):
+    r = np.hypot(xy[:, 0], xy[:, 1])
+    above = r > radius
+    return int(np.count_nonzero(above & ~np.roll(above, 1)))
+
+
+@pytest.mark.parametrize(("m", "z", "x", "kw"), CASES)
+def test_flank_on_analytic_involute_to_1e9_module(m, z, x, kw):
+    """Every flank point lies on the involute theta = s/(2r) + inv alpha_t - inv alpha_R (ISO 21771, eq. 54)."""
+    p = g.tooth_profile(m, z, x, **kw)
+    beta = kw.get("helix", 0.0)
+    mt = m / math.cos(beta)
+    at = math.atan(math.tan(math.radians(20)) / math.cos(beta))
+    r = mt * z / 2
+    rb = r * math.cos(at)
+    s_half = (math.pi * mt / 4 + x * m * math.tan(at)) / r
+    i0, i1 = p.flank
+    assert i1 - i0 >= 20
+    for sign in (1.0, -1.0):
+        f = p.points[i0:i1] * np.array([1.0, sign])
+        R = np.hypot(f[:, 0], f[:, 1])
+        th = np.abs(np.arctan2(f[:, 1], f[:, 0]))
+        aR = np.arccos(np.clip(rb / R, -1, 1))
+        expected = s_half + g.involute(at) - (np.tan(aR) - aR)
+        assert np.max(np.abs(R * (th - expected))) < 1e-9 * m
+
+
+@pytest.mark.parametrize(("m", "z", "x", "kw"), CASES)
+def test_outline_teeth_tip_and_root_circles(m, z, x, kw):
+    """The outline has `teeth` teeth; its extreme radii are the tip and root radii (ISO 21771 eq. 20-23)."""
+    xy = g.tooth_outline(m, z, x, **kw)
+    p = g.tooth_profile(m, z, x, **kw)
+    r = np.hypot(xy[:, 0], xy[:, 1])
+    beta = kw.get("helix", 0.0)
+    d = m * z / math.cos(beta)
+    if kw.get("internal"):
+        assert r.min() == pytest.approx(max((d - 2 * (1 - x) * m) / 2, p.base_radius), abs=1e-9 * m)
+        assert r.max() == pytest.approx(d / 2 + (1.25 + x) * m, abs=1e-9 * m)
+    else:
+        assert r.max() == pytest.approx(d / 2 + (1 + x) * m, abs=1e-9 * m)
+        assert r.min() == pytest.approx(d / 2 - (1.25 - x) * m, abs=1e-9 * m)
+    assert _crossings(xy, p.reference_radius) == z
+    # counter-clockwise (positive shoelace area)
+    area = 0.5 * np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1])
+    assert area > 0
+    assert xy.shape == (z * (len(p.points) - 1), 2)
+
+
+def test_outline_rejects_bad_input():
+    with pytest.raises(GearleverError, match="teeth"):
+        g.tooth_outline(1.0, 0)
+    with pytest.raises(GearleverError, match="teeth"):
+        g.tooth_outline(1.0, 12.5)
+    with pytest.raises(GearleverError, match="module"):
+        g.tooth_outline(-1.0, 12)
+    with pytest.raises(GearleverError, match="helix"):
+        g.tooth_outline(1.0, 12, helix=math.radians(45))
+    with pytest.raises(GearleverError, match="points the tooth.*largest shift"):
+        g.tooth_outline(1.0, 12, 1.0)
+
+
+# ----------------------------------------------------------------------------- published worked examples
+
+
+def _published():
+    import tomllib
+
+    from gearlever.data import read_text
+
+    return tomllib.loads(read_text("gear_published.toml"))
+
+
+def _entry(section, name):
+    return next(e for e in _published()[section] if e["name"] == name)
+
+
+def _half_unit(printed: float) -> float:
+    """Half a unit of the last printed digit of ``printed`` (as written in the TOML)."""
+    text = repr(float(printed))
+    decimals = len(text.split(".")[1]) if "." in text else 0
+    return 0.5 * 10.0**-decimals
+
+
+def test_khk_shifted_spur_pair_to_printed_digits():
+    """KHK Gear Technical Reference, profile-shifted spur gears (m 3, z 12/24, x 0.6/0.36), as reproduced on
+    bolsover.com: working pressure angle 26.0886 deg (1e-4), centre distance 56.4999 (half a unit of 1e-4),
+    y 0.83333 (5e-5: printed from the rounded centre distance), diameters to 0.001 (printed 3 decimals)
+    and 0.0001 (base), contact ratio 1.202."""
+    e = _entry("mesh", "khk-shifted-spur")
+    gm = g.mesh(e["module"], *e["teeth"], *e["shift"])
+    assert math.degrees(gm.working_pressure_angle) == pytest.approx(e["working_pressure_angle_deg"], abs=1e-4)
+    assert gm.center_distance == pytest.approx(e["center_distance"], abs=0.5e-4)
+    assert gm.center_distance_modification == pytest.approx(e["center_distance_modification"], abs=5e-5)
+    for key in ("reference_diameter", "tip_diameter", "root_diameter", "working_diameter"):
+        np.testing.assert_allclose(getattr(gm, key), e[key], atol=0.5e-3, err_msg=key)
+    np.testing.assert_allclose(gm.base_diameter, e["base_diameter"], atol=0.5e-4)
+    assert gm.contact_ratio_transverse == pytest.approx(e["contact_ratio_transverse"], abs=0.5e-3)
+
+
+def test_iso21771_helical_sheet_sum_of_shifts_and_working_angle():
+    """ISO 21771:2007 eq. 62 worked sheet (scribd 376176518): z 31/30, m_n 3.5, a 116.5; the printed transverse
+    pressure angle 21.2990642859 deg fixes beta = 21 deg; reference centre distance 114.3447280708, working
+    transverse pressure angle 23.8707609654 deg and sum of shifts 0.651877131252 to 1e-9 (12 printed digits)."""
+    e = _entry("mesh", "iso21771-helical-sheet")
+    at = math.radians(e["transverse_pressure_angle_deg"])
+    beta = math.acos(math.tan(math.radians(e["pressure_angle_deg"])) / math.tan(at))
+    assert math.degrees(beta) == pytest.approx(21.0, abs=1e-9)
+    x1, x2 = g.shifts_for_center_distance(e["center_distance"], e["module"], *e["teeth"], helix=beta)
+    assert x1 + x2 == pytest.approx(e["shift_sum"], abs=e["tolerance"])
+    gm = g.mesh(e["module"], *e["teeth"], x1, x2, helix=beta)
+    assert gm.center_distance == pytest.approx(e["center_distance"], abs=1e-9)
+    assert gm.reference_center_distance == pytest.approx(e["reference_center_distance"], abs=e["tolerance"])
+    assert math.degrees(gm.working_pressure_angle) == pytest.approx(e["working_pressure_angle_deg"], abs=1e-9)
+    assert math.degrees(gm.transverse_pressure_angle) == pytest.approx(e["transverse_pressure_angle_deg"], abs=1e-9)
+
+
+@pytest.mark.parametrize("name", ["cd-sheet-internal", "cd-sheet-external"])
+def test_centre_distance_sheet_to_printed_digits(name):
+    """Centre distance of profile shifted gear calc (scribd 210760271): internal 17/96 m 14 x 0.2/0.5 -> 21.1251 deg,
+    557.0887 mm; external 22/118 m 8 x 0/0.5 -> 21.0617 deg, 563.8999 mm (half a unit of the 4th decimal)."""
+    e = _entry("mesh", name)
+    gm = g.mesh(e["module"], *e["teeth"], *e["shift"], kind=e["kind"], check=False)
+    assert math.degrees(gm.working_pressure_angle) == pytest.approx(e["working_pressure_angle_deg"], abs=0.5e-4)
+    assert gm.center_distance == pytest.approx(e["center_distance"], abs=0.5e-4)
+
+
+def test_shigley_interference_numbers():
+    """Shigley 9th ed. sec. 13-7 and Example 13-2 (eq. 13-10 to 13-12, 20 deg full depth): smallest pinion 13 (1:1),
+    13-tooth pinion meshes at most 16 teeth, 16 (4:1), 16-tooth pinion meshes at most 101, rack needs 18. Exact."""
+    for e in _published()["interference"]:
+        if "ratio" in e:
+            assert g.min_pinion_teeth(e["ratio"]) == e["min_pinion_teeth"], e["name"]
+        if "pinion_teeth" in e:
+            assert g.max_mating_teeth(e["pinion_teeth"]) == e["max_gear_teeth"], e["name"]
+        if "rack_min_pinion_teeth" in e:
+            assert g.min_pinion_teeth(math.inf) == e["rack_min_pinion_teeth"]
+            assert g.max_mating_teeth(e["rack_min_pinion_teeth"]) is None
+            assert g.max_mating_teeth(e["rack_min_pinion_teeth"] - 1) is not None
+
+
+def test_interference_formula_agrees_with_the_mesh_check():
+    """The largest mating gear of eq. 13-11 is the last gear whose tip stays inside the pinion's interference point."""
+    for zp in (13, 14, 15, 16, 17):
+        zg = g.max_mating_teeth(zp)
+        assert not g.mesh(1.0, zp, zg, check=False).interference[0]
+        assert g.mesh(1.0, zp, zg + 1, check=False).interference[0]
+
+
+# ----------------------------------------------------------------------------- derivatives and identities
+
+
+def test_inverse_involute_round_trip_and_derivative_fd():
+    """Newton's step uses d(inv a)/da = tan^2 a: checked against central differences."""
+    for a in np.linspace(0.05, 1.2, 12):
+        assert g.inverse_involute(g.involute(a)) == pytest.approx(a, abs=1e-14)
+        h = 1e-6
+        fd = (g.involute(a + h) - g.involute(a - h)) / (2 * h)
+        assert fd == pytest.approx(math.tan(a) ** 2, rel=1e-8)
+
+
+def test_backlash_derivative_is_twice_sine_of_working_angle_fd():
+    """d j_bt / d a = 2 sin alpha_wt (transverse, along the base tangent): central differences of backlash()."""
+    for kind, teeth, shifts in (("external", (14, 37), (0.3, -0.1)), ("internal", (18, 71), (0.1, 0.4))):
+        gm = g.mesh(2.0, *teeth, *shifts, kind=kind, helix=math.radians(12), check=False)
+        h = 1e-6
+        jp = g.backlash(gm, center_distance_change=h).normal
+        jm = g.backlash(gm, center_distance_change=-h).normal
+        cbb = math.cos(math.atan(math.tan(gm.helix) * math.cos(gm.transverse_pressure_angle)))
+        expected = 2 * math.sin(gm.working_pressure_angle) * cbb * (1 if kind == "external" else -1)
+        assert (jp - jm) / (2 * h) == pytest.approx(expected, rel=1e-6)
+        assert g.backlash(gm).normal == pytest.approx(0.0, abs=1e-12)
+
+
+def test_centre_distance_and_shifts_are_inverse():
+    """shifts_for_center_distance gives back the sum of shifts that mesh() turns into that centre distance."""
+    for kind, z in (("external", (17, 43)), ("internal", (19, 80))):
+        gm = g.mesh(1.5, *z, 0.25, 0.4, kind=kind, helix=math.radians(10), check=False)
+        for split in g.SPLITS:
+            x1, x2 = g.shifts_for_center_distance(
+                gm.center_distance, 1.5, *z, helix=math.radians(10), internal=kind == "internal", split=split
+            )
+            if kind == "external":
+                assert x1 + x2 == pytest.approx(0.65, abs=1e-12)
+            else:
+                assert x2 - x1 == pytest.approx(0.15, abs=1e-12)
+
+
+def test_helical_normal_and_transverse_apart():
+    """m_t = m_n / cos beta, tan alpha_t = tan alpha_n / cos beta; shifts in the normal section (x m_n)."""
+    beta = math.radians(30)
+    gm = g.mesh(3.0, 20, 40, 0.2, 0.0, helix=beta, face_width=30.0)
+    assert gm.transverse_module == pytest.approx(3.0 / math.cos(beta), rel=1e-15)
+    assert math.tan(gm.transverse_pressure_angle) == pytest.approx(math.tan(math.radians(20)) / math.cos(beta))
+    assert gm.tip_diameter[0] == pytest.approx(20 * 3 / math.cos(beta) + 2 * (1 + 0.2 - gm.tip_shortening) * 3.0)
+    assert gm.root_diameter[1] == pytest.approx(40 * 3 / math.cos(beta) - 2 * 1.25 * 3.0)
+    assert gm.contact_ratio_overlap == pytest.approx(30 * 0.5 / (math.pi * 3.0))
+    assert gm.contact_ratio_total == pytest.approx(gm.contact_ratio_transverse + gm.contact_ratio_overlap)
+
+
+def test_undercut_limits():
+    """z_min = 2 (h_fP - rho (1 - sin a) - x) cos b / sin^2 a_t (ISO 53: 17.1 -> 18); x_min at its teeth."""
+    assert g.min_teeth_no_undercut() == 18
+    assert g.min_teeth_no_undercut(0.3) == 12
+    for z in (8, 12, 16, 25):
+        x = g.min_shift_no_undercut(z)
+        assert g.min_teeth_no_undercut(x + 1e-9) <= z
+        gm = g.mesh(1.0, z, 50, x + 1e-6, 0.0, check=False)
+        assert not gm.undercut[0]
+        assert g.mesh(1.0, z, 50, x - 1e-3, 0.0, check=False).undercut[0]
+
+
+def test_profile_undercut_agrees_with_the_limit():
+    """The generated outline starts its involute above the base circle exactly when the rack undercuts."""
+    for z, x in ((10, 0.0), (14, 0.1), (20, 0.0), (12, 0.35)):
+        p = g.tooth_profile(1.0, z, x)
+        undercut = x < g.min_shift_no_undercut(z)
+        form_on_base = abs(p.form_radius - p.base_radius) < 1e-9
+        if undercut:
+            assert p.form_radius > p.base_radius  # the fillet cuts the involute above the base circle
+        else:
+            assert not form_on_base or x == g.min_shift_no_undercut(z)
+
+
+def test_planetary_geometry_unshifted_matches_the_search_and_shift_restores_coaxial():
+    """planetary_geometry agrees with design_planetary's conditions for standard gears; the ring shift it gives
+    makes a non-coaxial set coaxial."""
+    from gearlever.gears.planetary import design_planetary
+
+    s = design_planetary("9/2", planets=3, limit=1).solutions[0]
+    p = g.planetary_geometry(1.0, s.sun, s.planet, s.ring, 3)
+    assert p.ok
+    q = g.planetary_geometry(1.0, 12, 15, 43, 3)
+    assert not q.coaxial
+    r = g.planetary_geometry(1.0, 12, 15, 43, 3, (0.0, 0.0, q.ring_shift_for_coaxial))
+    assert r.coaxial
+
+
+def test_mesh_refusals_name_the_parameter():
+    """Bad input raises GearleverError naming the parameter (issue 32, Bad input)."""
+    with pytest.raises(GearleverError, match="teeth1 must be a positive integer"):
+        g.mesh(1.0, 0, 20)
+    with pytest.raises(GearleverError, match="module"):
+        g.mesh(0.0, 12, 20)
+    with pytest.raises(GearleverError, match="face_width"):
+        g.mesh(1.0, 12, 20, face_width=0.0)
+    with pytest.raises(GearleverError, match="helix"):
+        g.mesh(1.0, 12, 20, helix=math.radians(50))
+    with pytest.raises(GearleverError, match=r"shift 1.2 points the tooth of gear 1.*largest shift"):
+        g.mesh(3.0, 12, 24, 1.2, 0.0)
+    with pytest.raises(GearleverError, match=r"contact ratio 0\.\d+ < 1: not a mesh"):
+        g.mesh(1.0, 12, 12, 0.0, 0.0, addendum=0.6, dedendum=0.85)
+    with pytest.raises(GearleverError, match="internal pair's tips interfere"):
+        g.mesh(1.0, 20, 26, kind="internal")
+    with pytest.raises(GearleverError, match="center_distance 10 cannot be reached"):
+        g.mesh(1.0, 12, 24, center_distance=10.0)
+
+
+def test_tip_thickness_agrees_with_the_drawn_tooth():
+    """tip_thickness (ISO 21771 eq. 66-70) equals the drawn tooth's tip arc, times cos beta_a for a helical gear."""
+    for z, x, beta in ((12, 0.3, 0.0), (25, -0.2, 0.0), (18, 0.5, math.radians(20))):
+        p = g.tooth_profile(2.0, z, x, helix=beta)
+        th_tip = abs(float(np.arctan2(p.points[p.flank[1] - 1, 1], p.points[p.flank[1] - 1, 0])))
+        d = 2.0 * z / math.cos(beta)
+        beta_a = math.atan(math.tan(beta) * 2 * p.tip_radius / d)
+        expected = 2 * p.tip_radius * th_tip * math.cos(beta_a)
+        assert g.tip_thickness(2.0, z, x, helix=beta) == pytest.approx(expected, rel=1e-12)
