@@ -6,7 +6,7 @@ Sub-command (added to ``gearlever mechanism`` by :func:`register_check`)::
 
 For each ``[[meshes]]`` entry: teeth, shifts, centre distance and the tight
 mesh's, working pressure angle, contact ratios, backlash, tip, root and base
-diameters, undercut and interference (:mod:`gearlever.gears.mesh_check`).
+diameters, undercut and interference (:mod:`gearlever.mechanism.mesh_check`).
 When the centre distance changes as the mechanism moves, the same over the
 first input's turn (``--points`` frames) with the worst angle; with
 ``--center-distance`` (an adjusting slide that sets a mesh's centre distance)
@@ -94,7 +94,7 @@ def _geometry(g, i, scale) -> dict:
 
 
 def check_report(mech, checks) -> dict:
-    """The JSON report of :func:`gearlever.gears.mesh_check.check_mechanism`'s results."""
+    """The JSON report of :func:`gearlever.mechanism.mesh_check.check_mechanism`'s results."""
     from gearlever.mechanism.loads import pressure_angle_of
 
     m = mech.model
@@ -217,7 +217,7 @@ def check_text(report: dict) -> str:
 
 def _check(args) -> int:
     from gearlever.cli.mechanism import _load
-    from gearlever.gears.mesh_check import check_mechanism
+    from gearlever.mechanism.mesh_check import check_mechanism
 
     mech = _load(args.model)
     adjust = _ranges(args.center_distance, [m.name for m in mech.model.meshes])

@@ -39,7 +39,7 @@ can make the analysis hang): file size :data:`MAX_MODEL_BYTES`, nesting depth
 :data:`MAX_TEETH`, coordinates at most :data:`MAX_COORDINATE` in size, and
 no link shorter than ``1 /`` :data:`MAX_SCALE_RATIO` of the model's size.
 
-Tooth geometry (optional, read by :mod:`gearlever.gears.mesh_check` and
+Tooth geometry (optional, read by :mod:`gearlever.mechanism.mesh_check` and
 :mod:`gearlever.export`): ``[mechanism] module`` (the normal module of a
 helical gear) and ``pressure_angle`` (deg, default 20); per gear ``shift``
 (profile shift coefficient x, a number in [-:data:`MAX_SHIFT`,

@@ -1,4 +1,4 @@
-"""Tooth geometry of a model's meshes (gearlever.gears.mesh_check) against the handbooks' worked values."""
+"""Tooth geometry of a model's meshes (gearlever.mechanism.mesh_check) against the handbooks' worked values."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import pytest
 
 from gearlever.data import example_path
 from gearlever.errors import GearleverError
-from gearlever.gears.mesh_check import check_mechanism, involute, mesh_geometry
+from gearlever.mechanism.mesh_check import check_mechanism, involute, mesh_geometry
 from gearlever.mechanism import Mechanism
 
 GEARED = ["geared_fivebar", "planetary", "compound_planetary", "ferguson", "zrdpm_gear_contour"]
