@@ -130,6 +130,15 @@ def browser(tmp_path_factory):
         if os.environ.get("CI"):
             pytest.fail(msg + ": the browser tests must run in CI")
         pytest.skip(msg)
+    d = start_browser(tmp_path_factory.mktemp("chromium-profile"))
+    try:
+        yield d
+    finally:
+        d.quit()
+
+
+def start_browser(profile: Path, size: tuple[int, int] = (1280, 860)):
+    """A headless Chromium driver whose requests off loopback go to a dead proxy (see the module's doc)."""
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 
@@ -153,22 +162,19 @@ def browser(tmp_path_factory):
         "--disable-default-apps",
         "--no-first-run",
         "--no-default-browser-check",
-        "--window-size=1280,860",
+        f"--window-size={size[0]},{size[1]}",
         "--force-device-scale-factor=1",
         f"--proxy-server=http://127.0.0.1:{dead_port}",
         "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE localhost, EXCLUDE 127.0.0.1",
-        f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}",
+        f"--user-data-dir={profile}",
     ):
         opts.add_argument(a)
     opts.set_capability("goog:loggingPrefs", {"browser": "ALL", "performance": "ALL"})
     d = webdriver.Chrome(service=Service(_browser.CHROMEDRIVER), options=opts)
     d.set_page_load_timeout(60)
     d.set_script_timeout(120)
-    try:
-        d.execute_cdp_cmd("Network.enable", {})
-        yield d
-    finally:
-        d.quit()
+    d.execute_cdp_cmd("Network.enable", {})
+    return d
 
 
 def requested_urls(driver) -> list[str]:
