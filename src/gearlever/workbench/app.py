@@ -105,8 +105,10 @@ def _error(status: int, message: str, headers=None, **extra) -> JSONResponse:
 def _worker_main(conn) -> None:
     """A worker process: answer ``(function, kwargs)`` requests on ``conn`` until it closes."""
     import os
+    import signal
     import warnings
 
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group: the server stops us
     os.environ.setdefault("MPLBACKEND", "Agg")
     warnings.simplefilter("ignore")
     from gearlever.errors import GearleverError

@@ -36,8 +36,10 @@ MAX_JOB_SECONDS = 900.0
 def _job_main(params: dict, conn, scheduler) -> None:
     """A job's process: check, run, send progress and the outcome."""
     import os
+    import signal
     import warnings
 
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group: the server stops us
     os.environ.setdefault("MPLBACKEND", "Agg")
     warnings.simplefilter("ignore")
     from gearlever.errors import GearleverError
