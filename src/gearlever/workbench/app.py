@@ -342,6 +342,10 @@ async def _body(request: Request) -> dict:
     return data
 
 
+def _json_kind(v) -> str:
+    return {dict: "object", list: "list", str: "string", bool: "boolean", type(None): "null"}.get(type(v), "number")
+
+
 def _no_constant(name):
     raise ValueError(f"{name} is not a number in JSON")
 
@@ -355,8 +359,8 @@ def _field(body: dict, key: str, kind, required: bool = True, default=None):
     if kind is int and (isinstance(v, bool) or not isinstance(v, int)):
         raise ApiError(400, f"{key} must be an integer, got {json.dumps(v)[:60]}")
     if kind is not int and not isinstance(v, kind):
-        name = kind.__name__ if isinstance(kind, type) else "/".join(k.__name__ for k in kind)
-        raise ApiError(400, f"{key} must be a {name}, got {type(v).__name__}")
+        names = {dict: "JSON object", str: "string", list: "list"}
+        raise ApiError(400, f"{key} must be a {names.get(kind, kind.__name__)}, got {_json_kind(v)}")
     return v
 
 
