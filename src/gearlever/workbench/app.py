@@ -97,6 +97,11 @@ class ApiError(Exception):
         self.extra = extra
 
 
+def _json(body: bytes) -> Response:
+    """An answer whose strict JSON a worker encoded."""
+    return Response(body, media_type="application/json")
+
+
 def _error(status: int, message: str, headers=None, **extra) -> JSONResponse:
     return JSONResponse({"error": message, **extra}, status_code=status, headers=headers)
 
@@ -132,7 +137,14 @@ def _worker_main(conn) -> None:
         except (EOFError, OSError, KeyboardInterrupt):
             return
         try:
-            reply = ("ok", calls[name](**kwargs))
+            result = calls[name](**kwargs)
+            if name == "dump":
+                result = {"model": result}
+            if isinstance(result, dict):  # encoded here, in parallel workers, not in the server's event loop
+                result = json.dumps(
+                    result, allow_nan=False, separators=(",", ":"), ensure_ascii=False, check_circular=False
+                ).encode()
+            reply = ("ok", result)
         except engine.WorkbenchError as exc:
             reply = ("error", str(exc), exc.line)
         except (GearleverError, ValueError, OverflowError, ZeroDivisionError) as exc:
@@ -359,7 +371,7 @@ def _field(body: dict, key: str, kind, required: bool = True, default=None):
     if kind is int and (isinstance(v, bool) or not isinstance(v, int)):
         raise ApiError(400, f"{key} must be an integer, got {json.dumps(v)[:60]}")
     if kind is not int and not isinstance(v, kind):
-        names = {dict: "JSON object", str: "string", list: "list"}
+        names = {dict: "JSON object", str: "string", list: "list", bool: "boolean"}
         raise ApiError(400, f"{key} must be a {names.get(kind, kind.__name__)}, got {_json_kind(v)}")
     return v
 
@@ -498,28 +510,29 @@ def create_app(
     async def parse(request: Request):
         body = await _body(request)
         _only(body, ("model",))
-        return JSONResponse(await pool.call("parse", solve_seconds, text=_model_text(body)))
+        return _json(await pool.call("parse", solve_seconds, text=_model_text(body)))
 
     @_endpoint
     async def dump(request: Request):
         body = await _body(request)
         _only(body, ("model",))
         obj = _field(body, "model", dict)
-        return JSONResponse({"model": await pool.call("dump", solve_seconds, obj=obj)})
+        return _json(await pool.call("dump", solve_seconds, obj=obj))
 
     @_endpoint
     async def solve(request: Request):
         body = await _body(request)
-        _only(body, ("model", "frames", "inputs"))
+        _only(body, ("model", "frames", "inputs", "centres"))
         inputs = _field(body, "inputs", dict, required=False)
-        kw = {"text": _model_text(body), "frames": _frames(body), "inputs": inputs}
-        return JSONResponse(await pool.call("solve", solve_seconds, **kw))
+        centres = _field(body, "centres", bool, required=False)
+        kw = {"text": _model_text(body), "frames": _frames(body), "inputs": inputs, "centres": centres}
+        return _json(await pool.call("solve", solve_seconds, **kw))
 
     @_endpoint
     async def structure(request: Request):
         body = await _body(request)
         _only(body, ("model",))
-        return JSONResponse(await pool.call("structure", solve_seconds, text=_model_text(body)))
+        return _json(await pool.call("structure", solve_seconds, text=_model_text(body)))
 
     @_endpoint
     async def forces(request: Request):
@@ -527,7 +540,7 @@ def create_app(
         _only(body, ("model", "frames", "rpm"))
         rpm = _field(body, "rpm", dict, required=False)
         kw = {"text": _model_text(body), "frames": _frames(body), "rpm": rpm}
-        return JSONResponse(await pool.call("forces", solve_seconds, **kw))
+        return _json(await pool.call("forces", solve_seconds, **kw))
 
     @_endpoint
     async def export(request: Request):
@@ -718,7 +731,7 @@ OPENAPI = {
         "/api/solve": {
             "post": _op(
                 "one cycle of frames: points, velocities, accelerations, angles, centres, message",
-                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS}),
+                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS, "centres": {"type": "boolean"}}),
                 extra_codes=("413",),
             )
         },

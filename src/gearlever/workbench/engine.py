@@ -35,6 +35,7 @@ the workbench, an application like the command line, imports it from there.
 
 from __future__ import annotations
 
+import functools
 import io
 import math
 import tomllib
@@ -75,10 +76,14 @@ MAX_POINTS = 600
 MAX_FRAMES = 3600
 #: Most link-frames (frames x moving links) of one solve: the solve time grows with both.
 MAX_WORK = 250_000
+#: Compiled models kept by :func:`load`.
+CACHED_MODELS = 32
 #: Most target points of a path or curve synthesis.
 MAX_TARGET = 2000
 #: Significant digits of the numbers of a cycle (the viewer page's).
 DIGITS = 6
+#: Instant centres are answered by default for models of at most this many bodies (ground included).
+AUTO_CENTRE_BODIES = 8
 #: Formats of :func:`export`.
 EXPORT_FORMATS = ("svg", "png", "gif", "csv", "html", "toml")
 #: Synthesis kinds of :func:`run_job`.
@@ -153,8 +158,18 @@ def _mechanism(d: dict, where: str = "model"):
 
 
 def load(text, where: str = "model"):
-    """The :class:`~gearlever.mechanism.Mechanism` of a model's TOML text (refusals name ``where``)."""
-    return _mechanism(_toml(_text(where, text), where), where)
+    """The :class:`~gearlever.mechanism.Mechanism` of a model's TOML text (refusals name ``where``).
+
+    The last :data:`CACHED_MODELS` models are kept compiled (a model played,
+    scrubbed or re-solved from another start is parsed once); a
+    :class:`~gearlever.mechanism.Mechanism` is not changed by solving it.
+    """
+    return _load_cached(_text(where, text), where)
+
+
+@functools.lru_cache(maxsize=CACHED_MODELS)
+def _load_cached(text: str, where: str):
+    return _mechanism(_toml(text, where), where)
 
 
 def _jsonable(v):
@@ -392,7 +407,7 @@ def _message(mech, r, labels) -> str:
     return f"{labels[0]} at {value} (frame {i}): {reason}; {n} of {len(r.closed)} frames do not assemble"
 
 
-def solve_frames(text, frames: int = 360, inputs=None) -> dict:
+def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
     """One cycle of the model: every point, link, slider over a full turn of the first input.
 
     Parameters
@@ -406,6 +421,11 @@ def solve_frames(text, frames: int = 360, inputs=None) -> dict:
     inputs : dict, optional
         ``{input: start}`` in degrees (length for a slider): the first
         input's start and the held value of the others (default: the sketch).
+    centres : bool, optional
+        Answer the instant centres (one-input models only): None (default)
+        for models of at most :data:`AUTO_CENTRE_BODIES` bodies, True for up
+        to :data:`gearlever.plotting.viewer.MAX_CENTRE_BODIES` (``n (n - 1) / 2``
+        centres a frame: 55 for 11 bodies, most of the answer), False never.
 
     Returns
     -------
@@ -490,7 +510,10 @@ def solve_frames(text, frames: int = 360, inputs=None) -> dict:
         "links": {k: list(m.links[k].points) for k in m.moving},
         "units": m.units or "",
     }
-    if len(m.inputs) == 1 and len(m.moving) + 1 <= MAX_CENTRE_BODIES:
+    if centres is not None and not isinstance(centres, bool):
+        raise WorkbenchError(f"centres must be true or false, got {centres!r}")
+    most = AUTO_CENTRE_BODIES if centres is None else (MAX_CENTRE_BODIES if centres else 0)
+    if len(m.inputs) == 1 and len(m.moving) + 1 <= most:
         from gearlever.mechanism.centres import instant_centres
 
         ic = instant_centres(r)
