@@ -493,10 +493,19 @@ async function doSync({ fromText = false, text = null } = {}) {
   const revision = S.revision;
   let toml = text;
   if (toml === null) {
-    try {
-      toml = (await api.post("/api/dump", { model: S.model })).model;
-    } catch {
-      toml = M.toToml(S.model); // an incomplete drawing the server does not write yet
+    // an incomplete drawing (no ground, link or input yet) is not a model the server writes: written here
+    toml = M.toToml(S.model);
+    if (M.solvable(S.model)) {
+      try {
+        toml = (await api.post("/api/dump", { model: S.model })).model;
+      } catch (e) {
+        if (revision !== S.revision) return;
+        S.error = e.message;
+        S.frames = null; S.stale = false;
+        setTomlText(toml);
+        finishSync();
+        return;
+      }
     }
   }
   S.toml = toml;
@@ -706,7 +715,7 @@ function click(px, py, joint, link) {
       break;
     case "pin":
       if (joint) { S.selected = { kind: "joint", name: joint }; renderProps(); render(); }
-      else edit((m) => { S.selected = { kind: "joint", name: M.addPoint(m, pinPrefix(m), xy) }; });
+      else edit((m) => { S.selected = { kind: "joint", name: M.placePoint(m, M.pinName(m), xy) }; });
       break;
     case "point":
       if (joint) { S.selected = { kind: "joint", name: joint }; renderProps(); render(); }
@@ -719,7 +728,7 @@ function click(px, py, joint, link) {
     case "link": {
       const before = snapshot();
       let p = joint;
-      if (!p) p = M.addPoint(S.model, pinPrefix(S.model), xy);
+      if (!p) p = M.placePoint(S.model, M.pinName(S.model), xy);
       if (!S.draftLink) S.draftLink = { first: p };
       else if (S.draftLink.first && S.draftLink.first !== p) S.draftLink = { link: M.addLink(S.model, S.draftLink.first, p) };
       else if (S.draftLink.link) M.growLink(S.model, S.draftLink.link, p);
@@ -752,12 +761,6 @@ function click(px, py, joint, link) {
     default:
       break;
   }
-}
-
-/** Pin names A, B, C... while free, then J1, J2... */
-function pinPrefix(m) {
-  for (const c of "ABCDEFGHKLMNQRSTUVW") if (!(c in m.points)) return c;
-  return "J";
 }
 
 /** Drag an input: show the frame where the dragged joint points from its pivot towards the pointer. */

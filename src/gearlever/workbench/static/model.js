@@ -64,6 +64,20 @@ export function addPoint(model, prefix, xy) {
   return name;
 }
 
+/** A point with this exact name (a fresh one). */
+export function placePoint(model, name, xy) {
+  model.points ||= {};
+  model.points[name] = xy;
+  return name;
+}
+
+/** The next free pin name: A, B, C... then J1, J2... */
+export function pinName(model) {
+  const used = new Set([...Object.keys(model.points || {}), ...Object.keys(model.links || {})]);
+  for (const c of "ABCDEFGHKLMNQRSTUVW") if (!used.has(c)) return c;
+  return freshName(model, "J");
+}
+
 export function addGroundPivot(model, xy) {
   const name = addPoint(model, "O", xy);
   model.links ||= {};
