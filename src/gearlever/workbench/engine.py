@@ -36,7 +36,6 @@ the workbench, an application like the command line, imports it from there.
 from __future__ import annotations
 
 import functools
-import io
 import math
 import tomllib
 
@@ -680,32 +679,22 @@ def export(text, fmt: str, frames: int = 360) -> tuple:
         cols["closed"] = r.closed
         cols["reason"] = [s.split(":")[0] for s in r.reason]
         return table_text(cols, "csv").encode("utf-8"), "text/csv; charset=utf-8", f"{stem}.csv"
-    import matplotlib
+    import tempfile
+    from pathlib import Path
 
-    matplotlib.use("Agg")
+    # the worker process runs with MPLBACKEND=Agg; plotting alone imports pyplot
+    from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import animate_mechanism, draw_mechanism
 
-    if fmt == "gif":
-        import tempfile
-        from pathlib import Path
-
-        rg = _sweep_result(mech, GIF_FRAMES)
-        with tempfile.TemporaryDirectory() as tmp:
-            path = Path(tmp) / "m.gif"
-            animate_mechanism(mech, rg, path, paths=r)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / f"m.{fmt}"
+        if fmt == "gif":
+            animate_mechanism(mech, _sweep_result(mech, GIF_FRAMES), path, paths=r)
             return path.read_bytes(), "image/gif", f"{stem}.gif"
-    import matplotlib.pyplot as plt
-
-    from gearlever.plotting._common import settle
-
-    ax = draw_mechanism(mech, r)
-    fig = ax.figure
-    settle(fig)
-    buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, dpi=120)
-    plt.close(fig)
+        save(draw_mechanism(mech, r).figure, path, dpi=120)
+        data = path.read_bytes()
     ctype = "image/svg+xml" if fmt == "svg" else "image/png"
-    return buf.getvalue(), ctype, f"{stem}.{fmt}"
+    return data, ctype, f"{stem}.{fmt}"
 
 
 # --------------------------------------------------------------------------- examples
