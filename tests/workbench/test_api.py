@@ -180,6 +180,11 @@ def test_solve_of_a_model_that_does_not_assemble_says_where_and_why(client):
     assert not all(d["closed"])
     first = d["closed"].index(False)
     assert d["message"].startswith(f"crank at {d['input_deg'][first]:.4g} deg")
+    # the gap at that crank angle: |A O4| less the coupler (|A B| = sqrt(85)) and the rocker (|O4 B| = 10)
+    a = math.radians(d["input_deg"][first])
+    gap = math.hypot(25 * math.cos(a) - 40, 25 * math.sin(a)) - math.sqrt(85) - 10
+    assert gap > 0
+    assert f"B cannot be reached, links coupler and rocker {gap:.3g} short" in d["message"]
     assert all(p is None for p in [d["point"]["B"][i] for i, c in enumerate(d["closed"]) if not c])
 
 

@@ -401,9 +401,52 @@ def _message(mech, r, labels) -> str:
     spec = mech.model.inputs[0]
     v = float(r.q[i, 0])
     value = f"{math.degrees(v):.4g} deg" if spec.kind == "link" else f"{v:.4g} {mech.model.units or ''}".rstrip()
-    reason = str(r.reason[i]) or "the mechanism does not assemble"
+    reason = _why(mech, r.q[i]) or str(r.reason[i]) or "the mechanism does not assemble"
     n = int((~r.closed).sum())
     return f"{labels[0]} at {value} (frame {i}): {reason}; {n} of {len(r.closed)} frames do not assemble"
+
+
+def _why(mech, q) -> str:
+    """Which dyad cannot close at the inputs ``q`` and by how much, for a model of drivers and dyads; else "".
+
+    The model's plan of drivers and Assur dyads (:mod:`gearlever.mechanism.assur`) is replayed at ``q``,
+    positions only, one group at a time: the first RRR dyad whose two links cannot meet (the circles of
+    radius ``r1`` about ``P1`` and ``r2`` about ``P2`` do not intersect: ``d > r1 + r2`` or
+    ``d < |r1 - r2|``, ``d = |P1 P2|``) is named with the length missing.
+    """
+    from gearlever.mechanism.assur import _RRP, _RRR, _Driver
+    from gearlever.mechanism.model import GROUND
+
+    plan = mech.system.dyad_plan
+    if plan is None:
+        return ""
+    model, units = mech.model, (f" {mech.model.units}" if mech.model.units else "")
+    dq = (np.asarray(q, dtype=float) - mech.system.q0)[:, None]
+    st = {GROUND: (1.0, 0.0, None, 0.0, None)}
+    pts = {n: (x, y, 0.0, 0.0, 0.0, 0.0) for n, (x, y) in model.points.items() if GROUND in model.carriers(n)}
+    phi, slider = {}, {}
+    with np.errstate(all="ignore"):
+        for step in plan.steps:
+            if isinstance(step, _Driver):
+                a = dq[step.w]
+                phi[step.link] = a
+                st[step.link] = (np.cos(a), np.sin(a), None, None, step.pivot)
+            elif isinstance(step, _RRR):
+                X1, Y1 = plan._point(st, pts, step.k1, step.p1)[:2]
+                X2, Y2 = plan._point(st, pts, step.k2, step.p2)[:2]
+                margin = plan._rrr(step, st, pts, phi, False)
+                if not np.isfinite(margin[0]):
+                    d = float(np.hypot(X2 - X1, Y2 - Y1)[0])
+                    if d > step.r1 + step.r2:
+                        short = f"{d - step.r1 - step.r2:.3g}{units} short"
+                    else:
+                        short = f"{abs(step.r1 - step.r2) - d:.3g}{units} too unequal for pins {d:.3g}{units} apart"
+                    return f"{step.p} cannot be reached, links {step.l1} and {step.l2} {short}"
+            elif isinstance(step, _RRP):
+                margin = plan._rrp(step, st, pts, phi, slider, False)
+                if not np.isfinite(margin[0]):
+                    return f"{step.p} cannot be reached, link {step.l1} does not reach the guide of {step.l2}"
+    return ""
 
 
 def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
