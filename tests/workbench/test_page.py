@@ -29,7 +29,11 @@ from selenium.webdriver.support.ui import Select
 
 from gearlever.data import example_path
 from gearlever.mechanism import Mechanism
-from tests.workbench._server import bench, browser, guarded, open_bench, wait_for  # noqa: F401 (fixtures)
+from tests.workbench import _server
+from tests.workbench._server import guarded, open_bench, wait_for
+
+bench = _server.bench  # fixture: the server of one test
+browser = _server.browser  # fixture: the module's Chromium
 
 # ---------------------------------------------------------------- helpers
 
@@ -102,7 +106,8 @@ def joint_centre(d, name):
     return js(
         d,
         "const c = [...document.querySelectorAll('[data-joint]')].find((g) => g.dataset.joint === arguments[0])"
-        ".querySelector('circle'); const r = c.getBoundingClientRect(); return [r.left + r.width / 2, r.top + r.height / 2];",
+        ".querySelector('circle'); const r = c.getBoundingClientRect();"
+        "return [r.left + r.width / 2, r.top + r.height / 2];",
         name,
     )
 
@@ -195,7 +200,8 @@ def test_empty_bench_says_what_to_do_and_draws_a_grashof_fourbar(browser, bench,
         assert np.allclose(np.asarray(r.point["B"]), np.asarray(f["point"]["B"], float), rtol=0, atol=1e-4)
         rocker = math.dist(O2, B)
         assert all(math.isclose(math.dist(O2, p), rocker, rel_tol=1e-5) for p in f["point"]["B"])
-        shot(d, tmp_path, "drawn")
+        js(d, "workbench.fit(); workbench.setFrame(40)")
+        shot(d, tmp_path, "desktop")
 
 
 def test_drag_a_pivot_changes_the_cycle_and_undo_restores_it(browser, bench):
@@ -438,7 +444,8 @@ def test_phone_layout_folds_the_toolbar_and_draws_by_touch(browser, bench, tmp_p
             def tap_el(css):
                 r = js(
                     d,
-                    "const r = document.querySelector(arguments[0]).getBoundingClientRect(); return [r.left + r.width / 2, r.top + r.height / 2]",
+                    "const r = document.querySelector(arguments[0]).getBoundingClientRect();"
+                    "return [r.left + r.width / 2, r.top + r.height / 2]",
                     css,
                 )
                 tap(*r)
@@ -487,10 +494,51 @@ def test_help_panel_lists_the_shortcuts_and_keys_choose_tools(browser, bench):
         body.send_keys("?")
         rows = wait_for(
             d,
-            "return document.querySelector('#dlg-help').open && [...document.querySelectorAll('#shortcuts tr')].map((r) => r.textContent)",
+            "return document.querySelector('#dlg-help').open"
+            " && [...document.querySelectorAll('#shortcuts tr')].map((r) => r.textContent)",
         )
         assert any("undo" in r for r in rows) and any("Space" in r for r in rows)
         d.find_element(By.CSS_SELECTOR, "#dlg-help button[value=close]").click()
         for key, name in (("g", "ground"), ("l", "link"), ("c", "curve"), ("v", "select")):
             body.send_keys(key)
             assert js(d, "return workbench.state().tool") == name
+
+
+def test_synthesis_from_a_freehand_curve_inserts_the_chosen_design_as_one_undo_step(browser, bench, tmp_path):
+    """Curve tool: press, drag, release; the synthesis panel runs a topology search (``curve``, 15 s) as a job."""
+    d = browser
+    desktop(d)
+    with guarded(d, bench):
+        open_bench(d, bench)
+        tool(d, "curve")
+        t = np.linspace(0.0, 2 * np.pi, 41)
+        drag(d, [screen(d, 30 + 14 * math.cos(a), 40 + 7 * math.sin(a)) for a in t], steps=2)
+        assert js(d, "return workbench.state().curve") >= 20
+        curve = np.array(js(d, "return workbench.curve()"))
+        assert np.allclose(curve.mean(0), [30, 40], atol=2.5)
+        action(d, "synthesize")
+        Select(d.find_element(By.ID, "synth-kind")).select_by_value("curve")
+        time_box = d.find_element(By.ID, "synth-time")
+        time_box.clear()
+        time_box.send_keys("15")
+        undo_depth = js(d, "return workbench.state().undo")
+        d.find_element(By.ID, "synth-run").click()
+        wait_for(d, "const j = workbench.state().job; return j && j.state === 'running'", 10)
+        assert d.find_element(By.ID, "synth-cancel").is_enabled()
+        wait_for(d, "const j = workbench.state().job; return j && j.state !== 'running'", 240)
+        assert js(d, "return workbench.state().job.state") == "done", d.find_element(By.ID, "synth-results").text
+        inserts = d.find_elements(By.CSS_SELECTOR, "#synth-results [data-result]")
+        assert inserts, "the ranked designs are listed"
+        inserts[0].click()
+        wait_for(d, "return workbench.state().frames > 0 && !workbench.state().pending", 60)
+        s = js(d, "return workbench.state()")
+        assert s["undo"] == undo_depth + 1, "the chosen design is inserted as one undo step"
+        path = tmp_path / "design.toml"
+        path.write_text(js(d, "return workbench.model()"), encoding="utf-8")
+        Mechanism.load(path)
+        d.find_element(By.CSS_SELECTOR, "#dlg-synth button[value=close]").click()
+        js(d, "workbench.fit(); workbench.setFrame(30)")
+        shot(d, tmp_path, "synthesis")
+        action(d, "undo")
+        wait_for(d, "return !workbench.state().pending && document.querySelectorAll('[data-joint]').length === 0")
+        assert js(d, "return workbench.state().curve") >= 20, "the target stays drawn"

@@ -1114,7 +1114,20 @@ function jobBody(kind, opts = {}) {
   if (kind === "curve" || kind === "path") {
     const target = opts.target || S.curve;
     if (!target || target.length < 3) throw new Error("draw the target curve first (curve tool)");
-    const body = { kind, target: target.map(([x, y]) => [Number(x.toPrecision(8)), Number(y.toPrecision(8))]) };
+    // The topology search scores designs as the linkage synthesis challenge does (material, the links'
+    // total length, under 10): the drawn curve is sent moved to the origin and scaled to an RMS radius of
+    // 0.2, and the designs are placed back on the drawing by the inverse similarity (see placeResult).
+    let pts = target;
+    S.placement = null;
+    if (kind === "curve") {
+      const n = target.length;
+      const c = [target.reduce((a, p) => a + p[0], 0) / n, target.reduce((a, p) => a + p[1], 0) / n];
+      const rms = Math.sqrt(target.reduce((a, p) => a + (p[0] - c[0]) ** 2 + (p[1] - c[1]) ** 2, 0) / n) || 1;
+      const k = rms / 0.2;
+      pts = target.map(([x, y]) => [(x - c[0]) / k, (y - c[1]) / k]);
+      S.placement = { c, k };
+    }
+    const body = { kind, target: pts.map(([x, y]) => [Number(x.toPrecision(8)), Number(y.toPrecision(8))]) };
     if (kind === "curve") body.time = Number(opts.time ?? val("#synth-time", 20));
     else body.budget = Number(opts.budget ?? val("#synth-budget", 3000));
     body.seed = Number(opts.seed ?? val("#synth-seed", 1));
@@ -1177,15 +1190,37 @@ function listResults(answer) {
     ol.appendChild(li);
     return;
   }
+  if (!(answer.results || []).length) {
+    const li = document.createElement("li");
+    li.textContent = "no design found: give the search more time, or draw the curve again";
+    ol.appendChild(li);
+  }
   for (const r of answer.results || []) {
     const li = document.createElement("li");
     const score = Object.entries(r.score || {}).map(([k, v]) => `${k} ${typeof v === "number" ? Number(v.toPrecision(4)) : v}`).join(", ");
     const span = document.createElement("span");
     span.textContent = `#${r.rank} ${score} `;
     li.appendChild(span);
-    button(li, "insert", async () => { await load(r.model); notify(`result #${r.rank} inserted (undo takes it out)`); }, { "data-result": r.rank });
+    button(li, "insert", async () => {
+      try {
+        await load(await placeResult(r.model));
+        notify(`result #${r.rank} inserted (undo takes it out)`);
+      } catch (e) { notify(e.message); }
+    }, { "data-result": r.rank });
     ol.appendChild(li);
   }
+}
+
+/** A design of the curve search placed where the target was drawn: the sketch moved and scaled back. */
+async function placeResult(text) {
+  const pl = S.placement;
+  if (!pl) return text;
+  const { model } = await api.post("/api/parse", { model: text });
+  for (const [name, [x, y]] of Object.entries(model.points || {})) {
+    model.points[name] = [Number((pl.c[0] + x * pl.k).toPrecision(10)), Number((pl.c[1] + y * pl.k).toPrecision(10))];
+  }
+  for (const key of Object.keys(model.lengths || {})) model.lengths[key] *= pl.k;
+  return (await api.post("/api/dump", { model })).model;
 }
 
 async function cancelJob() {
@@ -1200,7 +1235,7 @@ async function synthesize(opts = {}) {
   if (answer.state !== "done" || !(answer.results || []).length) {
     throw new Error(`synthesis ${answer.state}: ${answer.error || "no result"}`);
   }
-  const best = answer.results[0].model;
+  const best = await placeResult(answer.results[0].model);
   await load(best);
   return best;
 }

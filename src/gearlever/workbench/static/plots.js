@@ -31,7 +31,7 @@ export function drawPlot(svg, xs, series, { title = "", xlabel = "input (deg)", 
   const W = svg.clientWidth || 300;
   const H = svg.clientHeight || 140;
   svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
-  const L = 46, R = 8, T = 16, B = 22;
+  const L = 46, R = 14, T = 30, B = 22;
   el("rect", { x: 0, y: 0, width: W, height: H, class: "plot-bg" }, svg);
   const t = el("text", { x: L, y: 12, class: "plot-title" }, svg);
   t.textContent = title;
@@ -52,8 +52,8 @@ export function drawPlot(svg, xs, series, { title = "", xlabel = "input (deg)", 
     const lbl = el("text", { x: L - 4, y: sy(y) + 4, class: "plot-tick", "text-anchor": "end" }, svg);
     lbl.textContent = fmt(y);
   }
-  for (const x of [xlo, (xlo + xhi) / 2, xhi]) {
-    const lbl = el("text", { x: sx(x), y: H - 6, class: "plot-tick", "text-anchor": "middle" }, svg);
+  for (const [x, anchor] of [[xlo, "start"], [(xlo + xhi) / 2, "middle"], [xhi, "end"]]) {
+    const lbl = el("text", { x: sx(x), y: H - 6, class: "plot-tick", "text-anchor": anchor }, svg);
     lbl.textContent = fmt(x);
   }
   t.textContent = `${title} against ${xlabel}`;
@@ -66,7 +66,7 @@ export function drawPlot(svg, xs, series, { title = "", xlabel = "input (deg)", 
       pen = true;
     });
     el("path", { d, class: "plot-line", stroke: COLORS[k % COLORS.length] }, svg);
-    const key = el("text", { x: L + 8 + k * 110, y: T + 12, class: "plot-key", fill: COLORS[k % COLORS.length] }, svg);
+    const key = el("text", { x: L + 4 + k * 120, y: 24, class: "plot-key", fill: COLORS[k % COLORS.length] }, svg);
     key.textContent = s.label;
   });
   const mark = el("line", { x1: 0, y1: T, x2: 0, y2: H - B, class: "plot-cursor" }, svg);
@@ -76,7 +76,7 @@ export function drawPlot(svg, xs, series, { title = "", xlabel = "input (deg)", 
     mark.setAttribute("x1", sx(xs[i])); mark.setAttribute("x2", sx(xs[i]));
   };
   setMark(cursor);
-  const readout = el("text", { x: W - R, y: 12, class: "plot-readout", "text-anchor": "end" }, svg);
+  const readout = el("text", { x: W - R, y: H - B - 5, class: "plot-readout", "text-anchor": "end" }, svg);
   const hover = el("line", { x1: 0, y1: T, x2: 0, y2: H - B, class: "plot-hover", visibility: "hidden" }, svg);
   const hit = el("rect", { x: L, y: T, width: W - L - R, height: H - T - B, class: "plot-hit" }, svg);
   hit.addEventListener("pointermove", (ev) => {
