@@ -1011,6 +1011,10 @@ def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None =
                 workers=1,
             )
             tick("done", 1, 1)
+            if not len(res.designs):
+                raise WorkbenchError(
+                    "target: no linkage was found within the search's time; give it more time (time) or draw again"
+                )
             return [
                 _result(
                     n,
