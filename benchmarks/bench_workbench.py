@@ -178,10 +178,7 @@ def main() -> None:
                     f"{name:20s} {p50:8.1f} {p95:8.1f} {analyze:11.1f} {p50 / analyze:6.2f} "
                     f"{p50 / factor:14.1f}  {verdict}"
                 )
-            print(
-                f"redraws a second while dragging the four-bar (1 / p50): see the first row; load average now "
-                f"{os.getloadavg()[0]:.1f}"
-            )
+            print(f"load average now {os.getloadavg()[0]:.1f}, contention x{contention():.2f}")
             client.close()
         finally:
             proc.send_signal(signal.SIGTERM)
