@@ -429,3 +429,25 @@ def test_files_refuse_what_is_not_a_model(client):
     assert "JSON object" in _err(client.put("/api/files/bad.links.json", json={"model": "[1]"}), 400)
     assert _err(client.get("/api/files/missing.toml"), 404)
     assert ".toml" in _err(client.get("/api/files/notes.txt"), 400)
+
+
+def test_a_call_whose_request_went_away_does_not_answer_the_next_call():
+    """The pool's worker still finishes the abandoned solve; its reply is skipped, never given to the next caller."""
+    import asyncio
+
+    from gearlever.workbench.app import WorkerPool
+
+    async def run():
+        pool = WorkerPool(1)
+        await pool.start()
+        try:
+            first = asyncio.create_task(pool.call("solve", 60.0, text=FOURBAR, frames=3600))
+            await asyncio.sleep(0.05)
+            first.cancel()
+            answer = await pool.call("parse", 60.0, text=FOURBAR)
+            return json.loads(answer)
+        finally:
+            pool.close()
+
+    d = asyncio.run(run())
+    assert d["dof"] == 1 and "model" in d and "point" not in d

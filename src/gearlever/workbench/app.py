@@ -44,6 +44,7 @@ import json
 import multiprocessing
 import secrets
 import threading
+import time
 from http.cookies import SimpleCookie
 from importlib import resources
 from pathlib import Path
@@ -133,7 +134,7 @@ def _worker_main(conn) -> None:
         engine.solve_frames(Path(example_path("fourbar.toml")).read_text(encoding="utf-8"), 36)
     while True:
         try:
-            name, kwargs = conn.recv()
+            seq, name, kwargs = conn.recv()
         except (EOFError, OSError, KeyboardInterrupt):
             return
         try:
@@ -156,7 +157,7 @@ def _worker_main(conn) -> None:
         except Exception as exc:  # noqa: BLE001 - a bug: reported as such, one line, no traceback
             reply = ("bug", f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:500], None)
         try:
-            conn.send(reply)
+            conn.send((seq, *reply))
         except (OSError, ValueError, KeyboardInterrupt):
             return
 
@@ -191,6 +192,7 @@ class WorkerPool:
         self._all: list[_Worker] = []
         self._lock = threading.Lock()
         self._closed = False
+        self._seq = 0
 
     def _start(self) -> None:
         if self._idle is None:
@@ -211,15 +213,25 @@ class WorkerPool:
         worker = await self._idle.get()
         replace = False
         try:
-            worker.conn.send((name, kwargs))
-            ready = await asyncio.to_thread(worker.conn.poll, seconds)
-            if not ready:
-                replace = True
-                raise ApiError(
-                    400,
-                    f"{name}: stopped after the cap of {seconds:g} s per {name}; use fewer frames or a smaller model",
-                )
-            reply = worker.conn.recv()
+            self._seq += 1
+            seq = self._seq
+            worker.conn.send((seq, name, kwargs))
+            deadline = time.monotonic() + seconds
+            while True:
+                # a reply of an earlier call whose request went away (its task cancelled) is skipped
+                left = deadline - time.monotonic()
+                ready = left > 0 and await asyncio.to_thread(worker.conn.poll, left)
+                if not ready:
+                    replace = True
+                    raise ApiError(
+                        400,
+                        f"{name}: stopped after the cap of {seconds:g} s per {name}; "
+                        "use fewer frames or a smaller model",
+                    )
+                got = worker.conn.recv()
+                if got[0] == seq:
+                    reply = got[1:]
+                    break
         except (EOFError, OSError, BrokenPipeError):
             replace = True
             raise ApiError(500, f"{name}: the worker process ended unexpectedly") from None
