@@ -8,7 +8,7 @@ answer (what the page then draws).  Models: the four-bar example, the ZRDPM
 gear contour example (two inputs, gears) and a 20-joint chain of six four-bar
 loops.  Beside it, ``gearlever mechanism analyze MODEL --points 360`` run in
 this process for the same frames (its CSV written to a temporary file), and
-the ratio.  Targets (issue 31): p50 at most 30 ms for the four-bar and 100 ms
+the ratio.  Targets: p50 at most 30 ms for the four-bar and 100 ms
 for the 20-joint linkage; 30 redraws a second while dragging means p50 at
 most 33 ms.
 
