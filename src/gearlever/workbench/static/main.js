@@ -948,6 +948,7 @@ function notify(text) {
   const status = $("#status");
   if (!text) { setStatus(); return; }
   status.textContent = text;
+  status.classList.remove("warn");
   clearTimeout(noteTimer);
   noteTimer = setTimeout(setStatus, 4000);
 }
@@ -1111,19 +1112,19 @@ const nums = (text) => String(text).split(/[\s,;]+/).filter(Boolean).map(Number)
 
 function jobBody(kind, opts = {}) {
   const val = (id, fallback) => ($(id) ? $(id).value : fallback);
+  S.placement = null;
   if (kind === "curve" || kind === "path") {
     const target = opts.target || S.curve;
     if (!target || target.length < 3) throw new Error("draw the target curve first (curve tool)");
     // The topology search scores designs as the linkage synthesis challenge does (material, the links'
     // total length, under 10): the drawn curve is sent moved to the origin and scaled to an RMS radius of
-    // 0.2, and the designs are placed back on the drawing by the inverse similarity (see placeResult).
+    // 0.191 (the challenge suite's), and the designs are placed back on the drawing by the inverse similarity (see placeResult).
     let pts = target;
-    S.placement = null;
     if (kind === "curve") {
       const n = target.length;
       const c = [target.reduce((a, p) => a + p[0], 0) / n, target.reduce((a, p) => a + p[1], 0) / n];
       const rms = Math.sqrt(target.reduce((a, p) => a + (p[0] - c[0]) ** 2 + (p[1] - c[1]) ** 2, 0) / n) || 1;
-      const k = rms / 0.2;
+      const k = rms / 0.191;
       pts = target.map(([x, y]) => [(x - c[0]) / k, (y - c[1]) / k]);
       S.placement = { c, k };
     }
@@ -1153,6 +1154,7 @@ function jobBody(kind, opts = {}) {
 let jobAbort = null;
 /** Run a synthesis job to its end with progress; the answer of GET /api/jobs/{id} at the end. */
 async function runJob(body) {
+  const placement = S.placement;
   const { id } = await api.post("/api/jobs", body);
   S.job = { id, state: "running", kind: body.kind };
   $("#synth-cancel").disabled = false;
@@ -1160,7 +1162,7 @@ async function runJob(body) {
   clear($("#synth-results"));
   const progress = (ev) => {
     const p = ev.progress || {};
-    S.job.state = ev.state || S.job.state;
+    S.job.progress = p; // the state changes only once the results are listed
     $("#synth-stage").textContent = `${ev.state || ""} ${p.stage || ""} ${p.done ?? ""}${p.total ? `/${p.total}` : ""}`;
     if (p.total) { $("#synth-progress").max = p.total; $("#synth-progress").value = p.done || 0; }
   };
@@ -1178,11 +1180,12 @@ async function runJob(body) {
   S.job = { id, state: answer.state, kind: body.kind };
   $("#synth-cancel").disabled = true;
   $("#synth-run").disabled = false;
-  listResults(answer);
+  listResults(answer, placement);
+  answer.placement = placement;
   return answer;
 }
 
-function listResults(answer) {
+function listResults(answer, placement) {
   const ol = clear($("#synth-results"));
   if (answer.state !== "done") {
     const li = document.createElement("li");
@@ -1203,7 +1206,7 @@ function listResults(answer) {
     li.appendChild(span);
     button(li, "insert", async () => {
       try {
-        await load(await placeResult(r.model));
+        await load(await placeResult(r.model, placement));
         notify(`result #${r.rank} inserted (undo takes it out)`);
       } catch (e) { notify(e.message); }
     }, { "data-result": r.rank });
@@ -1212,8 +1215,7 @@ function listResults(answer) {
 }
 
 /** A design of the curve search placed where the target was drawn: the sketch moved and scaled back. */
-async function placeResult(text) {
-  const pl = S.placement;
+async function placeResult(text, pl) {
   if (!pl) return text;
   const { model } = await api.post("/api/parse", { model: text });
   for (const [name, [x, y]] of Object.entries(model.points || {})) {
@@ -1235,7 +1237,7 @@ async function synthesize(opts = {}) {
   if (answer.state !== "done" || !(answer.results || []).length) {
     throw new Error(`synthesis ${answer.state}: ${answer.error || "no result"}`);
   }
-  const best = await placeResult(answer.results[0].model);
+  const best = await placeResult(answer.results[0].model, answer.placement);
   await load(best);
   return best;
 }
