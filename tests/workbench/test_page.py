@@ -564,3 +564,24 @@ def test_synthesis_from_a_freehand_curve_runs_as_a_job_and_a_chosen_design_is_on
         action(d, "undo")
         wait_for(d, "return !workbench.state().pending && document.querySelectorAll('[data-joint]').length === 0")
         assert js(d, "return workbench.state().curve") >= 30, "the target stays drawn"
+
+
+def test_drag_the_input_turns_the_crank_to_the_pointer_without_a_round_trip(browser, bench):
+    """Input tool: pressing on the crank's moving joint and dragging shows the frame whose crank points there."""
+    d = browser
+    desktop(d)
+    with guarded(d, bench):
+        open_bench(d, bench)
+        call(d, "workbench.load(arguments[0])", FOURBAR)
+        settled(d)
+        revision = js(d, "return workbench.state().revision")
+        tool(d, "input")
+        # the shipped crank O2-A has length 10 along +x in the sketch: drag A a quarter turn counter-clockwise
+        path = [screen(d, 10 * math.cos(a), 10 * math.sin(a)) for a in np.linspace(0, math.pi / 2, 7)]
+        drag(d, path, steps=3)
+        s = js(d, "return workbench.state()")
+        f = js(d, "return workbench.frames()")
+        assert s["revision"] == revision, "dragging the input is no edit: the model and its frames stay"
+        assert abs(f["input_deg"][s["frame"]] - 90.0) <= 1.5
+        ax, ay = f["point"]["A"][s["frame"]]
+        assert np.allclose(joint_centre(d, "A"), screen(d, ax, ay), atol=0.6)
