@@ -589,3 +589,27 @@ def test_drag_the_input_turns_the_crank_to_the_pointer_without_a_round_trip(brow
         assert abs(f["input_deg"][s["frame"]] - 90.0) <= 1.5
         ax, ay = f["point"]["A"][s["frame"]]
         assert np.allclose(joint_centre(d, "A"), screen(d, ax, ay), atol=0.6)
+
+
+def test_cancel_stops_a_running_synthesis_job(browser, bench):
+    d = browser
+    desktop(d)
+    with guarded(d, bench):
+        open_bench(d, bench)
+        tool(d, "curve")
+        t = np.linspace(0.0, 2 * np.pi, 31)
+        drag(d, [screen(d, 30 + 14 * math.cos(a), 30 + 7 * math.sin(a)) for a in t], steps=2)
+        action(d, "synthesize")
+        Select(d.find_element(By.ID, "synth-kind")).select_by_value("curve")
+        time_box = d.find_element(By.ID, "synth-time")
+        time_box.clear()
+        time_box.send_keys("300")
+        d.find_element(By.ID, "synth-run").click()
+        wait_for(d, "const j = workbench.state().job; return j && j.state === 'running'", 10)
+        started = time.monotonic()
+        d.find_element(By.ID, "synth-cancel").click()
+        wait_for(d, "const j = workbench.state().job; return j && j.state !== 'running'", 120)
+        assert js(d, "return workbench.state().job.state") == "cancelled"
+        assert time.monotonic() - started < 120
+        assert d.find_element(By.ID, "synth-run").is_enabled()
+        assert not d.find_element(By.ID, "synth-cancel").is_enabled()
