@@ -1,0 +1,1087 @@
+"""What the workbench computes: pure functions from a model's TOML text to JSON-ready answers.
+
+Every route of :mod:`gearlever.workbench.app` that computes calls one
+function here, in a worker process (:mod:`gearlever.workbench.app` says why);
+nothing here imports a web framework, and nothing here touches a file of the
+workspace.  The functions take the model as the TOML text of the model file
+(:mod:`gearlever.mechanism.model`) and answer plain dicts of lists, numbers,
+strings and None (strict JSON: NaN is None), or raise
+:class:`WorkbenchError` (a :class:`~gearlever.errors.GearleverError`) with one
+line naming the field, and for a TOML syntax error the line.
+
+- :func:`parse`, :func:`dump`: TOML text <-> the model as a JSON object
+  (:func:`gearlever.mechanism.model.model_from_dict` validates;
+  :func:`gearlever.synthesis.model.model_toml` writes, plus the
+  ``[lengths]`` table it does not write).
+- :func:`solve_frames`: one cycle of every point, link and slider
+  (:meth:`gearlever.mechanism.Mechanism.solve`, all frames in one batched
+  call), the instant centres (:func:`gearlever.mechanism.centres.instant_centres`)
+  and where and why the model does not assemble.
+- :func:`structure`, :func:`forces`, :func:`export`.
+- :func:`check_job` and :func:`run_job`: the synthesis kinds path, curve,
+  function, motion and law, with a ``progress(stage, done, total)`` callback
+  and a cancel flag, answering ranked designs as model TOML texts.
+
+Caps (each named in the refusal): :data:`MAX_MODEL_CHARS` characters of
+model text, :data:`MAX_LINKS` moving links, :data:`MAX_POINTS` points,
+:data:`MAX_FRAMES` frames, :data:`MAX_WORK` link-frames, :data:`MAX_TARGET`
+target points; the seconds per solve are the app's
+(:data:`gearlever.workbench.app.SOLVE_SECONDS`).
+
+The CSV export uses :func:`gearlever.cli._common.table_text`, the writer of
+``gearlever mechanism analyze``: it lives in the command-line package, and
+the workbench, an application like the command line, imports it from there.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import tomllib
+
+import numpy as np
+
+from gearlever.errors import GearleverError
+
+__all__ = [
+    "WorkbenchError",
+    "parse",
+    "dump",
+    "solve_frames",
+    "structure",
+    "forces",
+    "export",
+    "check_job",
+    "run_job",
+    "examples",
+    "example",
+    "EXPORT_FORMATS",
+    "JOB_KINDS",
+    "MAX_MODEL_CHARS",
+    "MAX_LINKS",
+    "MAX_POINTS",
+    "MAX_FRAMES",
+    "MAX_WORK",
+    "MAX_TARGET",
+]
+
+#: Longest model text (characters): real models are a few kB.
+MAX_MODEL_CHARS = 256_000
+#: Most moving links of a model the bench solves (the viewer's cap).
+MAX_LINKS = 150
+#: Most points of a model.
+MAX_POINTS = 600
+#: Most frames of a cycle (the viewer's cap).
+MAX_FRAMES = 3600
+#: Most link-frames (frames x moving links) of one solve: the solve time grows with both.
+MAX_WORK = 250_000
+#: Compiled models kept by :func:`load`.
+CACHED_MODELS = 32
+#: Most target points of a path or curve synthesis.
+MAX_TARGET = 2000
+#: Significant digits of the numbers of a cycle (the viewer page's).
+DIGITS = 6
+#: Instant centres are answered by default for models of at most this many bodies (ground included).
+AUTO_CENTRE_BODIES = 8
+#: Formats of :func:`export`.
+EXPORT_FORMATS = ("svg", "png", "gif", "csv", "html", "toml")
+#: Synthesis kinds of :func:`run_job`.
+JOB_KINDS = ("path", "curve", "function", "motion", "law")
+#: Frames of a GIF export (a GIF of 360 frames is megabytes and seconds to draw).
+GIF_FRAMES = 36
+#: Most designs a job answers.
+MAX_RESULTS = 10
+
+
+class WorkbenchError(GearleverError):
+    """A refusal of the bench: one line naming the field; ``line`` is the TOML line of a syntax error."""
+
+    def __init__(self, message: str, line: int | None = None):
+        super().__init__(message)
+        self.line = line
+
+
+class Cancelled(Exception):
+    """Raised inside a job when its cancel flag is set (the job then ends as cancelled)."""
+
+
+# --------------------------------------------------------------------------- model text
+def _text(where: str, text) -> str:
+    if not isinstance(text, str):
+        raise WorkbenchError(f"{where} must be the model's TOML text (a string), got {type(text).__name__}")
+    if len(text) > MAX_MODEL_CHARS:
+        raise WorkbenchError(f"{where}: {len(text)} characters, more than the cap of {MAX_MODEL_CHARS}")
+    return text
+
+
+def _toml(text: str, where: str = "model") -> dict:
+    """The TOML text as a dict; a syntax error names its line."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
+        line = getattr(exc, "lineno", None)
+        if line is None:
+            import re
+
+            found = re.search(r"line (\d+)", msg)
+            line = (
+                int(found.group(1)) if found else (max(1, len(text.splitlines())) if "end of document" in msg else None)
+            )
+        raise WorkbenchError(f"{where}: TOML syntax error: {msg}", line) from None
+    except RecursionError:
+        raise WorkbenchError(f"{where}: nested too deeply") from None
+
+
+def _check_size(d: dict) -> None:
+    pts = d.get("points")
+    if isinstance(pts, dict) and len(pts) > MAX_POINTS:
+        raise WorkbenchError(f"model: [points] has {len(pts)} points, more than the bench's cap of {MAX_POINTS}")
+    links = d.get("links")
+    if isinstance(links, dict) and len(links) > MAX_LINKS + 1:
+        raise WorkbenchError(
+            f"model: [links] has {len(links) - 1} moving links, more than the bench's cap of {MAX_LINKS}"
+        )
+
+
+def _mechanism(d: dict, where: str = "model"):
+    from gearlever.mechanism import Mechanism
+
+    _check_size(d)
+    try:
+        return Mechanism.from_dict(d)
+    except RecursionError:
+        raise WorkbenchError(f"{where}: nested too deeply") from None
+    except GearleverError as exc:
+        raise WorkbenchError(f"{where}: {exc}") from None
+
+
+def load(text, where: str = "model"):
+    """The :class:`~gearlever.mechanism.Mechanism` of a model's TOML text (refusals name ``where``).
+
+    The last :data:`CACHED_MODELS` models are kept compiled (a model played,
+    scrubbed or re-solved from another start is parsed once); a
+    :class:`~gearlever.mechanism.Mechanism` is not changed by solving it.
+    """
+    return _load_cached(_text(where, text), where)
+
+
+@functools.lru_cache(maxsize=CACHED_MODELS)
+def _load_cached(text: str, where: str):
+    return _mechanism(_toml(text, where), where)
+
+
+def _jsonable(v):
+    """A TOML value as JSON (dates as their text)."""
+    if isinstance(v, dict):
+        return {str(k): _jsonable(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [_jsonable(x) for x in v]
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, (str, int, float, bool)) or v is None:
+        return v
+    return str(v)
+
+
+def _inputs(mech) -> list:
+    return [s.label for s in mech.model.inputs]
+
+
+def parse(text) -> dict:
+    """The model as a JSON object, its mobility and inputs.
+
+    Parameters
+    ----------
+    text : str
+        A model file's TOML text.
+
+    Returns
+    -------
+    dict
+        ``model`` (the TOML as a JSON object), ``dof``, ``inputs`` (names).
+
+    Raises
+    ------
+    WorkbenchError
+        A TOML syntax error (``line`` set) or a refused element.
+
+    Examples
+    --------
+    >>> r = parse('[points]\\nO = [0, 0]\\nA = [1, 0]\\n[links]\\nground = ["O"]\\ncrank = ["O", "A"]\\n'
+    ...           '[[inputs]]\\nlink = "crank"\\n')
+    >>> r["dof"], r["inputs"], r["model"]["links"]["crank"]
+    (1, ['crank'], ['O', 'A'])
+    >>> try:
+    ...     parse("[points]\\nO = [0, 0\\n")
+    ... except WorkbenchError as exc:
+    ...     print(exc.line)
+    2
+    """
+    d = _toml(_text("model", text))
+    mech = _mechanism(d)
+    return {"model": _jsonable(d), "dof": int(mech.structure().dof), "inputs": _inputs(mech)}
+
+
+def dump(obj) -> str:
+    """The TOML text (model-file schema) of a model given as a JSON object; :func:`parse` reads it back.
+
+    The model is validated first (:func:`gearlever.mechanism.model.model_from_dict`);
+    tables are written by :func:`gearlever.synthesis.model.model_toml`, except
+    the points, written exactly as given (the shortest text of each float:
+    the model the page holds is the model saved), and ``[lengths]``.
+
+    Examples
+    --------
+    >>> d = {"points": {"O": [0, 0], "A": [1.5, 0]}, "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...      "inputs": [{"link": "crank"}], "lengths": {"crank": 1.5}}
+    >>> parse(dump(d))["model"] == {**d, "points": {"O": [0.0, 0.0], "A": [1.5, 0.0]}}
+    True
+    """
+    from gearlever.synthesis.model import _key, _value, model_toml
+
+    if not isinstance(obj, dict):
+        raise WorkbenchError(f"model must be a JSON object of the model file's tables, got {type(obj).__name__}")
+    _mechanism(obj)
+    body = {k: v for k, v in obj.items() if k not in ("lengths", "points")}
+    try:
+        text = model_toml(body)
+        points = "[points]\n" + "".join(
+            f"{_key(k)} = [{_exact(v[0])}, {_exact(v[1])}]\n" for k, v in obj.get("points", {}).items()
+        )
+        # the points as given (shortest exact text), after [mechanism] as the schema orders them
+        at = text.find("\n\n[", text.find("[mechanism]")) if text.startswith("[mechanism]") else -1
+        text = text[: at + 2] + points + "\n" + text[at + 2 :] if at >= 0 else points + "\n" + text
+        if "lengths" in obj:
+            text += "\n[lengths]\n" + "".join(f"{_value(str(k))} = {_value(v)}\n" for k, v in obj["lengths"].items())
+    except GearleverError as exc:
+        raise WorkbenchError(f"model: {exc}") from None
+    # the written text must read back as the same model
+    _mechanism(_toml(text))
+    return text
+
+
+def _exact(v) -> str:
+    """A coordinate as the shortest text that reads back as the same float."""
+    return repr(float(v) + 0.0)
+
+
+# --------------------------------------------------------------------------- cycle
+def _frames(frames) -> int:
+    if isinstance(frames, bool) or not isinstance(frames, int) or not 2 <= frames <= MAX_FRAMES:
+        raise WorkbenchError(f"frames must be an integer from 2 to {MAX_FRAMES}, got {frames!r}")
+    return frames
+
+
+def _work(mech, frames: int) -> None:
+    K = len(mech.model.moving)
+    if K > MAX_LINKS:
+        raise WorkbenchError(f"model: {K} moving links, more than the bench's cap of {MAX_LINKS}")
+    if frames * max(K, 1) > MAX_WORK:
+        raise WorkbenchError(
+            f"frames: {frames} frames x {K} moving links is more than the cap of {MAX_WORK} link-frames; "
+            f"use at most {MAX_WORK // max(K, 1)} frames"
+        )
+
+
+def _start(mech, inputs) -> np.ndarray:
+    """Start values (rad, or length for a slider) from the sketch and ``inputs`` ({name: deg or length})."""
+    m = mech.model
+    labels = _inputs(mech)
+    start = mech.sketch_inputs.astype(float)
+    if inputs is None:
+        return start
+    if not isinstance(inputs, dict):
+        raise WorkbenchError("inputs must be an object {input name: start value (deg, or length for a slider)}")
+    for name, value in inputs.items():
+        if name not in labels:
+            raise WorkbenchError(f"inputs: unknown input {name!r} (inputs: {', '.join(labels)})")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise WorkbenchError(f"inputs.{name} must be a finite number, got {value!r}")
+        i = labels.index(name)
+        if m.inputs[i].kind == "link":
+            if abs(value) > 360 * 1000:
+                raise WorkbenchError(f"inputs.{name} must be at most 360000 deg in size, got {value!r}")
+            start[i] = math.radians(value)
+        else:
+            if abs(value - start[i]) > 1000 * m.length_scale:
+                raise WorkbenchError(f"inputs.{name} is more than 1000 model sizes from the sketch, got {value!r}")
+            start[i] = float(value)
+    return start
+
+
+def _cycle(mech, frames: int, start: np.ndarray):
+    """Input rows of one cycle: a full turn of the first input (a slider: a stroke of +-L/2 and back)."""
+    m = mech.model
+    W = len(m.inputs)
+    k = np.arange(frames) / frames
+    q = np.tile(start, (frames, 1))
+    qd = np.zeros((frames, W))
+    if m.inputs[0].kind == "link":
+        q[:, 0] = start[0] + 2 * np.pi * k
+        qd[:, 0] = 1.0
+        direction = np.ones(frames, dtype=int)
+    else:
+        half = 0.5 * m.length_scale
+        q[:, 0] = start[0] + half * np.sin(2 * np.pi * k)
+        qd[:, 0] = 1.0
+        c = np.cos(2 * np.pi * k)
+        direction = np.where(c >= 0, 1, -1)
+    return q, qd, direction
+
+
+def _rounded(a, scale=None) -> tuple:
+    """``a`` at :data:`DIGITS` significant digits of ``scale`` (default: its largest finite size); finite mask."""
+    a = np.asarray(a, dtype=float)
+    fin = np.isfinite(a)
+    z = np.where(fin, a, 0.0)
+    if scale is None:
+        scale = float(np.max(np.abs(z))) if z.size else 0.0
+    if not scale > 0 or not math.isfinite(scale):
+        return z + 0.0, fin
+    decimals = DIGITS - 1 - math.floor(math.log10(scale))
+    return np.round(z, decimals) + 0.0, fin
+
+
+def _num(a, scale=None) -> list:
+    """Floats at :data:`DIGITS` significant digits of ``scale`` (default: the largest), NaN as None."""
+    out, fin = _rounded(a, scale)
+    vals = out.tolist()
+    if fin.all():
+        return vals
+    return [v if f else None for v, f in zip(vals, fin.tolist())]
+
+
+def _xy(a, scale=None) -> list:
+    """(N, 2) -> [[x, y] or None, ...]."""
+    out, fin = _rounded(a, scale)
+    vals = out.tolist()
+    ok = fin.all(axis=1)
+    if ok.all():
+        return vals
+    return [v if k else None for v, k in zip(vals, ok.tolist())]
+
+
+def _transmission(mech, r):
+    """Transmission angle (deg, 0..180) of a four-bar-like model: one input crank, a coupler and a rocker pinned.
+
+    The angle between the coupler and the rocker at their common pin
+    (J. E. Shigley and J. J. Uicker, *Theory of Machines and Mechanisms*,
+    sec. 2.11): None for any other model.
+    """
+    from gearlever.mechanism.model import GROUND
+
+    m = mech.model
+    if len(m.inputs) != 1 or m.inputs[0].kind != "link" or len(m.moving) != 3 or m.sliders or m.gears:
+        return None
+    crank = m.inputs[0].name
+    ground = set(m.links[GROUND].points)
+    others = [k for k in m.moving if k != crank]
+    rocker = [k for k in others if ground & set(m.links[k].points)]
+    coupler = [k for k in others if not ground & set(m.links[k].points)]
+    if len(rocker) != 1 or len(coupler) != 1:
+        return None
+    rk, cp = m.links[rocker[0]], m.links[coupler[0]]
+    common = [p for p in rk.points if p in cp.points]
+    pivot = [p for p in rk.points if p in ground]
+    crank_pin = [p for p in cp.points if p in m.links[crank].points]
+    if len(common) != 1 or not pivot or not crank_pin:
+        return None
+    B, O4, A = r.point[common[0]], r.point[pivot[0]], r.point[crank_pin[0]]
+    u, v = A - B, O4 - B
+    cos = np.sum(u * v, axis=1) / (np.hypot(u[:, 0], u[:, 1]) * np.hypot(v[:, 0], v[:, 1]))
+    return _num(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))
+
+
+def _message(mech, r, labels) -> str:
+    """Where and why the cycle does not assemble: the first frame not closed, the input there, the reason."""
+    if r.closed.all():
+        return ""
+    i = int(np.flatnonzero(~r.closed)[0])
+    spec = mech.model.inputs[0]
+    v = float(r.q[i, 0])
+    value = f"{math.degrees(v):.4g} deg" if spec.kind == "link" else f"{v:.4g} {mech.model.units or ''}".rstrip()
+    reason = _why(mech, r.q[i]) or str(r.reason[i]) or "the mechanism does not assemble"
+    n = int((~r.closed).sum())
+    return f"{labels[0]} at {value} (frame {i}): {reason}; {n} of {len(r.closed)} frames do not assemble"
+
+
+def _why(mech, q) -> str:
+    """Which dyad cannot close at the inputs ``q`` and by how much, for a model of drivers and dyads; else "".
+
+    The model's plan of drivers and Assur dyads (:mod:`gearlever.mechanism.assur`) is replayed at ``q``,
+    positions only, one group at a time: the first RRR dyad whose two links cannot meet (the circles of
+    radius ``r1`` about ``P1`` and ``r2`` about ``P2`` do not intersect: ``d > r1 + r2`` or
+    ``d < |r1 - r2|``, ``d = |P1 P2|``) is named with the length missing.
+    """
+    from gearlever.mechanism.assur import _RRP, _RRR, _Driver
+    from gearlever.mechanism.model import GROUND
+
+    plan = mech.system.dyad_plan
+    if plan is None:
+        return ""
+    model, units = mech.model, (f" {mech.model.units}" if mech.model.units else "")
+    dq = (np.asarray(q, dtype=float) - mech.system.q0)[:, None]
+    st = {GROUND: (1.0, 0.0, None, 0.0, None)}
+    pts = {n: (x, y, 0.0, 0.0, 0.0, 0.0) for n, (x, y) in model.points.items() if GROUND in model.carriers(n)}
+    phi, slider = {}, {}
+    with np.errstate(all="ignore"):
+        for step in plan.steps:
+            if isinstance(step, _Driver):
+                a = dq[step.w]
+                phi[step.link] = a
+                st[step.link] = (np.cos(a), np.sin(a), None, None, step.pivot)
+            elif isinstance(step, _RRR):
+                X1, Y1 = plan._point(st, pts, step.k1, step.p1)[:2]
+                X2, Y2 = plan._point(st, pts, step.k2, step.p2)[:2]
+                margin = plan._rrr(step, st, pts, phi, False)
+                if not np.isfinite(margin[0]):
+                    d = float(np.hypot(X2 - X1, Y2 - Y1)[0])
+                    if d > step.r1 + step.r2:
+                        short = f"{d - step.r1 - step.r2:.3g}{units} short"
+                    else:
+                        short = f"{abs(step.r1 - step.r2) - d:.3g}{units} too unequal for pins {d:.3g}{units} apart"
+                    return f"{step.p} cannot be reached, links {step.l1} and {step.l2} {short}"
+            elif isinstance(step, _RRP):
+                margin = plan._rrp(step, st, pts, phi, slider, False)
+                if not np.isfinite(margin[0]):
+                    return f"{step.p} cannot be reached, link {step.l1} does not reach the guide of {step.l2}"
+    return ""
+
+
+def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
+    """One cycle of the model: every point, link, slider over a full turn of the first input.
+
+    Parameters
+    ----------
+    text : str
+        The model's TOML text.
+    frames : int
+        Frames of the cycle, 2 to :data:`MAX_FRAMES`; frame ``k`` at the
+        first input's start ``+ 360 k / frames`` deg (a slider input: the
+        start ``+ L/2 sin(2 pi k / frames)``, ``L`` the model's size).
+    inputs : dict, optional
+        ``{input: start}`` in degrees (length for a slider): the first
+        input's start and the held value of the others (default: the sketch).
+    centres : bool, optional
+        Answer the instant centres (one-input models only): None (default)
+        for models of at most :data:`AUTO_CENTRE_BODIES` bodies, True for up
+        to :data:`gearlever.plotting.viewer.MAX_CENTRE_BODIES` (``n (n - 1) / 2``
+        centres a frame: 55 for 11 bodies, most of the answer), False never.
+
+    Returns
+    -------
+    dict
+        The answer of ``POST /api/solve`` (see the module
+        :mod:`gearlever.workbench`): positions, velocity and acceleration
+        analogues per unit rate of the first input, link angles (deg),
+        angular rates, slider travel, gears' pitch circles, instant centres
+        (one input, at most 16 bodies), the transmission angle of a
+        four-bar-like model, ``message`` and ``extent``.
+
+    Notes
+    -----
+    All frames are solved by one call of
+    :meth:`gearlever.mechanism.Mechanism.solve` (continuation from the
+    sketch, E. L. Allgower and K. Georg, *Numerical Continuation Methods*,
+    1990); instant centres by Kennedy's theorem
+    (:func:`gearlever.mechanism.centres.instant_centres`).
+
+    Examples
+    --------
+    >>> t = ('[points]\\nO = [0, 0]\\nA = [1, 0]\\n[links]\\nground = ["O"]\\ncrank = ["O", "A"]\\n'
+    ...      '[[inputs]]\\nlink = "crank"\\n')
+    >>> d = solve_frames(t, frames=4)
+    >>> d["point"]["A"], d["input_deg"], d["message"]
+    ([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]], [0.0, 90.0, 180.0, 270.0], '')
+    """
+    from gearlever.mechanism.model import GROUND
+    from gearlever.plotting.viewer import MAX_CENTRE_BODIES
+
+    frames = _frames(frames)
+    mech = load(text)
+    _work(mech, frames)
+    m = mech.model
+    labels = _inputs(mech)
+    start = _start(mech, inputs)
+    q, qd, direction = _cycle(mech, frames, start)
+    try:
+        r = mech.solve(q, qd)
+    except GearleverError as exc:
+        raise WorkbenchError(f"model: {exc}") from None
+    L = m.length_scale
+    s = mech.structure()
+    kinds = {lab: ("angle" if sp.kind == "link" else "slider") for lab, sp in zip(labels, m.inputs)}
+    inputs_deg = {
+        lab: _num(np.degrees(q[:, i]) if sp.kind == "link" else q[:, i])
+        for i, (lab, sp) in enumerate(zip(labels, m.inputs))
+    }
+    points = list(r.point)
+    out = {
+        "dof": int(s.dof),
+        "redundant": int(s.redundant),
+        "inputs": labels,
+        "input_kind": kinds,
+        "frames": frames,
+        "input_deg": inputs_deg[labels[0]],
+        "inputs_deg": inputs_deg,
+        "direction": direction.tolist(),
+        "closed": r.closed.tolist(),
+        "point": {p: _xy(r.point[p], L) for p in points},
+        "velocity": {p: _xy(r.velocity[p], L) for p in points},
+        "acceleration": {p: _xy(r.acceleration[p], L) for p in points},
+        "angle_deg": {k: _num(np.degrees(r.angle[k])) for k in m.moving},
+        "omega": {k: _num(r.omega[k]) for k in m.moving},
+        "alpha": {k: _num(r.alpha[k]) for k in m.moving},
+        "slider": {
+            sl.name: {
+                "s": _num(r.displacement[sl.name]),
+                "v": _num(r.slider_velocity[sl.name]),
+                "a": _num(r.slider_acceleration[sl.name]),
+            }
+            for sl in m.sliders
+        },
+        "gears": [
+            {"name": g.name, "link": g.link, "center": g.centre, "teeth": g.teeth, "radius": m.pitch_radius(g.name)}
+            for g in m.gears.values()
+        ],
+        "centres": None,
+        "transmission_deg": _transmission(mech, r),
+        "message": _message(mech, r, labels),
+        "ground_points": list(m.links[GROUND].points),
+        "links": {k: list(m.links[k].points) for k in m.moving},
+        "units": m.units or "",
+    }
+    if centres is not None and not isinstance(centres, bool):
+        raise WorkbenchError(f"centres must be true or false, got {centres!r}")
+    most = AUTO_CENTRE_BODIES if centres is None else (MAX_CENTRE_BODIES if centres else 0)
+    if len(m.inputs) == 1 and len(m.moving) + 1 <= most:
+        from gearlever.mechanism.centres import instant_centres
+
+        ic = instant_centres(r)
+        out["centres"] = {str(k): _xy(ic.xy[:, p], L) for p, k in enumerate(ic.pairs)}
+    xy = np.concatenate([r.point[p] for p in points]) if points else np.zeros((0, 2))
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    if xy.size == 0:
+        xy = np.array(list(m.points.values()), dtype=float)
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    for g in m.gears.values():
+        rad = m.pitch_radius(g.name)
+        c = r.point[g.centre]
+        c = c[np.all(np.isfinite(c), axis=1)]
+        if rad is not None and c.size:
+            lo, hi = np.minimum(lo, c.min(axis=0) - rad), np.maximum(hi, c.max(axis=0) + rad)
+    out["extent"] = [float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])]
+    return out
+
+
+def structure(text) -> dict:
+    """Mobility, redundant constraints, links, joints and inputs of the model (no solve).
+
+    Examples
+    --------
+    >>> t = ('[points]\\nO = [0, 0]\\nA = [1, 0]\\n[links]\\nground = ["O"]\\ncrank = ["O", "A"]\\n'
+    ...      '[[inputs]]\\nlink = "crank"\\n')
+    >>> d = structure(t)
+    >>> d["dof"], d["redundant"], d["links"], d["message"]
+    (1, 0, ['ground', 'crank'], '')
+    """
+    mech = load(text)
+    m = mech.model
+    try:
+        s = mech.structure()
+    except GearleverError as exc:
+        raise WorkbenchError(f"model: {exc}") from None
+    W = len(m.inputs)
+    msg = ""
+    if s.dof != W:
+        msg = (
+            f"the model has {s.dof} degrees of freedom and {W} input{'s' if W != 1 else ''}: "
+            "give one input per degree of freedom"
+        )
+    summary = {
+        str(k): _jsonable(v) if not isinstance(v, (np.integer, np.floating)) else v.item()
+        for k, v in s.summary().items()
+    }
+    return {
+        "dof": int(s.dof),
+        "redundant": int(s.redundant),
+        "redundant_constraints": list(s.redundant_rows),
+        "links": list(m.links),
+        "joints": [{"point": p, "links": [a, b]} for p, a, b in m.joints],
+        "inputs": _inputs(mech),
+        "summary": summary,
+        "message": msg,
+    }
+
+
+def forces(text, frames: int = 360, rpm=None) -> dict:
+    """Input torques and pin forces over one turn at constant input speeds (:meth:`Mechanism.inverse_dynamics`).
+
+    Masses, loads and gravity come from the model's ``[masses]``,
+    ``[[loads]]`` and ``[mechanism] gravity``, as for ``gearlever mechanism
+    forces``; ``rpm`` gives each rotary input's speed (rev/min, default 1
+    rad/s each: the torques at unit input speed).
+
+    Notes
+    -----
+    The equilibrium of every link with its inertia forces (d'Alembert), solved
+    for the driver torques and pair forces (:mod:`gearlever.mechanism.dynamics`).
+    """
+    from gearlever.mechanism.loads import force_units
+
+    frames = _frames(frames)
+    mech = load(text)
+    _work(mech, frames)
+    m = mech.model
+    labels = _inputs(mech)
+    if rpm is not None and not isinstance(rpm, dict):
+        raise WorkbenchError("rpm must be an object {input name: rev/min}")
+    w = np.ones(len(labels))
+    if rpm:
+        for name, value in rpm.items():
+            if name not in labels:
+                raise WorkbenchError(f"rpm: unknown input {name!r} (inputs: {', '.join(labels)})")
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                raise WorkbenchError(f"rpm.{name} must be a finite number, got {value!r}")
+            if abs(value) > 1e6:
+                raise WorkbenchError(f"rpm.{name} must be at most 1e6 rev/min in size, got {value!r}")
+            i = labels.index(name)
+            w[i] = value * math.pi / 30.0 if m.inputs[i].kind == "link" else value / 60.0
+    turning = [i for i, sp in enumerate(m.inputs) if sp.kind == "link" and w[i] != 0]
+    if not turning:
+        raise WorkbenchError("rpm: no rotary input turns (forces span one turn of a rotary input)")
+    period = 2 * math.pi / abs(w[turning[0]])
+    t = np.linspace(0.0, period, frames, endpoint=False)
+    q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+    try:
+        d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q))
+    except GearleverError as exc:
+        raise WorkbenchError(f"model: {exc}") from None
+    F, T = force_units(m)
+    return {
+        "input_deg": _num(np.degrees(q[:, turning[0]])),
+        "time_s": _num(t),
+        "speeds": {lab: float(w[i]) for i, lab in enumerate(labels)},
+        "units": {"force": F, "torque": T},
+        "torque": {lab: _num(d.input_force[:, i]) for i, lab in enumerate(labels)},
+        "pin": {str(k): _xy(v) for k, v in d.reaction.items()},
+        "slider": {str(k): _num(v) for k, v in d.slider_force.items()},
+        "mesh": {str(k): _num(v) for k, v in d.mesh_force.items()},
+        "ground": _xy(d.ground_force),
+        "ok": d.ok.tolist(),
+        "indeterminate": list(d.indeterminate),
+    }
+
+
+# --------------------------------------------------------------------------- export
+def _sweep_result(mech, frames: int):
+    q, qd, _ = _cycle(mech, frames, mech.sketch_inputs.astype(float))
+    try:
+        return mech.solve(q, qd)
+    except GearleverError as exc:
+        raise WorkbenchError(f"model: {exc}") from None
+
+
+def _safe_name(name: str) -> str:
+    keep = "".join(c if c.isascii() and (c.isalnum() or c in "-_") else "_" for c in name)[:60].strip("_")
+    return keep or "mechanism"
+
+
+def export(text, fmt: str, frames: int = 360) -> tuple:
+    """The model as a file: ``(body bytes, content type, file name)``.
+
+    ``fmt``: ``svg``, ``png`` (the drawing of ``gearlever mechanism draw``),
+    ``gif`` (its animation, :data:`GIF_FRAMES` frames), ``csv`` (the cycle as
+    ``gearlever mechanism analyze`` writes it), ``html`` (the page of
+    ``gearlever mechanism view``), ``toml`` (the model file, :func:`dump`).
+    """
+    if fmt not in EXPORT_FORMATS:
+        raise WorkbenchError(f"format must be one of {', '.join(EXPORT_FORMATS)}, got {fmt!r}")
+    frames = _frames(frames)
+    mech = load(text)
+    _work(mech, frames)
+    stem = _safe_name(mech.model.name or "mechanism")
+    if fmt == "toml":
+        return dump(_toml(text)).encode("utf-8"), "application/toml; charset=utf-8", f"{stem}.toml"
+    if fmt == "html":
+        from gearlever.plotting.viewer import viewer_html
+
+        if mech.model.inputs[0].kind != "link":
+            raise WorkbenchError("format html: the page turns the first input a full turn; put a rotary input first")
+        try:
+            page = viewer_html(mech, frames=frames)
+        except GearleverError as exc:
+            raise WorkbenchError(str(exc)) from None
+        return page.encode("utf-8"), "text/html; charset=utf-8", f"{stem}.html"
+    r = _sweep_result(mech, frames)
+    if fmt == "csv":
+        from gearlever.cli._common import table_text
+
+        cols = r.columns(degrees=True, per=_inputs(mech)[0])
+        cols["closed"] = r.closed
+        cols["reason"] = [s.split(":")[0] for s in r.reason]
+        return table_text(cols, "csv").encode("utf-8"), "text/csv; charset=utf-8", f"{stem}.csv"
+    import tempfile
+    from pathlib import Path
+
+    # the worker process runs with MPLBACKEND=Agg; plotting alone imports pyplot
+    from gearlever.plotting._common import save
+    from gearlever.plotting.mechanism import animate_mechanism, draw_mechanism
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / f"m.{fmt}"
+        if fmt == "gif":
+            animate_mechanism(mech, _sweep_result(mech, GIF_FRAMES), path, paths=r)
+            return path.read_bytes(), "image/gif", f"{stem}.gif"
+        save(draw_mechanism(mech, r).figure, path, dpi=120)
+        data = path.read_bytes()
+    ctype = "image/svg+xml" if fmt == "svg" else "image/png"
+    return data, ctype, f"{stem}.{fmt}"
+
+
+# --------------------------------------------------------------------------- examples
+def examples() -> list:
+    """The shipped example models that have ``[links]``: ``[{"name", "title"}]``."""
+    from importlib import resources
+
+    out = []
+    folder = resources.files("gearlever.data").joinpath("examples")
+    for entry in sorted(folder.iterdir(), key=lambda e: e.name):
+        if not entry.name.endswith(".toml"):
+            continue
+        text = entry.read_text(encoding="utf-8")
+        try:
+            d = tomllib.loads(text)
+        except tomllib.TOMLDecodeError:
+            continue
+        if "links" not in d:
+            continue
+        title = d.get("mechanism", {}).get("name") if isinstance(d.get("mechanism"), dict) else None
+        out.append({"name": entry.name[: -len(".toml")], "title": str(title or entry.name[: -len(".toml")])})
+    return out
+
+
+def example(name: str) -> str:
+    """The TOML text of the shipped example ``name`` (one of :func:`examples`)."""
+    from importlib import resources
+
+    names = [e["name"] for e in examples()]
+    if name not in names:
+        raise WorkbenchError(f"example: unknown example {name!r} (examples: {', '.join(names)})")
+    return resources.files("gearlever.data").joinpath("examples", f"{name}.toml").read_text(encoding="utf-8")
+
+
+# --------------------------------------------------------------------------- synthesis jobs
+def _int(params: dict, key: str, default: int, lo: int, hi: int) -> int:
+    v = params.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
+        raise WorkbenchError(f"{key} must be an integer from {lo} to {hi}, got {v!r}")
+    return v
+
+
+def _float(params: dict, key: str, default, lo: float, hi: float):
+    v = params.get(key, default)
+    if v is None:
+        return None
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and lo <= v <= hi):
+        raise WorkbenchError(f"{key} must be a number from {lo:g} to {hi:g}, got {v!r}")
+    return float(v)
+
+
+def _points(params: dict, key: str, lo: int, hi: int, width: int = 2) -> np.ndarray:
+    v = params.get(key)
+    if not isinstance(v, list) or not lo <= len(v) <= hi:
+        raise WorkbenchError(f"{key} must be a list of {lo} to {hi} points, got {_kind(v)}")
+    for i, p in enumerate(v):
+        if (
+            not isinstance(p, list)
+            or len(p) != width
+            or not all(not isinstance(c, bool) and isinstance(c, (int, float)) and math.isfinite(c) for c in p)
+            or not all(abs(c) <= 1e9 for c in p)
+        ):
+            raise WorkbenchError(f"{key}[{i}] must be {width} finite numbers of at most 1e9 in size, got {p!r}")
+    return np.array(v, dtype=float)
+
+
+def _kind(v) -> str:
+    return f"{len(v)} items" if isinstance(v, list) else type(v).__name__
+
+
+def _pair(params: dict, key: str, default=None) -> tuple:
+    v = params.get(key, default)
+    if (
+        not isinstance(v, list)
+        or len(v) != 2
+        or not all(not isinstance(c, bool) and isinstance(c, (int, float)) and math.isfinite(c) for c in v)
+        or not all(abs(c) <= 1e6 for c in v)
+        or v[0] == v[1]
+    ):
+        raise WorkbenchError(f"{key} must be two different finite numbers [from, to] of at most 1e6, got {v!r}")
+    return float(v[0]), float(v[1])
+
+
+_JOB_KEYS = {
+    "path": ("target", "budget", "seed", "type"),
+    "curve": ("target", "time", "seed", "budget", "max_joints", "designs"),
+    "function": ("expr", "x_range", "input_range_deg", "output_range_deg", "points", "type"),
+    "motion": ("poses", "fixed_pivots", "moving_pivots"),
+    "law": ("law", "type", "budget", "seed"),
+}
+
+
+def check_job(params) -> dict:
+    """A job's parameters checked before it starts: ``{"kind": ..., ...}`` with defaults filled in.
+
+    Raises :class:`WorkbenchError` naming the field, so that a bad job is a 400
+    at once, never a failed job later.
+
+    >>> check_job({"kind": "path", "target": [[0, 0], [1, 1], [2, 0]]})["budget"]
+    2000
+    """
+    if not isinstance(params, dict):
+        raise WorkbenchError("the job must be a JSON object with a kind")
+    kind = params.get("kind")
+    if kind not in JOB_KINDS:
+        raise WorkbenchError(f"kind must be one of {', '.join(JOB_KINDS)}, got {kind!r}")
+    unknown = [k for k in params if k != "kind" and k not in _JOB_KEYS[kind]]
+    if unknown:
+        raise WorkbenchError(f"{unknown[0]}: not a parameter of a {kind} job ({', '.join(_JOB_KEYS[kind])})")
+    out: dict = {"kind": kind}
+    if kind == "path":
+        from gearlever.synthesis.path import MAX_BUDGET
+
+        out["target"] = _points(params, "target", 3, MAX_TARGET)
+        out["budget"] = _int(params, "budget", 2000, 480, min(MAX_BUDGET, 200_000))
+        out["seed"] = _int(params, "seed", 0, 0, 2**31 - 1)
+        out["type"] = params.get("type", "fourbar")
+        if out["type"] not in ("fourbar", "geared-fivebar", "sixbar", "auto"):
+            raise WorkbenchError(f"type must be fourbar, geared-fivebar, sixbar or auto, got {out['type']!r}")
+    elif kind == "curve":
+        out["target"] = _points(params, "target", 3, MAX_TARGET)
+        out["time"] = _float(params, "time", 20.0, 1.0, 600.0)
+        out["budget"] = _int(params, "budget", 20_000, 1000, 200_000) if "budget" in params else None
+        out["seed"] = _int(params, "seed", 0, 0, 2**31 - 1)
+        out["max_joints"] = _int(params, "max_joints", 8, 4, 20)
+        out["designs"] = _int(params, "designs", MAX_RESULTS, 1, MAX_RESULTS)
+        if out["budget"] is not None:
+            out["time"] = None
+    elif kind == "function":
+        from gearlever.synthesis.expr import parse_expression
+
+        expr = params.get("expr")
+        if not isinstance(expr, str) or not 0 < len(expr) <= 200:
+            raise WorkbenchError(f"expr must be a formula in x of 1 to 200 characters, got {expr!r}")
+        try:
+            parse_expression(expr)
+        except GearleverError as exc:
+            raise WorkbenchError(f"expr: {exc}") from None
+        out["expr"] = expr
+        out["x_range"] = _pair(params, "x_range")
+        out["input_range_deg"] = _pair(params, "input_range_deg")
+        out["output_range_deg"] = _pair(params, "output_range_deg")
+        out["points"] = _int(params, "points", 3, 3, 50)
+        out["type"] = params.get("type", "fourbar")
+        if out["type"] not in ("fourbar", "slider-crank"):
+            raise WorkbenchError(f"type must be fourbar or slider-crank, got {out['type']!r}")
+    elif kind == "motion":
+        poses = _points(params, "poses", 3, 5, width=3)
+        out["poses"] = poses
+        for key in ("fixed_pivots", "moving_pivots"):
+            if key in params and params[key] is not None:
+                out[key] = [tuple(p) for p in _points(params, key, 2, 2)]
+        if len(poses) == 3 and ("fixed_pivots" in out) == ("moving_pivots" in out):
+            raise WorkbenchError("poses: three poses need fixed_pivots or moving_pivots (one of them)")
+        if len(poses) > 3 and ("fixed_pivots" in out or "moving_pivots" in out):
+            raise WorkbenchError("fixed_pivots/moving_pivots are for three poses only")
+    else:
+        from gearlever.synthesis.law import KINDS
+        from gearlever.synthesis.law.driver import DEFAULT_BUDGET, MAX_BUDGET
+
+        law = params.get("law")
+        if not isinstance(law, str) or not 0 < len(law) <= 100_000:
+            raise WorkbenchError("law must be the TOML text of a [law] table (at most 100000 characters)")
+        out["law_obj"] = _law(law)
+        out["type"] = params.get("type", "auto")
+        if out["type"] not in tuple(KINDS) + ("auto",):
+            raise WorkbenchError(f"type must be one of auto, {', '.join(KINDS)}, got {out['type']!r}")
+        out["budget"] = _int(params, "budget", DEFAULT_BUDGET, 1, MAX_BUDGET)
+        out["seed"] = _int(params, "seed", 0, 0, 2**31 - 1)
+    return out
+
+
+def _law(text: str):
+    """A :class:`~gearlever.laws.MotionLaw` from a LAW.toml text (segments only: samples name a file)."""
+    import tempfile
+    from pathlib import Path
+
+    from gearlever.laws import load_law
+
+    d = _toml(text, "law")
+    if isinstance(d.get("law"), dict) and "samples" in d["law"]:
+        raise WorkbenchError("law: samples name a CSV file; the bench takes [[law.segment]] tables")
+    with tempfile.TemporaryDirectory() as tmp:
+        p = Path(tmp) / "law.toml"
+        p.write_text(text, encoding="utf-8")
+        try:
+            return load_law(p)
+        except GearleverError as exc:
+            raise WorkbenchError(str(exc).replace(str(p), "law")) from None
+
+
+def _result(rank: int, score: dict, model: dict, comment: str) -> dict:
+    from gearlever.synthesis.model import model_toml
+
+    return {
+        "rank": rank,
+        "score": _jsonable({k: float(v) if isinstance(v, np.floating) else v for k, v in score.items()}),
+        "model": model_toml(model, comment),
+    }
+
+
+def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None = None) -> list:
+    """Run a synthesis job checked by :func:`check_job`; answer its ranked designs.
+
+    Parameters
+    ----------
+    params : dict
+        From :func:`check_job`.
+    progress : callable, optional
+        ``progress(stage, done, total)``.
+    cancelled : callable, optional
+        True once the job is to stop: checked at every progress report (the
+        library's searches also stop at their next generation,
+        :data:`gearlever.synthesis._search.STOP`); raises :class:`Cancelled`.
+    scheduler : str, optional
+        Address of a dask.distributed scheduler for the searches (path, curve, law).
+
+    Returns
+    -------
+    list of dict
+        ``{"rank", "score", "model"}`` best first; ``model`` is the TOML text.
+    """
+    from gearlever.synthesis._search import STOP
+
+    def tick(stage, done, total):
+        if cancelled is not None and cancelled():
+            STOP.set()
+            raise Cancelled()
+        if progress is not None:
+            progress(str(stage), int(done), int(total))
+
+    kind = params["kind"]
+    tick("start", 0, 1)
+    try:
+        if kind == "path":
+            from gearlever.synthesis.path import synthesize_path
+
+            res = synthesize_path(
+                params["target"],
+                kind=params["type"],
+                seed=params["seed"],
+                budget=params["budget"],
+                scheduler=scheduler,
+                progress=tick,
+                workers=1,
+            )
+            tick("done", 1, 1)
+            if not res.feasible:
+                raise WorkbenchError("target: no buildable linkage passes near these points; draw them again")
+            return [
+                _result(
+                    1,
+                    {"objective": res.objective, "kind": res.kind},
+                    res.model(),
+                    f"gearlever workbench: path synthesis ({res.kind}, seed {params['seed']})",
+                )
+            ]
+        if kind == "curve":
+            from gearlever.curves.model import linkage_model
+            from gearlever.curves.search import synthesize_curve
+
+            res = synthesize_curve(
+                params["target"],
+                max_joints=params["max_joints"],
+                designs=params["designs"],
+                budget=params["budget"],
+                time_limit=params["time"],
+                seed=params["seed"],
+                scheduler=scheduler,
+                progress=tick,
+                workers=1,
+            )
+            tick("done", 1, 1)
+            if not len(res.designs):
+                raise WorkbenchError(
+                    "target: no linkage was found within the search's time; give it more time (time) or draw again"
+                )
+            return [
+                _result(
+                    n,
+                    {"distance": float(d), "material": float(mt), "joints": lk.n_joints, "links": len(lk.edges)},
+                    linkage_model(lk),
+                    f"gearlever workbench: curve synthesis, design {n} (distance {d:.6g}, material {mt:.6g})",
+                )
+                for n, (lk, d, mt) in enumerate(zip(res.designs, res.distance, res.material), 1)
+            ][:MAX_RESULTS]
+        if kind == "function":
+            from gearlever.synthesis.function import function_targets, synthesize_function
+
+            slider = params["type"] == "slider-crank"
+            orange = params["output_range_deg"] if slider else np.radians(params["output_range_deg"])
+            tg = function_targets(
+                params["expr"], params["x_range"], np.radians(params["input_range_deg"]), orange, params["points"]
+            )
+            tick("synthesis", 0, 1)
+            res = synthesize_function(
+                tg.input_angle, tg.output, kind=params["type"], desired=tg.desired, input_range=tg.input_range
+            )
+            tick("done", 1, 1)
+            if res.defect:
+                raise WorkbenchError(f"function: refused, {res.defect}; change the ranges or the points")
+            score = {"structural_error_max": res.structural_error_max, "grashof": getattr(res, "grashof", "")}
+            return [_result(1, score, res.model, f"gearlever workbench: function y = {params['expr']}")]
+        if kind == "motion":
+            from gearlever.synthesis.motion import synthesize_motion
+
+            poses = params["poses"]
+            tick("synthesis", 0, 1)
+            res = synthesize_motion(
+                poses[:, :2],
+                np.radians(poses[:, 2]),
+                fixed_pivots=params.get("fixed_pivots"),
+                moving_pivots=params.get("moving_pivots"),
+            )
+            tick("done", 1, 1)
+            good = [s for s in res.solutions if not s.defect] or list(res.solutions)
+            if not good:
+                raise WorkbenchError("poses: no four-bar guides the coupler through these poses")
+            return [
+                _result(
+                    n,
+                    {"residual": s.residual, "grashof": s.grashof, "defect": s.defect},
+                    s.model,
+                    f"gearlever workbench: motion synthesis ({res.method}), solution {n}",
+                )
+                for n, s in enumerate(good[:MAX_RESULTS], 1)
+            ]
+        from gearlever.synthesis.law import synthesize_law
+
+        res = synthesize_law(
+            params["law_obj"],
+            kind=params["type"],
+            seed=params["seed"],
+            budget=params["budget"],
+            scheduler=scheduler,
+            progress=tick,
+            workers=1,
+        )
+        tick("done", 1, 1)
+        return [_result(1, {"kind": res.kind}, res.model(), f"gearlever workbench: law synthesis ({res.kind})")]
+    except GearleverError as exc:
+        if isinstance(exc, WorkbenchError):
+            raise
+        raise WorkbenchError(f"{kind}: {exc}") from None
+    finally:
+        if cancelled is not None and cancelled():
+            STOP.set()

@@ -1,0 +1,1449 @@
+// The gearlever workbench page: draw a mechanism, send it to the local server, draw the cycle it answers.
+// The page never computes motion: every pose, velocity, plot value and instant centre comes from
+// POST /api/solve (the whole cycle at once, so playing, scrubbing and dragging the input need no round trip).
+// Model names are shown with textContent and setAttribute only; the model text is never evaluated.
+
+import * as api from "./api.js";
+import * as M from "./model.js";
+import { drawPlot, el } from "./plots.js";
+import { modelFromFragment, shareUrl } from "./share.js";
+
+const FRAMES = 360;
+const HIT_PX = 8;
+const $ = (sel) => document.querySelector(sel);
+const $$ = (sel) => [...document.querySelectorAll(sel)];
+
+const S = {
+  ready: false,
+  model: M.EMPTY(),
+  toml: "",
+  tool: "select",
+  view: { s: 4, tx: 200, ty: 300 },
+  frames: null, // the last /api/solve answer
+  stale: false, // the model changed since those frames
+  frame: 0,
+  playing: false,
+  speed: 1,
+  undo: [],
+  redo: [],
+  selected: null, // {kind: "joint"|"link", name}
+  draftLink: null, // {first: joint} or {link: name} while the link tool grows a link
+  lastGear: null,
+  curve: [],
+  dof: null,
+  redundant: null,
+  inputs: [],
+  message: "",
+  error: "",
+  job: null,
+  file: { name: null, etag: null },
+  pending: 0,
+  revision: 0,
+};
+
+// ---------------------------------------------------------------- view transform
+
+const svg = () => $("#canvas");
+const toPx = (x, y) => [S.view.tx + S.view.s * x, S.view.ty - S.view.s * y];
+const toModel = (px, py) => [(px - S.view.tx) / S.view.s, (S.view.ty - py) / S.view.s];
+
+function eventPx(ev) {
+  const r = svg().getBoundingClientRect();
+  return [ev.clientX - r.left, ev.clientY - r.top];
+}
+
+function gridStep() {
+  const raw = 40 / S.view.s;
+  const p = 10 ** Math.floor(Math.log10(raw));
+  for (const m of [1, 2, 5, 10]) if (m * p >= raw) return m * p;
+  return 10 * p;
+}
+
+function snap([x, y]) {
+  if (!$("#snap").checked) return [x, y];
+  const g = gridStep() / 2;
+  const r = (v) => Number((Math.round(v / g) * g).toPrecision(12));
+  return [r(x), r(y)];
+}
+
+function fit() {
+  const r = svg().getBoundingClientRect();
+  let box = null;
+  if (S.frames && S.frames.extent && S.frames.extent.every(Number.isFinite)) box = S.frames.extent;
+  else {
+    const pts = Object.values(S.model.points || {});
+    if (pts.length) {
+      const xs = pts.map((p) => p[0]);
+      const ys = pts.map((p) => p[1]);
+      box = [Math.min(...xs), Math.min(...ys), Math.max(...xs), Math.max(...ys)];
+    }
+  }
+  if (!box) {
+    S.view = { s: 4, tx: r.width * 0.3, ty: r.height * 0.65 };
+    return;
+  }
+  let [x0, y0, x1, y1] = box;
+  const span = Math.max(x1 - x0, y1 - y0, 1e-9);
+  if (x1 - x0 < span * 0.2) { x0 -= span * 0.1; x1 += span * 0.1; }
+  if (y1 - y0 < span * 0.2) { y0 -= span * 0.1; y1 += span * 0.1; }
+  const m = 40;
+  const s = Math.min((r.width - 2 * m) / (x1 - x0), (r.height - 2 * m) / (y1 - y0));
+  S.view.s = s > 0 && Number.isFinite(s) ? s : 4;
+  S.view.tx = r.width / 2 - S.view.s * (x0 + x1) / 2;
+  S.view.ty = r.height / 2 + S.view.s * (y0 + y1) / 2;
+}
+
+// ---------------------------------------------------------------- what is drawn where
+
+function poseIndex() {
+  if (!S.frames || S.stale || !S.frames.frames) return null;
+  return S.frame;
+}
+
+/** The drawn position of a point: the solved pose at the current frame (the last closed one when it does not
+ * assemble there), else the sketch. */
+function pos(name) {
+  const i = poseIndex();
+  if (i !== null) {
+    const series = S.frames.point && S.frames.point[name];
+    if (series) {
+      const p = series[i] || series[lastClosed(i)];
+      if (p && p[0] !== null) return p;
+    }
+  }
+  return (S.model.points || {})[name] || null;
+}
+
+function lastClosed(i) {
+  const closed = S.frames.closed || [];
+  for (let k = 0; k < closed.length; k++) {
+    const j = (i - k + closed.length) % closed.length;
+    if (closed[j]) return j;
+  }
+  return 0;
+}
+
+function inputLinks() {
+  return (S.model.inputs || []).map((i) => i.link).filter(Boolean);
+}
+
+function jointsAt(px, py) {
+  let best = null;
+  let bestD = HIT_PX;
+  for (const name of Object.keys(S.model.points || {})) {
+    const p = pos(name);
+    if (!p) continue;
+    const [qx, qy] = toPx(p[0], p[1]);
+    const d = Math.hypot(qx - px, qy - py);
+    if (d <= bestD) { best = name; bestD = d; }
+  }
+  return best;
+}
+
+function linkAt(px, py) {
+  let best = null;
+  let bestD = HIT_PX;
+  for (const [name, pts] of Object.entries(S.model.links || {})) {
+    if (name === "ground") continue;
+    for (let k = 0; k < pts.length; k++) {
+      for (let j = k + 1; j < pts.length; j++) {
+        const a = pos(pts[k]);
+        const b = pos(pts[j]);
+        if (!a || !b) continue;
+        const d = segDist([px, py], toPx(...a), toPx(...b));
+        if (d <= bestD) { best = name; bestD = d; }
+      }
+    }
+  }
+  return best;
+}
+
+function segDist(p, a, b) {
+  const [dx, dy] = [b[0] - a[0], b[1] - a[1]];
+  const L2 = dx * dx + dy * dy;
+  const t = L2 ? Math.max(0, Math.min(1, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / L2)) : 0;
+  return Math.hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+}
+
+// ---------------------------------------------------------------- drawing
+
+function clear(g) {
+  while (g.firstChild) g.removeChild(g.firstChild);
+  return g;
+}
+
+function ensureDefs() {
+  if ($("#canvas defs")) return;
+  const defs = el("defs");
+  svg().insertBefore(defs, svg().firstChild);
+  for (const [id, color] of [["arrow-v", "#2e7d32"], ["arrow-a", "#b3261e"]]) {
+    const m = el("marker", { id, viewBox: "0 0 10 10", refX: 9, refY: 5, markerWidth: 7, markerHeight: 7, orient: "auto-start-reverse" }, defs);
+    el("path", { d: "M0,0 L10,5 L0,10 z", fill: color }, m);
+  }
+}
+
+function drawGrid() {
+  const g = clear($("#grid"));
+  const r = svg().getBoundingClientRect();
+  const step = gridStep();
+  const [x0, y1] = toModel(0, 0);
+  const [x1, y0] = toModel(r.width, r.height);
+  const n = (x1 - x0) / step + (y1 - y0) / step;
+  if (!(n < 400)) return;
+  for (let x = Math.ceil(x0 / step) * step; x <= x1; x += step) {
+    const [px] = toPx(x, 0);
+    el("line", { x1: px, y1: 0, x2: px, y2: r.height, class: Math.abs(x) < step / 2 ? "axis" : "gridline" }, g);
+  }
+  for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
+    const [, py] = toPx(0, y);
+    el("line", { x1: 0, y1: py, x2: r.width, y2: py, class: Math.abs(y) < step / 2 ? "axis" : "gridline" }, g);
+  }
+}
+
+const PALETTE = ["#1f5fa8", "#c77700", "#2e7d32", "#8e44ad", "#00838f", "#6d4c41", "#ad1457", "#455a64"];
+
+function render() {
+  ensureDefs();
+  drawGrid();
+  const model = S.model;
+  const i = poseIndex();
+  const links = clear($("#layer-links"));
+  const joints = clear($("#layer-joints"));
+  const labels = clear($("#layer-labels"));
+  const paths = clear($("#layer-paths"));
+  const arrows = clear($("#layer-arrows"));
+  const centres = clear($("#layer-centres"));
+  const curve = clear($("#layer-curve"));
+  const inputs = inputLinks();
+  const broken = i !== null && S.frames.closed && !S.frames.closed[i];
+  svg().classList.toggle("broken", !!broken);
+
+  // point paths over the whole cycle
+  if (S.frames && !S.stale && $("#show-paths").checked) {
+    const ground = new Set(model.links?.ground || []);
+    for (const [name, series] of Object.entries(S.frames.point || {})) {
+      if (ground.has(name)) continue;
+      let d = "";
+      let pen = false;
+      for (const p of series) {
+        if (!p || p[0] === null) { pen = false; continue; }
+        const [x, y] = toPx(p[0], p[1]);
+        d += `${pen ? "L" : "M"}${x.toFixed(1)},${y.toFixed(1)}`;
+        pen = true;
+      }
+      if (d) el("path", { d, class: "path", "data-path": name }, paths);
+    }
+  }
+  // the target curve drawn with the curve tool
+  if (S.curve.length > 1) {
+    el("polyline", { points: S.curve.map((p) => toPx(...p).map((v) => v.toFixed(1)).join(",")).join(" "), class: "target-curve" }, curve);
+  }
+  // ground hatching between ground pivots
+  const groundPts = (model.links?.ground || []).map(pos).filter(Boolean);
+  if (groundPts.length > 1) {
+    el("polyline", { points: groundPts.map((p) => toPx(...p).join(",")).join(" "), class: "ground-line" }, links);
+  }
+  // gears (pitch circles from the server when solved, else from the teeth)
+  const module = Number(model.mechanism?.module) || 1;
+  for (const [gname, g] of Object.entries(model.gears || {})) {
+    const c = pos(g.centre);
+    if (!c) continue;
+    const served = S.frames && !S.stale && (S.frames.gears || []).find((x) => x.name === gname);
+    const radius = served ? served.radius : (module * g.teeth) / 2;
+    const [cx, cy] = toPx(...c);
+    const grp = el("g", { class: "gear-g", "data-gear": gname }, links);
+    el("circle", { cx, cy, r: Math.max(2, radius * S.view.s), class: g.internal ? "gear internal" : "gear" }, grp);
+    const ang = (i !== null && S.frames.angle_deg && S.frames.angle_deg[g.link]) ? S.frames.angle_deg[g.link][i] - S.frames.angle_deg[g.link][0] : 0;
+    const a = ((ang || 0) * Math.PI) / 180;
+    el("line", { x1: cx, y1: cy, x2: cx + radius * S.view.s * Math.cos(a), y2: cy - radius * S.view.s * Math.sin(a), class: "gear-mark" }, grp);
+  }
+  // links
+  let k = 0;
+  for (const [name, pts] of Object.entries(model.links || {})) {
+    if (name === "ground") continue;
+    const color = PALETTE[k++ % PALETTE.length];
+    const xy = pts.map(pos).filter(Boolean).map((p) => toPx(...p));
+    const cls = ["link"];
+    if (inputs.includes(name)) cls.push("input");
+    if (S.selected?.kind === "link" && S.selected.name === name) cls.push("selected");
+    if (S.draftLink?.link === name) cls.push("draft");
+    const grp = el("g", { class: cls.join(" "), "data-link": name }, links);
+    if (xy.length === 2) {
+      el("line", { x1: xy[0][0], y1: xy[0][1], x2: xy[1][0], y2: xy[1][1], class: "link-body", stroke: color }, grp);
+    } else if (xy.length > 2) {
+      el("polygon", { points: xy.map((p) => p.join(",")).join(" "), class: "link-body", stroke: color, fill: color }, grp);
+    } else if (xy.length === 1) {
+      el("rect", { x: xy[0][0] - 12, y: xy[0][1] - 8, width: 24, height: 16, class: "block", fill: color }, grp);
+    }
+  }
+  // sliders: the guide through the sliding point
+  for (const s of model.sliders || []) {
+    const p = pos(s.point);
+    if (!p || !s.direction) continue;
+    const [ux, uy] = s.direction;
+    const n = Math.hypot(ux, uy) || 1;
+    const L = 2000;
+    const sk = model.points[s.point];
+    const a = toPx(sk[0] - (ux / n) * L, sk[1] - (uy / n) * L);
+    const b = toPx(sk[0] + (ux / n) * L, sk[1] + (uy / n) * L);
+    if (s.on === "ground") el("line", { x1: a[0], y1: a[1], x2: b[0], y2: b[1], class: "guide", "data-slider": s.name || s.link }, links);
+  }
+  // joints
+  const ground = new Set(model.links?.ground || []);
+  const carriers = {};
+  for (const [l, pts] of Object.entries(model.links || {})) for (const p of pts) (carriers[p] ||= []).push(l);
+  for (const name of Object.keys(model.points || {})) {
+    const p = pos(name);
+    if (!p) continue;
+    const [x, y] = toPx(...p);
+    const cls = ["joint"];
+    const n = (carriers[name] || []).length;
+    if (ground.has(name)) cls.push("ground");
+    else if (n === 1) cls.push("poi");
+    else if (n === 0) cls.push("free");
+    if (S.selected?.kind === "joint" && S.selected.name === name) cls.push("selected");
+    if (S.draftLink?.first === name) cls.push("draft");
+    const grp = el("g", { class: cls.join(" "), "data-joint": name }, joints);
+    if (ground.has(name)) {
+      el("path", { d: `M${x},${y} l-9,13 h18 z`, class: "ground-mark" }, grp);
+      for (let h = -9; h <= 9; h += 4.5) el("line", { x1: x + h, y1: y + 13, x2: x + h - 4, y2: y + 18, class: "hatch" }, grp);
+    }
+    el("circle", { cx: x, cy: y, r: n === 1 && !ground.has(name) ? 3.5 : 5, class: "joint-dot" }, grp);
+    const t = el("text", { x: x + 8, y: y - 8, class: "label" }, labels);
+    t.textContent = name;
+  }
+  // velocity and acceleration arrows at the current frame
+  if (i !== null) {
+    for (const [kind, key, box] of [["velocity", "arrow-v", "#show-velocity"], ["acceleration", "arrow-a", "#show-acceleration"]]) {
+      if (!$(box).checked || !S.frames[kind]) continue;
+      const scale = arrowScale(kind);
+      for (const [name, series] of Object.entries(S.frames[kind])) {
+        const v = series[i];
+        const p = pos(name);
+        if (!v || v[0] === null || !p || ground.has(name)) continue;
+        const [x, y] = toPx(...p);
+        const [dx, dy] = [v[0] * scale, -v[1] * scale];
+        if (Math.hypot(dx, dy) < 2) continue;
+        el("line", { x1: x, y1: y, x2: x + dx, y2: y + dy, class: `arrow ${kind}`, "marker-end": `url(#${key})`, "data-arrow": `${kind}:${name}` }, arrows);
+      }
+    }
+    if ($("#show-centres").checked && S.frames.centres) {
+      for (const [key, series] of Object.entries(S.frames.centres)) {
+        const c = series[i];
+        if (!c || c[0] === null || !Number.isFinite(c[0])) continue;
+        const [x, y] = toPx(...c);
+        if (Math.abs(x) > 1e5 || Math.abs(y) > 1e5) continue;
+        const g = el("g", { class: "centre", "data-centre": key }, centres);
+        el("circle", { cx: x, cy: y, r: 3.5 }, g);
+        const t = el("text", { x: x + 5, y: y + 12 }, g);
+        t.textContent = key;
+      }
+    }
+  }
+  $("#empty").hidden = Object.keys(model.points || {}).length > 0;
+  updatePlayUi();
+}
+
+const scaleCache = new Map();
+function arrowScale(kind) {
+  if (scaleCache.has(kind)) return scaleCache.get(kind);
+  let max = 0;
+  for (const series of Object.values(S.frames[kind] || {})) {
+    for (const v of series) if (v && v[0] !== null) max = Math.max(max, Math.hypot(v[0], v[1]));
+  }
+  const s = max > 0 ? 70 / max : 0;
+  scaleCache.set(kind, s);
+  return s;
+}
+
+// ---------------------------------------------------------------- status, play bar, plots
+
+function setStatus() {
+  const parts = [];
+  if (!Object.keys(S.model.points || {}).length) parts.push("Empty bench: pick an example, or place two ground pivots (G) to start.");
+  else if (!M.solvable(S.model)) {
+    if (!S.model.links?.ground?.length) parts.push("Place a ground pivot (G).");
+    else if (Object.keys(S.model.links).length < 2) parts.push("Join joints into links (L): click them one after another, Enter ends.");
+    else parts.push("Choose the input (I): click a link pivoted on the ground.");
+  } else {
+    if (S.dof !== null) parts.push(`dof ${S.dof}`);
+    if (S.redundant !== null) parts.push(`redundant ${S.redundant}`);
+    if (S.frames && !S.stale) {
+      const closed = (S.frames.closed || []).filter(Boolean).length;
+      parts.push(`assembles ${closed}/${S.frames.frames}`);
+    }
+  }
+  const status = $("#status");
+  const msg = S.error || S.message;
+  status.textContent = parts.join(" · ") + (msg ? ` · ${msg}` : "");
+  status.classList.toggle("warn", !!msg);
+}
+
+function updatePlayUi() {
+  const n = S.frames && !S.stale ? S.frames.frames : 0;
+  const scrub = $("#scrub");
+  scrub.max = String(Math.max(0, n - 1));
+  if (Number(scrub.value) !== S.frame) scrub.value = String(S.frame);
+  const inp = S.frames && !S.stale && S.frames.input_deg ? S.frames.input_deg[S.frame] : null;
+  const kind = S.frames?.input_kind?.[S.inputs[0]];
+  $("#angle").textContent = inp === null || inp === undefined ? "" : `${S.inputs[0] || "input"} ${inp.toFixed(1)}${kind === "slider" ? "" : "°"}`;
+  const label = S.playing ? "pause" : "play";
+  $("#play").textContent = S.playing ? "❚❚" : "▶";
+  $('[data-action="play"]').textContent = label;
+  for (const p of plotMarks) p?.setMark(n ? S.frame : null);
+}
+
+let plotMarks = [];
+function drawPlots() {
+  const f = S.frames && !S.stale ? S.frames : null;
+  const linkSel = $("#plot-link");
+  const pointSel = $("#plot-point");
+  const links = f ? Object.keys(f.angle_deg || {}) : [];
+  const points = f ? Object.keys(f.point || {}).filter((p) => !(S.model.links?.ground || []).includes(p)) : [];
+  refill(linkSel, links, links.find((l) => !inputLinks().includes(l)));
+  refill(pointSel, points, points[points.length - 1]);
+  const xs = f ? f.input_deg : [];
+  const ln = linkSel.value;
+  const pn = pointSel.value;
+  plotMarks = [
+    drawPlot($("#plot-angle"), xs, f && ln ? linkSeries(f, ln, $("#plot-quantity").value) : [],
+      { title: ln ? `link ${ln}` : "link", cursor: f ? S.frame : null }),
+    drawPlot($("#plot-point-xy"), xs, f && pn ? [
+      { label: `${pn} x`, ys: f.point[pn].map((p) => (p ? p[0] : null)) },
+      { label: `${pn} y`, ys: f.point[pn].map((p) => (p ? p[1] : null)) },
+    ] : [], { title: pn ? `point ${pn}` : "point", cursor: f ? S.frame : null }),
+  ];
+}
+
+/** A link's angle (deg), angular velocity or acceleration (per unit input rate, as the server answers them). */
+function linkSeries(f, ln, q) {
+  if (q === "omega" && f.omega?.[ln]) return [{ label: `${ln} ω (rad/s per input rad/s)`, ys: f.omega[ln] }];
+  if (q === "alpha" && f.alpha?.[ln]) return [{ label: `${ln} α (rad/s² per (input rad/s)²)`, ys: f.alpha[ln] }];
+  return [{ label: `${ln} angle (deg)`, ys: f.angle_deg[ln] }];
+}
+
+function refill(select, names, preferred) {
+  const old = select.value;
+  if ([...select.options].map((o) => o.value).join("\n") !== names.join("\n")) {
+    while (select.firstChild) select.removeChild(select.firstChild);
+    for (const n of names) {
+      const o = document.createElement("option");
+      o.value = n;
+      o.textContent = n;
+      select.appendChild(o);
+    }
+  }
+  select.value = names.includes(old) ? old : (preferred ?? names[0] ?? "");
+}
+
+// ---------------------------------------------------------------- model changes, undo, sync with the server
+
+function snapshot() {
+  return JSON.stringify(S.model);
+}
+
+function pushUndo(before) {
+  if (before === snapshot()) return;
+  S.undo.push(before);
+  if (S.undo.length > 500) S.undo.shift();
+  S.redo = [];
+}
+
+/** One edit of the model: one undo step, redrawn at once, synced with the server. */
+function edit(fn) {
+  const before = snapshot();
+  fn(S.model);
+  pushUndo(before);
+  return changed();
+}
+
+function changed(opts = {}) {
+  S.stale = true;
+  S.revision++;
+  scaleCache.clear();
+  render();
+  renderProps();
+  setStatus();
+  return requestSync(opts);
+}
+
+let syncing = null;
+let again = null;
+/** Dump and solve the current model; one request at a time, the newest model wins (dragging stays smooth). */
+function requestSync(opts = {}) {
+  if (syncing) {
+    again = again || { opts, waiters: [] };
+    again.opts = { ...again.opts, ...opts };
+    return new Promise((resolve) => again.waiters.push(resolve));
+  }
+  S.pending++;
+  syncing = doSync(opts).finally(() => {
+    S.pending--;
+    syncing = null;
+    if (again) {
+      const next = again;
+      again = null;
+      requestSync(next.opts).then(() => next.waiters.forEach((w) => w()));
+    }
+  });
+  return syncing;
+}
+
+async function doSync({ fromText = false, text = null } = {}) {
+  const revision = S.revision;
+  let toml = text;
+  if (toml === null) {
+    // an incomplete drawing (no ground, link or input yet) is not a model the server writes: written here
+    toml = M.toToml(S.model);
+    if (M.solvable(S.model)) {
+      try {
+        toml = (await api.post("/api/dump", { model: S.model })).model;
+      } catch (e) {
+        if (revision !== S.revision) return;
+        S.error = e.message;
+        S.frames = null; S.stale = false;
+        setTomlText(toml);
+        finishSync();
+        return;
+      }
+    }
+  }
+  S.toml = toml;
+  if (!fromText) setTomlText(toml);
+  if (!M.solvable(S.model)) {
+    S.frames = null; S.stale = false; S.dof = null; S.redundant = null; S.message = ""; S.error = "";
+    S.inputs = inputLinks();
+    finishSync();
+    return;
+  }
+  try {
+    const f = await api.post("/api/solve", { model: toml, frames: FRAMES });
+    if (revision !== S.revision) return; // a newer edit is on its way
+    S.frames = f;
+    S.stale = false;
+    S.dof = f.dof; S.redundant = f.redundant; S.inputs = f.inputs || []; S.message = f.message || ""; S.error = "";
+    if (S.frame >= f.frames) S.frame = 0;
+    scaleCache.clear();
+  } catch (e) {
+    if (revision !== S.revision) return;
+    S.error = e.message;
+    S.stale = true;
+  }
+  finishSync();
+}
+
+function finishSync() {
+  render();
+  drawPlots();
+  renderProps();
+  setStatus();
+}
+
+function undo() {
+  if (!S.undo.length) return Promise.resolve();
+  S.redo.push(snapshot());
+  S.model = JSON.parse(S.undo.pop());
+  S.selected = null;
+  return changed();
+}
+
+function redo() {
+  if (!S.redo.length) return Promise.resolve();
+  S.undo.push(snapshot());
+  S.model = JSON.parse(S.redo.pop());
+  S.selected = null;
+  return changed();
+}
+
+/** Replace the model by a TOML text (one undo step); resolves once it is solved. */
+async function load(text, { fitView = true } = {}) {
+  const parsed = await api.post("/api/parse", { model: text });
+  const before = snapshot();
+  S.model = parsed.model;
+  pushUndo(before);
+  S.selected = null; S.draftLink = null; S.frame = 0;
+  clearTomlError();
+  const done = changed({ text });
+  await done;
+  if (fitView) { fit(); render(); }
+  return text;
+}
+
+// ---------------------------------------------------------------- the TOML pane
+
+function setTomlText(text) {
+  const ta = $("#toml");
+  if (document.activeElement === ta) return; // never overwrite what the user is typing
+  ta.value = text;
+  clearTomlError();
+}
+
+function clearTomlError() {
+  $("#toml-error").hidden = true;
+  $("#toml").removeAttribute("aria-invalid");
+}
+
+let typingTimer = null;
+function onTomlInput() {
+  clearTimeout(typingTimer);
+  typingTimer = setTimeout(async () => {
+    const text = $("#toml").value;
+    try {
+      const parsed = await api.post("/api/parse", { model: text });
+      if ($("#toml").value !== text) return;
+      const before = snapshot();
+      S.model = parsed.model;
+      pushUndo(before);
+      clearTomlError();
+      changed({ fromText: true, text });
+    } catch (e) {
+      const box = $("#toml-error");
+      box.hidden = false;
+      box.textContent = e.line ? `line ${e.line}: ${e.message}` : e.message;
+      box.dataset.line = e.line ?? "";
+      $("#toml").setAttribute("aria-invalid", "true");
+      if (e.line) markLine(e.line);
+    }
+  }, 350);
+}
+
+function markLine(line) {
+  const ta = $("#toml");
+  const lines = ta.value.split("\n");
+  let start = 0;
+  for (let k = 0; k < line - 1 && k < lines.length; k++) start += lines[k].length + 1;
+  const end = start + (lines[line - 1] || "").length;
+  if (document.activeElement !== ta) ta.setSelectionRange(start, end);
+}
+
+// ---------------------------------------------------------------- pointer interaction
+
+let gesture = null;
+const pointers = new Map();
+
+function onPointerDown(ev) {
+  if (ev.button !== undefined && ev.button > 1) return;
+  svg().setPointerCapture(ev.pointerId);
+  pointers.set(ev.pointerId, eventPx(ev));
+  if (pointers.size === 2) { // pinch zoom
+    const [a, b] = [...pointers.values()];
+    gesture = { kind: "pinch", d: Math.hypot(a[0] - b[0], a[1] - b[1]), view: { ...S.view }, mid: [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2] };
+    return;
+  }
+  const [px, py] = eventPx(ev);
+  const joint = jointsAt(px, py);
+  const link = joint ? null : linkAt(px, py);
+  gesture = { kind: "click", start: [px, py], joint, link, moved: false, before: snapshot(), button: ev.button };
+  if (ev.button === 1) { gesture.kind = "pan"; gesture.view = { ...S.view }; return; }
+  if (S.tool === "select") {
+    if (joint) { gesture.kind = "drag"; stop(); S.selected = { kind: "joint", name: joint }; S.stale = true; render(); renderProps(); }
+    else if (!link) { gesture.kind = "pan"; gesture.view = { ...S.view }; }
+  } else if (S.tool === "curve") {
+    gesture.kind = "curve";
+    S.curve = [toModel(px, py)];
+  } else if (S.tool === "input") {
+    const inLink = joint && inputLinks().find((l) => S.model.links[l].includes(joint) && !M.isGround(S.model, joint));
+    if (inLink && S.frames && !S.stale) { gesture.kind = "turn"; gesture.joint = joint; stop(); }
+  }
+}
+
+function onPointerMove(ev) {
+  if (!pointers.has(ev.pointerId) || !gesture) return;
+  pointers.set(ev.pointerId, eventPx(ev));
+  const [px, py] = eventPx(ev);
+  if (gesture.kind === "pinch" && pointers.size === 2) {
+    const [a, b] = [...pointers.values()];
+    const f = Math.hypot(a[0] - b[0], a[1] - b[1]) / (gesture.d || 1);
+    zoomAbout(gesture.mid, f, gesture.view);
+    return;
+  }
+  if (gesture.start && Math.hypot(px - gesture.start[0], py - gesture.start[1]) > 4) gesture.moved = true;
+  if (gesture.kind === "drag" && gesture.moved) {
+    S.model.points[gesture.joint] = snap(toModel(px, py));
+    changed();
+  } else if (gesture.kind === "pan") {
+    S.view.tx = gesture.view.tx + px - gesture.start[0];
+    S.view.ty = gesture.view.ty + py - gesture.start[1];
+    render();
+  } else if (gesture.kind === "curve") {
+    const p = toModel(px, py);
+    const last = S.curve[S.curve.length - 1];
+    if (Math.hypot(p[0] - last[0], p[1] - last[1]) * S.view.s >= 2) S.curve.push(p);
+    render();
+  } else if (gesture.kind === "turn") {
+    turnInputTo(gesture.joint, toModel(px, py));
+  }
+}
+
+function onPointerUp(ev) {
+  pointers.delete(ev.pointerId);
+  if (!gesture) return;
+  const g = gesture;
+  if (g.kind === "pinch") { if (pointers.size === 0) gesture = null; return; }
+  gesture = null;
+  const [px, py] = eventPx(ev);
+  if (g.kind === "drag") {
+    if (g.moved) { pushUndo(g.before); changed(); }
+    else { renderProps(); S.stale = false; render(); }
+    return;
+  }
+  if (g.kind === "curve") {
+    if (S.curve.length < 3) S.curve = [];
+    S.curveClosed = true;
+    render();
+    notify(S.curve.length ? `curve of ${S.curve.length} points drawn: synthesize from it` : "");
+    return;
+  }
+  if (g.kind === "pan" || g.kind === "turn") {
+    if (g.kind === "pan" && !g.moved && S.tool === "select") { S.selected = null; renderProps(); render(); }
+    return;
+  }
+  if (g.moved) return;
+  click(px, py, g.joint, g.link);
+}
+
+function click(px, py, joint, link) {
+  const xy = snap(toModel(px, py));
+  switch (S.tool) {
+    case "select":
+      S.selected = link ? { kind: "link", name: link } : null;
+      renderProps(); render();
+      break;
+    case "ground":
+      if (joint) edit((m) => M.makeGround(m, joint));
+      else edit((m) => { S.selected = { kind: "joint", name: M.addGroundPivot(m, xy) }; });
+      break;
+    case "pin":
+      if (joint) { S.selected = { kind: "joint", name: joint }; renderProps(); render(); }
+      else edit((m) => { S.selected = { kind: "joint", name: M.placePoint(m, M.pinName(m), xy) }; });
+      break;
+    case "point":
+      if (joint) { S.selected = { kind: "joint", name: joint }; renderProps(); render(); }
+      else edit((m) => {
+        const p = M.addPoint(m, "P", xy);
+        if (link) M.growLink(m, link, p);
+        S.selected = { kind: "joint", name: p };
+      });
+      break;
+    case "link": {
+      const before = snapshot();
+      let p = joint;
+      if (!p) p = M.placePoint(S.model, M.pinName(S.model), xy);
+      if (!S.draftLink) S.draftLink = { first: p };
+      else if (S.draftLink.first && S.draftLink.first !== p) S.draftLink = { link: M.addLink(S.model, S.draftLink.first, p) };
+      else if (S.draftLink.link) M.growLink(S.model, S.draftLink.link, p);
+      pushUndo(before);
+      changed();
+      break;
+    }
+    case "input": {
+      const l = link || (joint && M.linksOf(S.model, joint).find((n) => n !== "ground"));
+      if (!l) { notify("click a link pivoted on the ground"); break; }
+      if (!S.model.links[l].some((p) => M.isGround(S.model, p))) { notify(`${l} is not pivoted on the ground`); break; }
+      edit((m) => M.setInput(m, l, S.dof && S.dof > 1 ? S.dof : 1));
+      break;
+    }
+    case "slider":
+      if (!joint) { notify("click a joint to slide it on a guide"); break; }
+      edit((m) => M.addSlider(m, joint));
+      break;
+    case "gear": {
+      if (!joint) { notify("click a joint: the gear's centre"); break; }
+      const prev = S.lastGear;
+      let made = null;
+      edit((m) => {
+        made = M.addGear(m, joint);
+        if (made && prev && m.gears[prev] && m.gears[prev].link !== m.gears[made].link) M.addMesh(m, prev, made);
+      });
+      S.lastGear = made;
+      break;
+    }
+    default:
+      break;
+  }
+}
+
+/** Drag an input: show the frame where the dragged joint points from its pivot towards the pointer. */
+function turnInputTo(joint, [x, y]) {
+  const link = inputLinks().find((l) => S.model.links[l].includes(joint));
+  const pivot = S.model.links[link].find((p) => M.isGround(S.model, p));
+  const c = pos(pivot);
+  const want = Math.atan2(y - c[1], x - c[0]);
+  const series = S.frames.point[joint];
+  const piv = S.frames.point[pivot];
+  let best = S.frame;
+  let bestD = Infinity;
+  series.forEach((p, k) => {
+    if (!p || p[0] === null || !S.frames.closed[k]) return;
+    const q = piv ? piv[k] : c;
+    const a = Math.atan2(p[1] - q[1], p[0] - q[0]);
+    const d = Math.abs(Math.atan2(Math.sin(a - want), Math.cos(a - want)));
+    if (d < bestD) { bestD = d; best = k; }
+  });
+  S.frame = best;
+  render();
+}
+
+function zoomAbout([px, py], f, base = S.view) {
+  const s = Math.min(1e6, Math.max(1e-4, base.s * f));
+  const [mx, my] = [(px - base.tx) / base.s, (base.ty - py) / base.s];
+  S.view = { s, tx: px - s * mx, ty: py + s * my };
+  render();
+}
+
+function onWheel(ev) {
+  ev.preventDefault();
+  zoomAbout(eventPx(ev), Math.exp(-ev.deltaY * 0.0015));
+}
+
+// ---------------------------------------------------------------- play
+
+let last = 0;
+function tick(t) {
+  if (!S.playing) return;
+  const n = S.frames && !S.stale ? S.frames.frames : 0;
+  if (n) {
+    const dt = last ? Math.min(0.1, (t - last) / 1000) : 0;
+    S.frameF = ((S.frameF ?? S.frame) + dt * S.speed * (n / 4)) % n;
+    S.frame = Math.floor(S.frameF);
+    render();
+  }
+  last = t;
+  requestAnimationFrame(tick);
+}
+
+function play() {
+  if (S.playing) { stop(); return; }
+  if (!S.frames || S.stale) { notify("nothing to play yet: the model needs an input"); return; }
+  S.playing = true;
+  S.frameF = S.frame;
+  last = 0;
+  requestAnimationFrame(tick);
+  updatePlayUi();
+}
+
+function stop() {
+  S.playing = false;
+  updatePlayUi();
+}
+
+// ---------------------------------------------------------------- side panel
+
+function field(parent, label, value, onChange, { type = "number", step = "any", attrs = {} } = {}) {
+  const wrap = document.createElement("label");
+  wrap.className = "field";
+  const span = document.createElement("span");
+  span.textContent = label;
+  const input = document.createElement("input");
+  input.type = type;
+  if (type === "number") input.step = step;
+  input.value = value ?? "";
+  for (const [k, v] of Object.entries(attrs)) input.setAttribute(k, v);
+  input.addEventListener("change", () => onChange(type === "number" ? Number(input.value) : input.value, input));
+  wrap.append(span, input);
+  parent.appendChild(wrap);
+  return input;
+}
+
+function button(parent, label, onClick, attrs = {}) {
+  const b = document.createElement("button");
+  b.type = "button";
+  b.textContent = label;
+  for (const [k, v] of Object.entries(attrs)) b.setAttribute(k, v);
+  b.addEventListener("click", onClick);
+  parent.appendChild(b);
+  return b;
+}
+
+const NAME_RE = /^[\p{L}_][\p{L}\p{N}_.-]{0,63}$/u;
+
+function renderProps() {
+  const box = $("#props");
+  clear(box);
+  const m = S.model;
+  const sel = S.selected;
+  if (sel?.kind === "joint" && m.points?.[sel.name]) {
+    const h = document.createElement("h3");
+    h.textContent = `joint ${sel.name}`;
+    box.appendChild(h);
+    field(box, "name", sel.name, (v, input) => {
+      if (!NAME_RE.test(v) || v in m.points) { input.value = sel.name; notify(`"${v}" is not a free name`); return; }
+      edit((mm) => M.renamePoint(mm, sel.name, v)); S.selected = { kind: "joint", name: v };
+    }, { type: "text", attrs: { "data-field": "name" } });
+    field(box, "x", m.points[sel.name][0], (v) => Number.isFinite(v) && edit((mm) => { mm.points[sel.name][0] = v; }), { attrs: { "data-field": "x" } });
+    field(box, "y", m.points[sel.name][1], (v) => Number.isFinite(v) && edit((mm) => { mm.points[sel.name][1] = v; }), { attrs: { "data-field": "y" } });
+    const on = document.createElement("p");
+    on.textContent = `on: ${M.linksOf(m, sel.name).join(", ") || "no link yet"}`;
+    box.appendChild(on);
+    const row = document.createElement("div");
+    row.className = "row";
+    if (!M.isGround(m, sel.name)) button(row, "make ground", () => edit((mm) => M.makeGround(mm, sel.name)));
+    button(row, "delete", () => { edit((mm) => M.deletePoint(mm, sel.name)); S.selected = null; renderProps(); });
+    box.appendChild(row);
+    return;
+  }
+  if (sel?.kind === "link" && m.links?.[sel.name]) {
+    const pts = m.links[sel.name];
+    const h = document.createElement("h3");
+    h.textContent = `link ${sel.name}`;
+    box.appendChild(h);
+    field(box, "name", sel.name, (v, input) => {
+      if (!NAME_RE.test(v) || v in m.links || v === "ground") { input.value = sel.name; notify(`"${v}" is not a free name`); return; }
+      edit((mm) => M.renameLink(mm, sel.name, v)); S.selected = { kind: "link", name: v };
+    }, { type: "text", attrs: { "data-field": "name" } });
+    const p = document.createElement("p");
+    p.textContent = `points: ${pts.join(", ")}`;
+    box.appendChild(p);
+    for (let k = 1; k < pts.length; k++) {
+      const [a, b] = [m.points[pts[0]], m.points[pts[k]]];
+      const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+      field(box, `${pts[0]}–${pts[k]}`, Number(len.toPrecision(6)), (v) => {
+        if (!(v > 0)) return;
+        edit((mm) => { // move the far point along the line (or the near one when the far one is fixed)
+          const [fix, mov] = M.isGround(mm, pts[k]) ? [pts[k], pts[0]] : [pts[0], pts[k]];
+          const [f, q] = [mm.points[fix], mm.points[mov]];
+          const d = Math.hypot(q[0] - f[0], q[1] - f[1]) || 1;
+          mm.points[mov] = [f[0] + ((q[0] - f[0]) * v) / d, f[1] + ((q[1] - f[1]) * v) / d];
+        });
+      }, { attrs: { "data-field": `length-${k}` } });
+    }
+    const mass = (m.masses || {})[sel.name] || {};
+    field(box, "mass (kg)", mass.mass ?? 0, (v) => v >= 0 && edit((mm) => {
+      mm.masses ||= {};
+      mm.masses[sel.name] = { ...(mm.masses[sel.name] || {}), mass: v, centre: mm.masses[sel.name]?.centre ?? pts[0] };
+    }), { attrs: { "data-field": "mass" } });
+    field(box, "inertia", mass.inertia ?? 0, (v) => v >= 0 && edit((mm) => {
+      mm.masses ||= {};
+      mm.masses[sel.name] = { mass: 0, centre: pts[0], ...(mm.masses[sel.name] || {}), inertia: v };
+    }), { attrs: { "data-field": "inertia" } });
+    for (const [gname, g] of Object.entries(m.gears || {})) {
+      if (g.link !== sel.name) continue;
+      field(box, `${gname} teeth`, g.teeth, (v) => Number.isInteger(v) && v >= 1 && edit((mm) => { mm.gears[gname].teeth = v; }), { step: "1", attrs: { "data-field": `teeth-${gname}` } });
+    }
+    const row = document.createElement("div");
+    row.className = "row";
+    if (pts.some((q) => M.isGround(m, q)) && !inputLinks().includes(sel.name)) button(row, "make input", () => edit((mm) => M.setInput(mm, sel.name, S.dof || 1)));
+    button(row, "delete", () => { edit((mm) => M.deleteLink(mm, sel.name)); S.selected = null; renderProps(); });
+    box.appendChild(row);
+    return;
+  }
+  // nothing selected: the mechanism
+  const h = document.createElement("h3");
+  h.textContent = "mechanism";
+  box.appendChild(h);
+  field(box, "name", m.mechanism?.name ?? "", (v) => edit((mm) => { mm.mechanism = { ...(mm.mechanism || {}), name: v }; }), { type: "text", attrs: { "data-field": "mechanism-name" } });
+  field(box, "units", m.mechanism?.units ?? "", (v) => edit((mm) => { mm.mechanism = { ...(mm.mechanism || {}), units: v }; }), { type: "text", attrs: { "data-field": "units" } });
+  const list = document.createElement("p");
+  list.className = "muted";
+  list.textContent = Object.keys(m.links || {}).length
+    ? `links: ${Object.keys(m.links).join(", ")}. Click a joint or link to edit it.`
+    : "Nothing drawn yet.";
+  box.appendChild(list);
+}
+
+// ---------------------------------------------------------------- notes, tools, dialogs
+
+let noteTimer = null;
+function notify(text) {
+  const status = $("#status");
+  if (!text) { setStatus(); return; }
+  status.textContent = text;
+  status.classList.remove("warn");
+  clearTimeout(noteTimer);
+  noteTimer = setTimeout(setStatus, 4000);
+}
+
+function setTool(tool) {
+  if (S.draftLink && tool !== "link") endLink();
+  S.tool = tool;
+  S.lastGear = null;
+  for (const b of $$("[data-tool]")) b.setAttribute("aria-pressed", String(b.dataset.tool === tool));
+  svg().dataset.tool = tool;
+  document.body.classList.remove("tools-open");
+}
+
+function endLink() {
+  S.draftLink = null;
+  render();
+}
+
+function download(blob, filename) {
+  const url = URL.createObjectURL(blob);
+  const a = document.createElement("a");
+  a.href = url;
+  a.download = filename;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 5000);
+}
+
+async function exportAs(format) {
+  const note = $("#export-note");
+  note.textContent = `exporting ${format}…`;
+  try {
+    const { blob, filename } = await api.postFile(`/api/export/${format}`, { model: S.toml, frames: FRAMES });
+    const base = (S.file.name || S.model.mechanism?.name || "mechanism").replace(/\.toml$/, "").replace(/[^\p{L}\p{N}_.-]+/gu, "_");
+    download(blob, filename || `${base}.${format}`);
+    note.textContent = `${format}: ${blob.size} bytes`;
+    return blob.size;
+  } catch (e) {
+    note.textContent = `${format}: ${e.message}`;
+    throw e;
+  }
+}
+
+async function openShare() {
+  const link = await shareUrl(S.toml);
+  $("#share-link").value = link;
+  window.history.replaceState(null, "", new URL(link).hash);
+  try { await navigator.clipboard.writeText(link); notify("share link copied"); } catch { notify("share link in the export panel"); }
+  return link;
+}
+
+// files
+async function listFiles() {
+  const ul = clear($("#file-list"));
+  try {
+    const { files } = await api.get("/api/files");
+    if (!files.length) { const li = document.createElement("li"); li.textContent = "no model in the workspace yet"; ul.appendChild(li); }
+    for (const f of files) {
+      const li = document.createElement("li");
+      button(li, f.name, () => openFile(f.name), { "data-file": f.name });
+      const meta = document.createElement("span");
+      meta.className = "muted";
+      meta.textContent = ` ${f.size} bytes`;
+      li.appendChild(meta);
+      ul.appendChild(li);
+    }
+  } catch (e) {
+    const li = document.createElement("li");
+    li.textContent = e.message;
+    ul.appendChild(li);
+  }
+}
+
+async function openFile(name) {
+  const { model, etag } = await api.getFile(name);
+  await load(model);
+  S.file = { name, etag };
+  $("#file-name").value = name;
+  $("#dlg-files").close();
+  notify(`opened ${name}`);
+}
+
+async function saveFile(name, { force = false } = {}) {
+  name = name || S.file.name || "design.toml";
+  const etag = S.file.name === name ? S.file.etag : null;
+  $("#file-conflict").hidden = true;
+  try {
+    const newTag = await api.putFile(name, S.toml, force ? force : etag);
+    S.file = { name, etag: newTag };
+    notify(`saved ${name}`);
+    listFiles();
+    return name;
+  } catch (e) {
+    if (e.status === 412 || e.status === 428) {
+      showConflict(name, e.status);
+      if (!$("#dlg-files").open) $("#dlg-files").showModal();
+      return null;
+    }
+    notify(`not saved: ${e.message}`);
+    throw e;
+  }
+}
+
+function showConflict(name, status) {
+  $("#file-conflict").hidden = false;
+  $("#file-conflict-text").textContent = status === 412
+    ? `${name} changed in the workspace since you opened it: nothing was written. Keep which?`
+    : `${name} already exists in the workspace: nothing was written. Keep which?`;
+  $("#conflict-overwrite").onclick = async () => { const { etag } = await api.getFile(name); await saveFile(name, { force: etag }); };
+  $("#conflict-copy").onclick = async () => {
+    const { files } = await api.get("/api/files");
+    const names = new Set(files.map((f) => f.name));
+    const stem = name.replace(/\.toml$/, "");
+    let k = 2;
+    while (names.has(`${stem}-${k}.toml`)) k++;
+    S.file = { name: null, etag: null };
+    await saveFile(`${stem}-${k}.toml`);
+  };
+  $("#conflict-theirs").onclick = () => openFile(name);
+}
+
+// synthesis
+function synthParams(kind) {
+  const box = clear($("#synth-params"));
+  const note = document.createElement("p");
+  note.className = "muted";
+  if (kind === "curve" || kind === "path") {
+    note.textContent = S.curve.length
+      ? `target: the drawn curve (${S.curve.length} points)`
+      : "draw the target first: curve tool (C), press, drag and release on the canvas";
+    box.appendChild(note);
+    if (kind === "curve") field(box, "time (s)", 20, () => {}, { attrs: { id: "synth-time" } });
+    else field(box, "budget", 3000, () => {}, { step: "1", attrs: { id: "synth-budget" } });
+    field(box, "seed", 1, () => {}, { step: "1", attrs: { id: "synth-seed" } });
+  } else if (kind === "function") {
+    field(box, "y = f(x)", "log10(x)", () => {}, { type: "text", attrs: { id: "synth-expr" } });
+    field(box, "x range", "1, 2", () => {}, { type: "text", attrs: { id: "synth-xrange" } });
+    field(box, "input range (deg)", "45, 105", () => {}, { type: "text", attrs: { id: "synth-in" } });
+    field(box, "output range (deg)", "135, 225", () => {}, { type: "text", attrs: { id: "synth-out" } });
+    field(box, "precision points", 3, () => {}, { step: "1", attrs: { id: "synth-points" } });
+  } else if (kind === "motion") {
+    note.textContent = "three to five poses, one a line: x, y, angle (deg)";
+    box.appendChild(note);
+    const ta = document.createElement("textarea");
+    ta.id = "synth-poses";
+    ta.rows = 4;
+    ta.value = "0, 0, 0\n20, 10, 30\n40, 10, 60";
+    box.appendChild(ta);
+  } else if (kind === "law") {
+    note.textContent = "the [law] table of a cam law file";
+    box.appendChild(note);
+    const ta = document.createElement("textarea");
+    ta.id = "synth-law";
+    ta.rows = 6;
+    box.appendChild(ta);
+  }
+}
+
+const nums = (text) => String(text).split(/[\s,;]+/).filter(Boolean).map(Number);
+
+function jobBody(kind, opts = {}) {
+  const val = (id, fallback) => ($(id) ? $(id).value : fallback);
+  S.placement = null;
+  if (kind === "curve" || kind === "path") {
+    const target = opts.target || S.curve;
+    if (!target || target.length < 3) throw new Error("draw the target curve first (curve tool)");
+    // The topology search scores designs as the linkage synthesis challenge does (material, the links'
+    // total length, under 10): the drawn curve is sent moved to the origin and scaled to an RMS radius of
+    // 0.191 (the challenge suite's), and the designs are placed back on the drawing by the inverse similarity (see placeResult).
+    let pts = target;
+    if (kind === "curve") {
+      const n = target.length;
+      const c = [target.reduce((a, p) => a + p[0], 0) / n, target.reduce((a, p) => a + p[1], 0) / n];
+      const rms = Math.sqrt(target.reduce((a, p) => a + (p[0] - c[0]) ** 2 + (p[1] - c[1]) ** 2, 0) / n) || 1;
+      const k = rms / 0.191;
+      pts = target.map(([x, y]) => [(x - c[0]) / k, (y - c[1]) / k]);
+      S.placement = { c, k };
+    }
+    const body = { kind, target: pts.map(([x, y]) => [Number(x.toPrecision(8)), Number(y.toPrecision(8))]) };
+    if (kind === "curve") body.time = Number(opts.time ?? val("#synth-time", 20));
+    else body.budget = Number(opts.budget ?? val("#synth-budget", 3000));
+    body.seed = Number(opts.seed ?? val("#synth-seed", 1));
+    return body;
+  }
+  if (kind === "function") {
+    return {
+      kind,
+      expr: opts.expr ?? val("#synth-expr", "log10(x)"),
+      x_range: opts.x_range ?? nums(val("#synth-xrange", "1,2")),
+      input_range_deg: opts.input_range_deg ?? nums(val("#synth-in", "45,105")),
+      output_range_deg: opts.output_range_deg ?? nums(val("#synth-out", "135,225")),
+      points: Number(opts.points ?? val("#synth-points", 3)),
+    };
+  }
+  if (kind === "motion") {
+    return { kind, poses: opts.poses ?? val("#synth-poses", "").split("\n").filter((l) => l.trim()).map(nums) };
+  }
+  if (kind === "law") return { kind, law: opts.law ?? val("#synth-law", ""), type: opts.type ?? "auto" };
+  throw new Error(`unknown synthesis kind ${kind}`);
+}
+
+let jobAbort = null;
+/** Run a synthesis job to its end with progress; the answer of GET /api/jobs/{id} at the end. */
+async function runJob(body) {
+  const placement = S.placement;
+  const { id } = await api.post("/api/jobs", body);
+  S.job = { id, state: "running", kind: body.kind };
+  $("#synth-cancel").disabled = false;
+  $("#synth-run").disabled = true;
+  clear($("#synth-results"));
+  const progress = (ev) => {
+    const p = ev.progress || {};
+    S.job.progress = p; // the state changes only once the results are listed
+    $("#synth-stage").textContent = `${ev.state || ""} ${p.stage || ""} ${p.done ?? ""}${p.total ? `/${p.total}` : ""}`;
+    if (p.total) { $("#synth-progress").max = p.total; $("#synth-progress").value = p.done || 0; }
+  };
+  jobAbort = new AbortController();
+  try {
+    await api.events(`/api/jobs/${encodeURIComponent(id)}/events`, progress, jobAbort.signal);
+  } catch { /* the stream ended or was cut: poll below */ }
+  let answer = await api.get(`/api/jobs/${encodeURIComponent(id)}`);
+  while (answer.state === "running") {
+    await new Promise((r) => setTimeout(r, 400));
+    answer = await api.get(`/api/jobs/${encodeURIComponent(id)}`);
+    progress(answer);
+  }
+  progress(answer);
+  S.job = { id, state: answer.state, kind: body.kind };
+  $("#synth-cancel").disabled = true;
+  $("#synth-run").disabled = false;
+  listResults(answer, placement);
+  answer.placement = placement;
+  return answer;
+}
+
+function listResults(answer, placement) {
+  const ol = clear($("#synth-results"));
+  if (answer.state !== "done") {
+    const li = document.createElement("li");
+    li.textContent = answer.state === "failed" ? `failed: ${answer.error || "?"}` : answer.state;
+    ol.appendChild(li);
+    return;
+  }
+  if (!(answer.results || []).length) {
+    const li = document.createElement("li");
+    li.textContent = "no design found: give the search more time, or draw the curve again";
+    ol.appendChild(li);
+  }
+  for (const r of answer.results || []) {
+    const li = document.createElement("li");
+    const score = Object.entries(r.score || {}).map(([k, v]) => `${k} ${typeof v === "number" ? Number(v.toPrecision(4)) : v}`).join(", ");
+    const span = document.createElement("span");
+    span.textContent = `#${r.rank} ${score} `;
+    li.appendChild(span);
+    button(li, "insert", async () => {
+      try {
+        await load(await placeResult(r.model, placement));
+        notify(`result #${r.rank} inserted (undo takes it out)`);
+      } catch (e) { notify(e.message); }
+    }, { "data-result": r.rank });
+    ol.appendChild(li);
+  }
+}
+
+/** A design of the curve search placed where the target was drawn: the sketch moved and scaled back. */
+async function placeResult(text, pl) {
+  if (!pl) return text;
+  const { model } = await api.post("/api/parse", { model: text });
+  for (const [name, [x, y]] of Object.entries(model.points || {})) {
+    model.points[name] = [Number((pl.c[0] + x * pl.k).toPrecision(10)), Number((pl.c[1] + y * pl.k).toPrecision(10))];
+  }
+  for (const key of Object.keys(model.lengths || {})) model.lengths[key] *= pl.k;
+  return (await api.post("/api/dump", { model })).model;
+}
+
+async function cancelJob() {
+  if (!S.job) return;
+  try { await api.del(`/api/jobs/${encodeURIComponent(S.job.id)}`); } catch (e) { notify(e.message); }
+  if (jobAbort) jobAbort.abort();
+}
+
+async function synthesize(opts = {}) {
+  const kind = opts.kind || $("#synth-kind").value;
+  const answer = await runJob(jobBody(kind, opts));
+  if (answer.state !== "done" || !(answer.results || []).length) {
+    throw new Error(`synthesis ${answer.state}: ${answer.error || "no result"}`);
+  }
+  const best = await placeResult(answer.results[0].model, answer.placement);
+  await load(best);
+  return best;
+}
+
+// ---------------------------------------------------------------- keyboard
+
+const SHORTCUTS = [
+  ["V", "select and drag", () => setTool("select")],
+  ["G", "ground pivot", () => setTool("ground")],
+  ["P", "pin joint", () => setTool("pin")],
+  ["L", "link (Enter or Esc ends it)", () => setTool("link")],
+  ["S", "slider", () => setTool("slider")],
+  ["E", "gear", () => setTool("gear")],
+  ["O", "point of interest", () => setTool("point")],
+  ["I", "input", () => setTool("input")],
+  ["C", "curve (freehand target)", () => setTool("curve")],
+  ["Space", "play / pause", () => play()],
+  ["← →", "previous / next frame", null],
+  ["Ctrl+Z", "undo", () => undo()],
+  ["Ctrl+Shift+Z, Ctrl+Y", "redo", () => redo()],
+  ["Ctrl+S", "save into the workspace", null],
+  ["Delete", "delete the selected joint or link", null],
+  ["F", "fit the drawing", null],
+  ["N", "new empty bench", null],
+  ["?", "this help", null],
+];
+
+function onKey(ev) {
+  const tag = document.activeElement?.tagName;
+  const typing = tag === "TEXTAREA" || tag === "INPUT" || tag === "SELECT";
+  const ctrl = ev.ctrlKey || ev.metaKey;
+  if (ctrl && ev.key.toLowerCase() === "s") { ev.preventDefault(); save(); return; }
+  if (typing) return;
+  if (ctrl && ev.key.toLowerCase() === "z") { ev.preventDefault(); (ev.shiftKey ? redo : undo)(); return; }
+  if (ctrl && ev.key.toLowerCase() === "y") { ev.preventDefault(); redo(); return; }
+  if (ctrl || ev.altKey) return;
+  if (ev.key === "Escape" || ev.key === "Enter") { if (S.draftLink) { endLink(); ev.preventDefault(); } return; }
+  if (ev.key === " ") { ev.preventDefault(); play(); return; }
+  if (ev.key === "ArrowRight" || ev.key === "ArrowLeft") {
+    const n = S.frames && !S.stale ? S.frames.frames : 0;
+    if (n) { S.frame = (S.frame + (ev.key === "ArrowRight" ? 1 : n - 1)) % n; render(); }
+    return;
+  }
+  if (ev.key === "Delete" || ev.key === "Backspace") {
+    const sel = S.selected;
+    if (sel?.kind === "joint") edit((m) => M.deletePoint(m, sel.name));
+    else if (sel?.kind === "link") edit((m) => M.deleteLink(m, sel.name));
+    S.selected = null;
+    renderProps();
+    return;
+  }
+  const k = ev.key.toLowerCase();
+  if (k === "f") { fit(); render(); return; }
+  if (k === "n") { newBench(); return; }
+  if (ev.key === "?") { $("#dlg-help").showModal(); return; }
+  const tool = { v: "select", g: "ground", p: "pin", l: "link", s: "slider", e: "gear", o: "point", i: "input", c: "curve" }[k];
+  if (tool) setTool(tool);
+}
+
+function newBench() {
+  stop();
+  edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); });
+  S.curve = [];
+  S.selected = null;
+  S.file = { name: null, etag: null };
+  fit();
+  render();
+}
+
+async function save() {
+  if (S.file.name) return saveFile(S.file.name);
+  $("#dlg-files").showModal();
+  listFiles();
+  return null;
+}
+
+// ---------------------------------------------------------------- start
+
+function buildHelp() {
+  const tb = $("#shortcuts tbody");
+  for (const [keys, what] of SHORTCUTS) {
+    const tr = document.createElement("tr");
+    const a = document.createElement("td");
+    const kbd = document.createElement("kbd");
+    kbd.textContent = keys;
+    a.appendChild(kbd);
+    const b = document.createElement("td");
+    b.textContent = what;
+    tr.append(a, b);
+    tb.appendChild(tr);
+  }
+}
+
+async function loadExamples() {
+  try {
+    const { examples } = await api.get("/api/examples");
+    const sel = $("#examples");
+    for (const e of examples) {
+      const o = document.createElement("option");
+      o.value = e.name;
+      o.textContent = e.title ? `${e.name}: ${e.title}` : e.name;
+      sel.appendChild(o);
+    }
+  } catch (e) {
+    notify(`examples: ${e.message}`);
+  }
+}
+
+async function openExample(name) {
+  if (!name) return;
+  const { model } = await api.get(`/api/examples/${encodeURIComponent(name)}`);
+  S.file = { name: null, etag: null };
+  await load(model);
+  $("#examples").value = "";
+}
+
+function wire() {
+  const c = svg();
+  c.addEventListener("pointerdown", onPointerDown);
+  c.addEventListener("pointermove", onPointerMove);
+  c.addEventListener("pointerup", onPointerUp);
+  c.addEventListener("pointercancel", (ev) => { pointers.delete(ev.pointerId); gesture = null; });
+  c.addEventListener("wheel", onWheel, { passive: false });
+  c.addEventListener("contextmenu", (ev) => ev.preventDefault());
+  document.addEventListener("keydown", onKey);
+  for (const b of $$("[data-tool]")) b.addEventListener("click", () => setTool(b.dataset.tool));
+  const actions = {
+    new: newBench,
+    play,
+    undo,
+    redo,
+    save,
+    export: () => { $("#dlg-export").showModal(); openShare().catch((e) => notify(e.message)); },
+    synthesize: () => { synthParams($("#synth-kind").value); $("#dlg-synth").showModal(); },
+    share: () => { $("#dlg-export").showModal(); openShare().catch((e) => notify(e.message)); },
+    files: () => { $("#dlg-files").showModal(); listFiles(); },
+    help: () => $("#dlg-help").showModal(),
+  };
+  for (const b of $$("[data-action]")) b.addEventListener("click", () => actions[b.dataset.action]());
+  $("#play").addEventListener("click", play);
+  $("#scrub").addEventListener("input", () => { stop(); S.frame = Number($("#scrub").value); render(); });
+  $("#speed").addEventListener("change", () => { S.speed = Number($("#speed").value); });
+  $("#fit").addEventListener("click", () => { fit(); render(); });
+  for (const id of ["#show-velocity", "#show-acceleration", "#show-paths", "#show-centres"]) $(id).addEventListener("change", render);
+  $("#plot-link").addEventListener("change", drawPlots);
+  $("#plot-point").addEventListener("change", drawPlots);
+  $("#plot-quantity").addEventListener("change", drawPlots);
+  $("#toml").addEventListener("input", onTomlInput);
+  $("#examples").addEventListener("change", () => openExample($("#examples").value).catch((e) => notify(e.message)));
+  $("#fold").addEventListener("click", () => {
+    const open = document.body.classList.toggle("tools-open");
+    $("#fold").setAttribute("aria-expanded", String(open));
+  });
+  for (const b of $$("[data-export]")) b.addEventListener("click", () => exportAs(b.dataset.export).catch(() => {}));
+  $("#file-save").addEventListener("click", () => saveFile($("#file-name").value.trim()).catch(() => {}));
+  $("#synth-kind").addEventListener("change", () => synthParams($("#synth-kind").value));
+  $("#synth-run").addEventListener("click", () => {
+    let body;
+    try { body = jobBody($("#synth-kind").value); } catch (e) { $("#synth-stage").textContent = e.message; return; }
+    runJob(body).catch((e) => { $("#synth-stage").textContent = e.message; $("#synth-run").disabled = false; });
+  });
+  $("#synth-cancel").addEventListener("click", cancelJob);
+  window.addEventListener("resize", () => { render(); drawPlots(); });
+  window.addEventListener("hashchange", () => fromFragment());
+}
+
+async function fromFragment() {
+  let text = null;
+  try { text = await modelFromFragment(); } catch (e) { notify(`share link: ${e.message}`); return false; }
+  if (text === null) return false;
+  try { await load(text); notify("opened from the share link"); return true; } catch (e) { notify(`share link: ${e.message}`); return false; }
+}
+
+window.workbench = {
+  load: (text) => load(text),
+  model: () => S.toml,
+  state: () => ({
+    ready: S.ready, dof: S.dof, inputs: [...S.inputs], frames: S.frames && !S.stale ? S.frames.frames : 0,
+    message: S.error || S.message, job: S.job ? { ...S.job } : null,
+    pending: S.pending > 0 || !!again, revision: S.revision, frame: S.frame, playing: S.playing,
+    tool: S.tool, undo: S.undo.length, redo: S.redo.length, curve: S.curve.length, file: { ...S.file },
+  }),
+  frames: () => (S.frames && !S.stale ? S.frames : null),
+  toScreen: (x, y) => { const r = svg().getBoundingClientRect(); const [px, py] = toPx(x, y); return [r.left + px, r.top + py]; },
+  synthesize,
+  undo: () => undo(),
+  redo: () => redo(),
+  // for tests and scripts
+  play: () => { if (!S.playing) play(); }, pause: stop, setFrame: (i) => { S.frame = i; render(); },
+  setTool, fit: () => { fit(); render(); }, save: (name) => saveFile(name), open: openFile,
+  share: openShare, export: exportAs, curve: () => S.curve.map((p) => [...p]),
+};
+
+async function start() {
+  buildHelp();
+  wire();
+  setTool("select");
+  fit();
+  render();
+  renderProps();
+  setStatus();
+  drawPlots();
+  await loadExamples();
+  await fromFragment();
+  S.ready = true;
+  setStatus();
+}
+
+start().catch((e) => { S.ready = true; notify(e.message); });
