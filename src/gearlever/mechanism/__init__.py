@@ -2,8 +2,12 @@
 
 - :mod:`~gearlever.mechanism.mobility`: the mobility formula
   W = 3n - 2 P5 - P4 + q and its inverse for redundant constraints.
-- :mod:`~gearlever.mechanism.model`: model files (TOML) of links, pins,
-  sliders, gears and meshes, validated into a :class:`MechanismModel`.
+- :mod:`~gearlever.mechanism.schema`: the model file's tables, keys, types,
+  units and caps, declared once; :mod:`~gearlever.mechanism.model`: model
+  files (TOML) of links, pins, sliders, gears and meshes, validated into a
+  :class:`MechanismModel`; :mod:`~gearlever.mechanism.modelfile`: the one
+  writer of model files; :mod:`~gearlever.mechanism.linkage`: the
+  ``.links.json`` form of a linkage, read as a model.
 - :mod:`~gearlever.mechanism.constraints`: constraint rows and their
   analytic Jacobian in absolute coordinates.
 - :mod:`~gearlever.mechanism.structural`: counts, mobility and redundant
@@ -14,9 +18,9 @@
   ``[lengths]`` table (:mod:`gearlever.mechanism.assemble`).
 
 Numeric core: may import numpy, :mod:`gearlever.loops`, :mod:`gearlever.gears`,
-:mod:`gearlever.errors`, :mod:`gearlever._validate`; never pandas or matplotlib.
-:meth:`Mechanism.load` imports :mod:`gearlever.curves` inside the call, for a
-``.links.json`` linkage only (never at module level: no import circle).
+:mod:`gearlever.errors`, :mod:`gearlever._validate`, :mod:`gearlever._io`,
+:mod:`gearlever._format`; never pandas or matplotlib, and nothing of
+:mod:`gearlever.curves` or :mod:`gearlever.synthesis` (they import it).
 """
 
 from gearlever.mechanism.assemble import assemble

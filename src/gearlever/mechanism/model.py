@@ -95,6 +95,7 @@ __all__ = [
     "MechanismModel",
     "load_model",
     "model_from_dict",
+    "model_from_text",
     # the caps, declared in gearlever.mechanism.schema
     "MAX_COORDINATE",
     "MAX_DEPTH",
@@ -254,22 +255,55 @@ def load_model(path) -> MechanismModel:
     ('crank',)
     """
     p = Path(path)
-    text = read_text_capped(p, "model file", MAX_MODEL_BYTES)
-    raw = text.encode("utf-8")
+    return model_from_text(read_text_capped(p, "model file", MAX_MODEL_BYTES), where=str(p))
+
+
+def model_from_text(text: str, where: str | None = None) -> MechanismModel:
+    """Parse and validate the TOML text of a model file.
+
+    Parameters
+    ----------
+    text : str
+        At most :data:`MAX_MODEL_BYTES` bytes in UTF-8.
+    where : str, optional
+        The text's origin (a file name), prefixed to every refusal.
+
+    Returns
+    -------
+    MechanismModel
+
+    Raises
+    ------
+    GearleverError
+        Text beyond the size cap, TOML syntax error (with its line and
+        column), or any element refused by :func:`model_from_dict`.
+
+    Examples
+    --------
+    >>> model_from_text('[points]\\nO = [0, 0]\\nA = [1, 0]\\n[links]\\nground = ["O"]\\n'
+    ...                 'crank = ["O", "A"]\\n[[inputs]]\\nlink = "crank"\\n').moving
+    ('crank',)
+    """
+    prefix = f"{where}: " if where else ""
+    if not isinstance(text, str):
+        raise GearleverError(f"{prefix}a model's text must be a string, got {type(text).__name__}")
+    raw = text.encode("utf-8", "surrogatepass")
+    if len(raw) > MAX_MODEL_BYTES:
+        raise GearleverError(f"{prefix}{len(raw)} bytes, more than the cap of {MAX_MODEL_BYTES} bytes of a model file")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
         if "line" not in msg:
             msg += f" (line {raw.count(NEWLINE) + 1})"
-        raise GearleverError(f"{p}: TOML syntax error: {msg}") from None
+        raise GearleverError(f"{prefix}TOML syntax error: {msg}") from None
     except RecursionError:
         # tomllib parses nested arrays and inline tables recursively
-        raise GearleverError(f"{p}: nested deeper than the cap of {MAX_DEPTH} levels of arrays and tables") from None
+        raise GearleverError(f"{prefix}nested deeper than the cap of {MAX_DEPTH} levels of arrays and tables") from None
     try:
         return model_from_dict(data)
     except GearleverError as exc:
-        raise GearleverError(f"{p}: {exc}") from None
+        raise GearleverError(f"{prefix}{exc}") from None
 
 
 def model_from_dict(d) -> MechanismModel:
@@ -468,7 +502,7 @@ def _read_sliders(d, points: dict, links: dict) -> list:
             raise GearleverError(f"{where}.direction must be a non-zero vector, got {t['direction']!r}")
         if any(s.name == sname for s in sliders):
             raise GearleverError(f"{where}: slider name {sname!r} used twice (give each a name)")
-        sliders.append(Slider(sname, link, on, point, (ux / norm, uy / norm)))
+        sliders.append(Slider(sname, link, on, point, (ux / norm, uy / norm), (ux, uy)))
     return sliders
 
 

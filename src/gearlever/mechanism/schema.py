@@ -374,6 +374,9 @@ class Slider:
     ``link``) along the unit vector ``direction`` (sketch orientation), and
     turns with ``on``; ``link`` does not turn relative to ``on``.  Its
     displacement is measured along ``direction`` from the sketch.
+    ``given`` is the direction as the file gives it (any length; None when
+    built in code), written back by :func:`gearlever.mechanism.modelfile.model_dict`
+    so that a written model reads back to the same unit vector.
     """
 
     name: str
@@ -381,6 +384,7 @@ class Slider:
     on: str
     point: str
     direction: tuple
+    given: tuple | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
