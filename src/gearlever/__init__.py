@@ -36,6 +36,7 @@ is the same function, kept for existing code: a mechanism's motion is
 __version__ = "0.1.0"
 
 from gearlever import _aliases  # noqa: E402
+from gearlever._result import Result  # noqa: E402
 from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
@@ -88,6 +89,7 @@ __all__ = [
     "search_best",
     "HookeJoint",
     "flywheel",
+    "Result",
 ]
 
 _aliases.install()

@@ -1,4 +1,9 @@
-"""Mechanism model files: schema, loading and validation.
+"""Mechanism model files: loading and validation.
+
+The tables, keys, types and caps are declared once in
+:mod:`gearlever.mechanism.schema`; this module reads a model against them
+(the summary below is the schema's, in words).  The writer is
+:mod:`gearlever.mechanism.modelfile`.
 
 A planar mechanism is described as data (a TOML file, or the same structure
 as a dict): named sketch points, rigid links carrying points, sliders, gears,
