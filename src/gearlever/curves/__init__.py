@@ -4,7 +4,8 @@ What lives here:
 
 * :mod:`~gearlever.curves.links`: the challenge's form of a planar revolute
   linkage (``x0``, ``edges``, ``fixed_joints``, ``motor``, ``target_joint``),
-  read and validated from ``.links.json``, and its dyadic solve plan.
+  read and validated from ``.links.json``, and its dyadic solve plan (a model
+  file format, defined in :mod:`gearlever.mechanism.linkage`).
 * :mod:`~gearlever.curves.simulate`: a batched simulator of many dyadic
   linkages over a crank turn in one array pass, with the analytic Jacobian of
   the joint paths with respect to the sketch positions.
@@ -17,7 +18,8 @@ What lives here:
   in the user's cache folder (``gearlever curve library build``).
 
 May import numpy, scipy, pymoo, dask and :mod:`gearlever.errors`,
-:mod:`gearlever._io`, :mod:`gearlever.synthesis.model` (model text); never
+:mod:`gearlever._io`, :mod:`gearlever.mechanism` (the ``.links.json`` form in
+:mod:`gearlever.mechanism.linkage`, the model writer); never
 matplotlib, pandas or the CLI.  Figures are in :mod:`gearlever.plotting.curves`.
 """
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from gearlever.errors import GearleverError
@@ -71,7 +73,7 @@ class Mechanism:
             try:
                 return cls(model_from_dict(d))
             except GearleverError as exc:
-                raise GearleverError(f"{path}: {exc}") from None
+                raise GearleverError(f"{Path(path)}: {exc}") from None
         return cls(load_model(path))
 
     @classmethod
