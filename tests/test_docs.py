@@ -132,20 +132,13 @@ TOML_BLOCKS = [
 
 @pytest.mark.parametrize("body", TOML_BLOCKS)
 def test_guide_toml_fragments_parse_and_use_known_tables_and_keys(body):
-    from gearlever.mechanism import model as schema
+    from gearlever.mechanism import schema
 
     data = tomllib.loads(body)
-    known = {
-        "mechanism": set(schema._MECH_KEYS + schema._KEPT_MECH_KEYS),
-        "sliders": {"name", "link", "on", "point", "direction"},
-        "meshes": {"gears", "carrier", "efficiency"},
-        "inputs": {"link", "relative_to", "slider"},
-        "loads": {"link", "point", "force", "torque"},
-    }
-    gear_keys = {"link", "centre", "teeth", "internal", "shift", "face_width", "helix"}
-    entries = {"gears": gear_keys, "masses": {"mass", "centre", "inertia"}}
+    known = {t.name: set(schema.allowed_keys(t.name)) for t in schema.TABLES if t.form in ("table", "array")}
+    entries = {t.name: set(schema.allowed_keys(t.name)) for t in schema.TABLES if t.form == "map of tables"}
     for table, value in data.items():
-        assert table in schema._TOP + schema._KEPT_TABLES, table
+        assert table in schema.allowed_tables(), table
         rows = value if isinstance(value, list) else [value]
         for row in rows:
             if table in known:

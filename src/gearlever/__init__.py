@@ -35,6 +35,7 @@ is the same function, kept for existing code: a mechanism's motion is
 
 __version__ = "0.1.0"
 
+from gearlever._result import Result  # noqa: E402
 from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
@@ -87,4 +88,5 @@ __all__ = [
     "search_best",
     "HookeJoint",
     "flywheel",
+    "Result",
 ]

@@ -252,7 +252,7 @@ def test_every_registered_follower_designs_a_cam_and_a_frame():
         if kind.law_output == "angle":
             kw.update(pivot_distance=90.0, **({"arm": 60.0} if kind.contact == "roller" else {}))
         cam = design_cam(law(kind.law_output, 10.0), name, base_radius=30.0, points=720, **kw)
-        assert cam.to_frame().shape[0] == 720 and cam.report()["follower"] == name
+        assert cam.to_frame().shape[0] == 720 and cam.summary()["follower"] == name
 
 
 def test_a_rise_narrower_than_four_profile_steps_is_refused_naming_the_segment():

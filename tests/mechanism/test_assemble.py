@@ -88,7 +88,7 @@ def test_lengths_only_of_the_links_keep_the_coupler_point_body_fixed_and_the_bra
 
 
 def test_cli_writes_an_exact_model_that_solves(tmp_path, capsys):
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
 
     rough = _rough_fourbar()
     src = tmp_path / "rough.toml"
@@ -121,7 +121,7 @@ def test_impossible_lengths_are_refused_naming_the_loop_and_links(tmp_path, caps
     with pytest.raises(GearleverError, match=r'"coupler.A-P" = 100 is longer than the others together'):
         assemble(_rough_fourbar({"coupler": 45.0, "coupler.A-P": 100.0, "coupler.B-P": 10.0}))
     # command line: exit 2, one line, no file
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
 
     lengths = rough.pop("lengths")
     src = tmp_path / "bad.toml"

@@ -10,8 +10,8 @@ import pytest
 
 from gearlever.data import example_path
 from gearlever.errors import GearleverError
-from gearlever.mechanism.mesh_check import check_mechanism, involute, mesh_geometry
 from gearlever.mechanism import Mechanism
+from gearlever.mechanism.mesh_check import check_mechanism, involute, mesh_geometry
 
 GEARED = ["geared_fivebar", "planetary", "compound_planetary", "ferguson", "zrdpm_gear_contour"]
 

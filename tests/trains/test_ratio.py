@@ -53,7 +53,7 @@ def test_reversed_train_gives_reciprocal_ratio(pairs_):
 
 
 def test_as_dict_keys():
-    rec = train_ratio([20, 30], [60, 45]).as_dict()
+    rec = train_ratio([20, 30], [60, 45]).summary()
     assert rec["ratio"] == "2/9" and rec["sense"] == "same" and rec["external_meshes"] == 2
 
 

@@ -238,7 +238,7 @@ def test_search_large_exact_case_counts_without_listing():
 
 def test_search_as_dict_and_frame():
     res = search_best("1/6.931", 2, 12, 60)
-    d = res.as_dict()
+    d = res.summary()
     assert d["count"] == d["n_solutions"] == 1 and d["listed"] == 1 and d["limit"] == 20
     frame = res.to_frame()
     assert list(frame["drivers"]) == ["16 19"] and list(frame["followers"]) == ["43 49"]

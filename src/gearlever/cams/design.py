@@ -164,8 +164,8 @@ class CamDesign(Result):
             f"curvature_radius_{u}": self.curvature_radius,
         }
 
-    def report(self) -> dict:
-        """The scalar results, degrees in keys ending ``_deg`` (the CLI's report)."""
+    def summary(self) -> dict:
+        """The scalar results, degrees in keys ending ``_deg`` (the CLI's report); strict JSON (NaN as None)."""
         i_phi = int(np.argmax(np.abs(self.pressure_angle)))
         rho = self.curvature_radius
         convex = rho > 0
@@ -190,7 +190,7 @@ class CamDesign(Result):
             "face_contact_max": self.face_contact_max,
             "points": int(self.theta.size),
         }
-        return out
+        return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in out.items()}
 
 
 def _kind(follower: str):

@@ -173,7 +173,7 @@ def _design(args) -> int:
                 f"falls to {cam.curvature_radius_min:.6g} with --base-radius {rb:g}; "
                 f"the smallest base radius meeting the bounds is {sized:.6g}"
             )
-    report = cam.report()
+    report = cam.summary()
     report["law"] = args.law
     report["base_radius_from"] = "--base-radius" if args.base_radius is not None else "sized"
     report["base_radius_sized"] = sized

@@ -74,7 +74,7 @@ def _car(args) -> int:
         turn_radius=args.turn_radius,
         track=args.track,
     )
-    result = state.as_dict()
+    result = state.summary()
     if args.format == "json":
         emit(to_json(result), args.out)
         return 0

@@ -142,7 +142,7 @@ def _ratio(args) -> int:
         res = train_ratio(args.drivers, args.followers, internal=args.internal, idlers=args.idlers)
     except GearleverError as exc:
         raise flagged(exc, _FLAGS) from None
-    rec = res.as_dict()
+    rec = res.summary()
     if args.format == "json":
         emit(to_json(rec), args.out)
     else:
@@ -188,7 +188,7 @@ def _design(args) -> int:
         raise flagged(exc, _FLAGS) from None
     best, note = _exact_beside(res)
     if args.format == "json":
-        rec = res.as_dict()
+        rec = res.summary()
         rec["exact_optimum"] = None if best is None else _exact_record(best)
         rec["exact_optimum_note"] = note
         emit(to_json(rec), args.out)
@@ -269,7 +269,7 @@ def _search(args) -> int:
     finally:
         progress.close()
     if args.format == "json":
-        emit(to_json(res.as_dict()), args.out)
+        emit(to_json(res.summary()), args.out)
         return 0
     lines = [
         f"target           {res.target} = {float(res.target):.12g}",

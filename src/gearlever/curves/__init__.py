@@ -4,7 +4,8 @@ What lives here:
 
 * :mod:`~gearlever.curves.links`: the challenge's form of a planar revolute
   linkage (``x0``, ``edges``, ``fixed_joints``, ``motor``, ``target_joint``),
-  read and validated from ``.links.json``, and its dyadic solve plan.
+  read and validated from ``.links.json``, and its dyadic solve plan (a model
+  file format, defined in :mod:`gearlever.mechanism.linkage`).
 * :mod:`~gearlever.curves.simulate`: a batched simulator of many dyadic
   linkages over a crank turn in one array pass, with the analytic Jacobian of
   the joint paths with respect to the sketch positions.
@@ -19,7 +20,8 @@ What lives here:
 Within the layering of the guide's architecture page (held by
 ``tests/test_imports.py``) it may import numpy, scipy, pymoo, dask and
 gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
-``data``, ``errors``, ``gears``, ``loops``, ``mechanism``, ``synthesis``; never
+``data``, ``errors``, ``gears``, ``loops``, ``mechanism``, ``synthesis`` (the ``.links.json`` form is
+:mod:`gearlever.mechanism.linkage`, the model writer :mod:`gearlever.mechanism.modelfile`); never
 matplotlib, pandas or the CLI.  Figures are in :mod:`gearlever.plotting.curves`.
 """
 

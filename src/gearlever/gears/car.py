@@ -24,12 +24,13 @@ from fractions import Fraction
 import numpy as np
 
 from gearlever import _validate as V
+from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.gears.networks import Differential, Gear, Mesh, Network
 
 
 @dataclass(frozen=True)
-class CarState:
+class CarState(Result):
     """Speeds, torques and power of every loaded member (floats or arrays, broadcast)."""
 
     pinion_speed: np.ndarray | float
@@ -51,7 +52,7 @@ class CarState:
         """Power taken out at the wheels, ``G4*w4 + G5*w5``."""
         return self.left_torque * self.left_speed + self.right_torque * self.right_speed
 
-    def as_dict(self) -> dict[str, float]:
+    def summary(self) -> dict[str, float]:
         """Scalar results as plain floats (the CLI's json keys)."""
         keys = (
             "carrier_speed",

@@ -38,6 +38,7 @@ from fractions import Fraction
 import numpy as np
 
 from gearlever import _validate as V
+from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.gears.networks import Network, NetworkSolution, parse_network
 
@@ -107,7 +108,7 @@ def nuttall_network(teeth: NuttallTeeth) -> Network:
 
 
 @dataclass(frozen=True)
-class NuttallDesign:
+class NuttallDesign(Result):
     """A sized Nuttall chariot.
 
     Attributes
@@ -355,7 +356,7 @@ def waypoint_path(points, track: float = 1.0, step: float = 0.01):
 
 
 @dataclass(frozen=True)
-class ChariotRun:
+class ChariotRun(Result):
     """Result of :func:`simulate`: chassis and pointer along the path (N steps, N+1 states).
 
     Attributes

@@ -2,8 +2,12 @@
 
 - :mod:`~gearlever.mechanism.mobility`: the mobility formula
   W = 3n - 2 P5 - P4 + q and its inverse for redundant constraints.
-- :mod:`~gearlever.mechanism.model`: model files (TOML) of links, pins,
-  sliders, gears and meshes, validated into a :class:`MechanismModel`.
+- :mod:`~gearlever.mechanism.schema`: the model file's tables, keys, types,
+  units and caps, declared once; :mod:`~gearlever.mechanism.model`: model
+  files (TOML) of links, pins, sliders, gears and meshes, validated into a
+  :class:`MechanismModel`; :mod:`~gearlever.mechanism.modelfile`: the one
+  writer of model files; :mod:`~gearlever.mechanism.linkage`: the
+  ``.links.json`` form of a linkage, read as a model.
 - :mod:`~gearlever.mechanism.constraints`: constraint rows and their
   analytic Jacobian in absolute coordinates.
 - :mod:`~gearlever.mechanism.structural`: counts, mobility and redundant
@@ -17,9 +21,9 @@ Within the layering of the guide's architecture page (held by
 ``tests/test_imports.py``) it may import numpy, scipy and gearlever's
 ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``, ``data``,
 ``errors``, ``gears``, ``loops``; never pandas or matplotlib.
-:meth:`Mechanism.load` imports :mod:`gearlever.curves` inside the call, for a
-``.links.json`` linkage only: outside the layering, a circle the test lists
-until the model writer moves beside the reader.
+Nothing of :mod:`gearlever.curves` or :mod:`gearlever.synthesis` (they import it): the
+``.links.json`` form (:mod:`gearlever.mechanism.linkage`) and the model writer
+(:mod:`gearlever.mechanism.modelfile`) live here.
 """
 
 from gearlever.mechanism.assemble import assemble

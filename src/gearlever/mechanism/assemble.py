@@ -1,11 +1,11 @@
 """Assembly from lengths: a rough sketch closed to exact link lengths.
 
 A model may give, besides its sketch, the exact lengths of its links in a
-``[lengths]`` table (schema in :mod:`gearlever.mechanism.model`).
+``[lengths]`` table (schema in :mod:`gearlever.mechanism.schema`).
 :func:`assemble` moves the sketch points the least needed to make every
 length exact, on the assembly branch of the sketch, and returns the model as
 a dict whose sketch is exact (write it with
-:func:`gearlever.synthesis.model.model_toml`).
+:func:`gearlever.mechanism.modelfile.model_toml`).
 
 The equations, in the coordinates of every point not on ground (ground
 points stay where sketched):
@@ -461,7 +461,7 @@ def assemble(model, *, hold_inputs: bool = True) -> dict:
     dict
         The model with exact point coordinates, in the model file's
         structure (accepted by :func:`~gearlever.mechanism.model.model_from_dict`;
-        :func:`gearlever.synthesis.model.model_toml` writes it).
+        :func:`gearlever.mechanism.modelfile.model_toml` writes it).
 
     Raises
     ------

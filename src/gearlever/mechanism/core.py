@@ -2,52 +2,19 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
+from gearlever.errors import GearleverError
 from gearlever.mechanism.constraints import constraint_jacobian, constraint_labels, constraint_residual
-from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict
+from gearlever.mechanism.linkage import is_linkage_file, read_linkage_model
+from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict, model_from_text
+from gearlever.mechanism.modelfile import model_dict, model_toml
 from gearlever.mechanism.solve import KinematicSystem, MechanismResult, solve
 from gearlever.mechanism.structural import MechanismStructure, analyze_structure
 
 __all__ = ["Mechanism"]
-
-#: File name ending of a linkage in the MIT 2.156 challenge's form.
-LINKS_SUFFIX = ".links.json"
-
-
-def _is_linkage_file(path) -> bool:
-    """Whether ``path`` names a ``.json`` file (a linkage in the challenge's form), not a TOML model."""
-    return str(path).lower().endswith(".json")
-
-
-def _load_linkage(path) -> MechanismModel:
-    """The model of a ``.links.json`` file (or a ``.json`` holding ``x0`` and ``edges``); errors name the file.
-
-    Imported lazily: :mod:`gearlever.curves` imports nothing of the mechanism
-    package at module level and the mechanism package nothing of it.
-    """
-    from pathlib import Path
-
-    from gearlever._io import read_json_capped
-    from gearlever.curves.links import linkage_from_dict
-    from gearlever.curves.model import linkage_model
-    from gearlever.errors import GearleverError
-
-    p = Path(path)
-    data = read_json_capped(p, "model file", where=str(p))
-    linkage = str(p).lower().endswith(LINKS_SUFFIX)
-    if not linkage and not (isinstance(data, dict) and "x0" in data and "edges" in data):
-        raise GearleverError(
-            f"{p}: a .json model must be a linkage in the challenge's form (keys x0, edges, fixed_joints, motor); "
-            "other models are TOML files"
-        )
-    name = p.name[: -len(LINKS_SUFFIX)] if linkage else p.stem
-    if not (name and len(name) <= 200 and name.isprintable()):
-        name = "linkage"
-    try:
-        return model_from_dict(linkage_model(linkage_from_dict(data), name=name))
-    except GearleverError as exc:
-        raise GearleverError(f"{p}: {exc}") from None
 
 
 class Mechanism:
@@ -86,8 +53,8 @@ class Mechanism:
 
         A file named ``*.links.json``, or ``*.json`` holding an object with the
         keys ``x0`` and ``edges``, is a linkage in the MIT 2.156 challenge's
-        form (:func:`gearlever.curves.links.read_linkage`), opened as the
-        model :func:`gearlever.curves.model.linkage_model` writes (fixed
+        form (:func:`gearlever.mechanism.linkage.read_linkage`), opened as the
+        model :func:`gearlever.mechanism.linkage.linkage_model` writes (fixed
         joints ``O<i>``, moving joints ``J<i>``, traced joint ``P``, input the
         crank).  Refusals name the file and the key.
 
@@ -101,14 +68,63 @@ class Mechanism:
         >>> m.name, sorted(m.model.links), m.structure().dof
         ('d', ['L1', 'L2', 'crank', 'ground'], 1)
         """
-        if _is_linkage_file(path):
-            return cls(_load_linkage(path))
+        if is_linkage_file(path):
+            d = read_linkage_model(path)
+            try:
+                return cls(model_from_dict(d))
+            except GearleverError as exc:
+                raise GearleverError(f"{Path(path)}: {exc}") from None
         return cls(load_model(path))
 
     @classmethod
     def from_dict(cls, d) -> Mechanism:
         """Build from a dict with the model file's structure."""
         return cls(model_from_dict(d))
+
+    @classmethod
+    def loads(cls, text: str) -> Mechanism:
+        """Build from the TOML text of a model file (:func:`~gearlever.mechanism.model.model_from_text`).
+
+        ``Mechanism.loads(m.dumps())`` is the same model as ``m``: same points,
+        links, joints, sliders, gears, meshes, inputs and kept tables.
+
+        Examples
+        --------
+        >>> m = Mechanism.loads('[points]\\nO = [0, 0]\\nA = [1, 0]\\n'
+        ...     '[links]\\nground = ["O"]\\ncrank = ["O", "A"]\\n[[inputs]]\\nlink = "crank"\\n')
+        >>> Mechanism.loads(m.dumps()).model == m.model
+        True
+        """
+        return cls(model_from_text(text))
+
+    def dumps(self) -> str:
+        """The TOML text of the model (every table it holds, floats written exactly).
+
+        The writer is :func:`gearlever.mechanism.modelfile.model_toml` with
+        ``exact=True``; :meth:`loads` reads the text back to the same model.
+
+        Examples
+        --------
+        >>> m = Mechanism.from_dict({"mechanism": {"units": "mm"}, "points": {"O": [0, 0], "A": [0.1, 0.2]},
+        ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
+        >>> print(m.dumps())
+        [mechanism]
+        name = "mechanism"
+        units = "mm"
+        <BLANKLINE>
+        [points]
+        O = [0.0, 0.0]
+        A = [0.1, 0.2]
+        <BLANKLINE>
+        [links]
+        ground = ["O"]
+        crank = ["O", "A"]
+        <BLANKLINE>
+        [[inputs]]
+        link = "crank"
+        <BLANKLINE>
+        """
+        return model_toml(model_dict(self.model), exact=True)
 
     @property
     def name(self) -> str:

@@ -31,7 +31,7 @@ acceleration in u/s^2 times metres per u is a force in N).  For a model
 without a unit, or with another one, no factor is applied and forces are in
 kg u/s^2.  :func:`force_units` names the units.
 
-Imports numpy and the model only.
+Imports numpy and :mod:`gearlever.mechanism.schema` only (the loader imports this module).
 """
 
 from __future__ import annotations
@@ -43,7 +43,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearlever.errors import GearleverError
-from gearlever.mechanism.model import GROUND, MechanismModel
+from gearlever.mechanism import schema
+from gearlever.mechanism.schema import GROUND, MAX_LOAD, MechanismModel
 
 __all__ = [
     "MassSpec",
@@ -60,12 +61,6 @@ __all__ = [
 
 #: Default pressure angle of the gear pairs (rad): 20 degrees.
 DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
-#: Largest mass, moment of inertia, force, torque or gravity component accepted (in the model's units).
-#: Forces are products of these with lengths (at most 1e12) and speeds squared; a value beyond this
-#: cap is far past any machine and would overflow floating point (inf, then NaN forces passed off as
-#: results).  Products of values within the caps that still overflow are refused by the final check
-#: of :func:`gearlever.mechanism.dynamics.inverse_dynamics`.
-MAX_LOAD = 1e100
 
 
 @dataclass(frozen=True)
@@ -148,9 +143,10 @@ def parse_masses(model: MechanismModel, masses=None) -> dict:
         link = _link(model, where, name)
         if not isinstance(t, dict):
             raise GearleverError(f"{where} must be a table {{ mass, centre, inertia }}, got {t!r}")
+        allowed = schema.allowed_keys("masses")
         for k in t:
-            if k not in ("mass", "centre", "inertia"):
-                raise GearleverError(f"{where}: unknown key {k!r} (allowed: mass, centre, inertia)")
+            if k not in allowed:
+                raise GearleverError(f"{where}: unknown key {k!r} (allowed: {', '.join(allowed)})")
         mass = _num(f"{where}.mass", t.get("mass", 0.0), nonneg=True, cap=MAX_LOAD)
         inertia = _num(f"{where}.inertia", t.get("inertia", 0.0), nonneg=True, cap=MAX_LOAD)
         if "centre" in t:
@@ -195,9 +191,10 @@ def parse_loads(model: MechanismModel, loads=None, N: int = 1) -> list:
         where = f"loads[{i}]"
         if not isinstance(t, dict):
             raise GearleverError(f"{where} must be a table {{link, point, force}} or {{link, torque}}, got {t!r}")
+        allowed = schema.allowed_keys("loads")
         for k in t:
-            if k not in ("link", "point", "force", "torque"):
-                raise GearleverError(f"{where}: unknown key {k!r} (allowed: link, point, force, torque)")
+            if k not in allowed:
+                raise GearleverError(f"{where}: unknown key {k!r} (allowed: {', '.join(allowed)})")
         link = _link(model, f"{where}.link", t.get("link"))
         if "force" not in t and "torque" not in t:
             raise GearleverError(f"{where}: give a force (with its point) or a torque")

@@ -1,4 +1,9 @@
-"""Mechanism model files: schema, loading and validation.
+"""Mechanism model files: loading and validation.
+
+The tables, keys, types and caps are declared once in
+:mod:`gearlever.mechanism.schema`; this module reads a model against them
+(the summary below is the schema's, in words).  The writer is
+:mod:`gearlever.mechanism.modelfile`.
 
 A planar mechanism is described as data (a TOML file, or the same structure
 as a dict): named sketch points, rigid links carrying points, sliders, gears,
@@ -68,13 +73,35 @@ from __future__ import annotations
 
 import math
 import numbers
-import re
 import tomllib
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from gearlever._io import read_text_capped
 from gearlever.errors import GearleverError
+from gearlever.mechanism import schema
+from gearlever.mechanism.loads import validate_extra
+from gearlever.mechanism.schema import (
+    GROUND,
+    MAX_COORDINATE,
+    MAX_DEPTH,
+    MAX_ELEMENTS,
+    MAX_HELIX_DEG,
+    MAX_LABEL,
+    MAX_LINKS,
+    MAX_MODEL_BYTES,
+    MAX_NAME,
+    MAX_POINTS,
+    MAX_SCALE_RATIO,
+    MAX_SHIFT,
+    MAX_TEETH,
+    NAME_PATTERN,
+    Gear,
+    InputSpec,
+    Link,
+    MechanismModel,
+    Mesh,
+    Slider,
+)
 
 __all__ = [
     "GROUND",
@@ -88,227 +115,21 @@ __all__ = [
     "MechanismModel",
     "load_model",
     "model_from_dict",
+    "model_from_text",
+    # the caps, declared in gearlever.mechanism.schema
+    "MAX_COORDINATE",
+    "MAX_DEPTH",
+    "MAX_ELEMENTS",
+    "MAX_LINKS",
+    "MAX_MODEL_BYTES",
+    "MAX_NAME",
+    "MAX_POINTS",
+    "MAX_SCALE_RATIO",
+    "MAX_TEETH",
+    "NAME_PATTERN",
 ]
 
-#: Name of the frame link.
-GROUND = "ground"
-
 NEWLINE = b"\n"
-_TOP = ("mechanism", "points", "links", "sliders", "gears", "meshes", "inputs")
-_KEPT_TABLES = ("masses", "loads", "lengths", "friction")
-_MECH_KEYS = ("name", "units", "module")
-_KEPT_MECH_KEYS = ("gravity", "pressure_angle", "mesh_efficiency")
-
-#: Names of points, links, sliders and gears: a letter of any script or ``_``
-#: first, then letters, digits, ``_``, ``-``, ``.`` (Python's Unicode ``\w``).
-NAME_PATTERN = re.compile(r"[^\W\d]+[\w.\-]*")
-#: Longest name (characters).
-MAX_NAME = 64
-#: Largest model file (bytes): real models are a few kB; 4 MiB parses in about a second.
-MAX_MODEL_BYTES = 4 * 2**20
-#: Deepest nesting of arrays and tables (a model needs 3: ``[gears] g = { ... }``).
-MAX_DEPTH = 16
-#: Most links: the structure analysis is a dense rank decision of a
-#: ``2 P5 + P4`` by ``3 n`` Jacobian (cubic in n).  Measured on a loaded 2-core
-#: machine: a 1000-link chain 1.8 s (a 3000-link chain took 73 s and 0.9 GB);
-#: the worst case, 1000 parallel levers on one bar (997 redundant constraints,
-#: 3996 x 3000), 74 s.
-MAX_LINKS = 1000
-#: Most points.
-MAX_POINTS = 5000
-#: Most sliders, gears, meshes, inputs (each).
-MAX_ELEMENTS = 1000
-#: Most teeth of a gear.
-MAX_TEETH = 100_000
-#: Largest profile shift coefficient (in size): a shift beyond 2 points every real tooth.
-MAX_SHIFT = 5.0
-#: Helix angle limit (deg, excluded): the issue's and the handbooks' bound for helical spur-type gears.
-MAX_HELIX_DEG = 45.0
-#: Largest coordinate size (model units): beyond it squared distances lose the
-#: precision the rank decision needs next to lengths of order 1.
-MAX_COORDINATE = 1e12
-#: Largest ratio of the model's size to a link's length (its first two points):
-#: the structure's rank decisions are relative (1e-9); a crank of 10 in a model
-#: spanning 1e11 made a one-dof four-bar read as three dof.
-MAX_SCALE_RATIO = 1e6
-
-
-@dataclass(frozen=True)
-class Link:
-    """A rigid link: the points it carries and their body-fixed coordinates.
-
-    Attributes
-    ----------
-    name : str
-    points : tuple of str
-        In the order listed; the first is the origin of the body frame.
-    origin : tuple of float
-        Sketch position of the first point.
-    angle0 : float
-        Sketch angle (rad) of the line from the first point to the second;
-        0 for a one-point link (its angle is its rotation from the sketch).
-    local : dict
-        Point name -> body-fixed coordinates ``(xi, eta)``: the sketch offset
-        from ``origin`` turned back by ``angle0``.
-    """
-
-    name: str
-    points: tuple
-    origin: tuple
-    angle0: float
-    local: dict = field(repr=False)
-
-
-@dataclass(frozen=True)
-class Slider:
-    """A prismatic pair: ``link`` slides along a straight guide fixed on ``on``.
-
-    The guide passes through the sketch position of ``point`` (a point of
-    ``link``) along the unit vector ``direction`` (sketch orientation), and
-    turns with ``on``; ``link`` does not turn relative to ``on``.  Its
-    displacement is measured along ``direction`` from the sketch.
-    """
-
-    name: str
-    link: str
-    on: str
-    point: str
-    direction: tuple
-
-
-@dataclass(frozen=True)
-class Gear:
-    """A gear rigid on ``link``, centred at ``centre``; ``internal`` for a ring.
-
-    ``shift`` is the profile shift coefficient x, ``face_width`` the face
-    width (model units, None when not given), ``helix`` the helix angle (rad).
-    """
-
-    name: str
-    link: str
-    centre: str
-    teeth: int
-    internal: bool = False
-    shift: float = 0.0
-    face_width: float | None = None
-    helix: float = 0.0
-
-
-@dataclass(frozen=True)
-class Mesh:
-    """A gear mesh (higher pair) of gears ``a`` and ``b`` whose centres ``carrier`` carries."""
-
-    name: str
-    a: str
-    b: str
-    carrier: str
-    efficiency: float | None = None  # tooth efficiency of this pair (None: [mechanism] mesh_efficiency or 1)
-
-
-@dataclass(frozen=True)
-class InputSpec:
-    """One input (degree of freedom).
-
-    ``kind`` is ``"link"`` (absolute angle of ``name``, or relative to the
-    link ``relative_to``) or ``"slider"`` (displacement of slider ``name``).
-    """
-
-    kind: str
-    name: str
-    relative_to: str | None = None
-
-    @property
-    def label(self) -> str:
-        """``"crank"``, ``"crank/ground2"`` or ``"slider:piston"``."""
-        if self.kind == "slider":
-            return f"slider:{self.name}"
-        return self.name if self.relative_to is None else f"{self.name}/{self.relative_to}"
-
-
-@dataclass(frozen=True)
-class MechanismModel:
-    """The parsed, validated data of a mechanism model file.
-
-    Attributes
-    ----------
-    name, units : str
-        From ``[mechanism]`` (``units`` is only a label for lengths).
-    module : float or None
-        Gear module; when given every mesh's centre distance was checked.
-    points : dict
-        Point name -> sketch position ``(x, y)``.
-    links : dict
-        Link name -> :class:`Link`; ``"ground"`` is the frame.
-    moving : tuple of str
-        The moving links (all but ground), in file order: the column order of
-        the absolute-coordinate Jacobian (columns ``x, y, theta`` of each).
-    joints : tuple of tuple
-        Revolute pairs ``(point, link_i, link_j)``: a point carried by ``k``
-        links gives ``k - 1`` pairs, all with its first carrier.
-    sliders : tuple of Slider
-    gears : dict
-        Gear name -> :class:`Gear`.
-    meshes : tuple of Mesh
-    inputs : tuple of InputSpec
-    extra : dict
-        Raw values of the tables and keys this loader keeps but does not
-        read: ``masses``, ``loads`` (top level), ``gravity``,
-        ``pressure_angle`` (of ``[mechanism]``); only those present.
-
-    Examples
-    --------
-    >>> m = model_from_dict({"points": {"O": [0, 0], "A": [1, 0]},
-    ...                      "links": {"ground": ["O"], "crank": ["O", "A"]},
-    ...                      "inputs": [{"link": "crank"}]})
-    >>> m.moving, [i.label for i in m.inputs]
-    (('crank',), ['crank'])
-    """
-
-    name: str
-    units: str
-    module: float | None
-    points: dict
-    links: dict
-    moving: tuple
-    joints: tuple
-    sliders: tuple
-    gears: dict
-    meshes: tuple
-    inputs: tuple
-    extra: dict = field(default_factory=dict, repr=False)
-
-    def carriers(self, point: str) -> tuple:
-        """Links carrying ``point``, in file order."""
-        return tuple(name for name, link in self.links.items() if point in link.local)
-
-    def mesh_internal(self, mesh: Mesh) -> bool:
-        """True when one gear of ``mesh`` is internal (a ring)."""
-        return self.gears[mesh.a].internal or self.gears[mesh.b].internal
-
-    def pitch_radius(self, gear: str) -> float | None:
-        """Pitch radius of ``gear``: ``module * teeth / 2``, or from its first mesh's centre distance.
-
-        Returns None for a gear in no mesh when no module is given.
-        """
-        g = self.gears[gear]
-        if self.module is not None:
-            return self.module * g.teeth / (2.0 * math.cos(g.helix))
-        for m in self.meshes:
-            if gear in (m.a, m.b):
-                ga, gb = self.gears[m.a], self.gears[m.b]
-                d = math.dist(self.points[ga.centre], self.points[gb.centre])
-                zsum = abs(ga.teeth - gb.teeth) if self.mesh_internal(m) else ga.teeth + gb.teeth
-                if zsum > 0 and d > 0:
-                    return d * g.teeth / zsum
-        return None
-
-    @property
-    def length_scale(self) -> float:
-        """Largest distance of a sketch point from the centroid of all points (>= 1e-300)."""
-        xs = [p[0] for p in self.points.values()]
-        ys = [p[1] for p in self.points.values()]
-        cx, cy = sum(xs) / len(xs), sum(ys) / len(ys)
-        return max(max(math.hypot(x - cx, y - cy) for x, y in zip(xs, ys)), 1e-300)
 
 
 # --------------------------------------------------------------------------- helpers
@@ -387,8 +208,8 @@ def _str(where: str, v) -> str:
 def _label(where: str, v) -> str:
     """A free-text label (mechanism name): one line, no control characters, at most 200 characters."""
     v = _str(where, v)
-    if len(v) > 200 or any(ord(c) < 32 or 127 <= ord(c) < 160 for c in v):
-        raise GearleverError(f"{where} must be one line of at most 200 characters without control characters")
+    if len(v) > MAX_LABEL or any(ord(c) < 32 or 127 <= ord(c) < 160 for c in v):
+        raise GearleverError(f"{where} must be one line of at most {MAX_LABEL} characters without control characters")
     return v
 
 
@@ -461,26 +282,65 @@ def load_model(path) -> MechanismModel:
     ('crank',)
     """
     p = Path(path)
-    text = read_text_capped(p, "model file", MAX_MODEL_BYTES)
-    raw = text.encode("utf-8")
+    return model_from_text(read_text_capped(p, "model file", MAX_MODEL_BYTES), where=str(p))
+
+
+def model_from_text(text: str, where: str | None = None) -> MechanismModel:
+    """Parse and validate the TOML text of a model file.
+
+    Parameters
+    ----------
+    text : str
+        At most :data:`MAX_MODEL_BYTES` bytes in UTF-8.
+    where : str, optional
+        The text's origin (a file name), prefixed to every refusal.
+
+    Returns
+    -------
+    MechanismModel
+
+    Raises
+    ------
+    GearleverError
+        Text beyond the size cap, TOML syntax error (with its line and
+        column), or any element refused by :func:`model_from_dict`.
+
+    Examples
+    --------
+    >>> model_from_text('[points]\\nO = [0, 0]\\nA = [1, 0]\\n[links]\\nground = ["O"]\\n'
+    ...                 'crank = ["O", "A"]\\n[[inputs]]\\nlink = "crank"\\n').moving
+    ('crank',)
+    """
+    prefix = f"{where}: " if where else ""
+    if not isinstance(text, str):
+        raise GearleverError(f"{prefix}a model's text must be a string, got {type(text).__name__}")
+    raw = text.encode("utf-8", "surrogatepass")
+    if len(raw) > MAX_MODEL_BYTES:
+        raise GearleverError(f"{prefix}{len(raw)} bytes, more than the cap of {MAX_MODEL_BYTES} bytes of a model file")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
         if "line" not in msg:
             msg += f" (line {raw.count(NEWLINE) + 1})"
-        raise GearleverError(f"{p}: TOML syntax error: {msg}") from None
+        raise GearleverError(f"{prefix}TOML syntax error: {msg}") from None
     except RecursionError:
         # tomllib parses nested arrays and inline tables recursively
-        raise GearleverError(f"{p}: nested deeper than the cap of {MAX_DEPTH} levels of arrays and tables") from None
+        raise GearleverError(f"{prefix}nested deeper than the cap of {MAX_DEPTH} levels of arrays and tables") from None
     try:
         return model_from_dict(data)
     except GearleverError as exc:
-        raise GearleverError(f"{p}: {exc}") from None
+        raise GearleverError(f"{prefix}{exc}") from None
 
 
 def model_from_dict(d) -> MechanismModel:
     """Validate a model given as a dict (the TOML file's structure) and parse it.
+
+    The steps, each a function: the top-level tables (:func:`_read_tables`),
+    ``[mechanism]`` (:func:`_read_mechanism`), points, links and their
+    joints, sliders, gears, meshes, inputs, then the kept tables (``[lengths]``
+    here, masses and loads by :func:`gearlever.mechanism.loads.validate_extra`).
+    The allowed tables and keys come from :mod:`gearlever.mechanism.schema`.
 
     Parameters
     ----------
@@ -516,18 +376,58 @@ def model_from_dict(d) -> MechanismModel:
     >>> m.joints
     (('O', 'ground', 'crank'),)
     """
+    extra = _read_tables(d)
+    name, units, module = _read_mechanism(d, extra)
+    points = _read_points(d)
+    links = _read_links(d, points)
+    moving = tuple(n for n in links if n != GROUND)
+    if not moving:
+        raise GearleverError("[links]: the mechanism needs at least one moving link besides ground")
+    joints = _joints(points, links)
+    sliders = _read_sliders(d, points, links)
+    _check_connected(links, joints, sliders)
+    gears = _read_gears(d, points, links)
+    meshes = _read_meshes(d, points, links, gears, module)
+    inputs = _read_inputs(d, links, sliders)
+    # [lengths]: checked here, used by gearlever.mechanism.assemble (kept raw in extra)
+    if "lengths" in d:
+        parse_lengths(d["lengths"], links)
+    _check_columns(points, links, sliders, inputs, units)
+    model = MechanismModel(
+        name=name,
+        units=units,
+        module=module,
+        points=points,
+        links=links,
+        moving=moving,
+        joints=tuple(joints),
+        sliders=tuple(sliders),
+        gears=gears,
+        meshes=tuple(meshes),
+        inputs=tuple(inputs),
+        extra=extra,
+    )
+    validate_extra(model)
+    return model
+
+
+def _read_tables(d) -> dict:
+    """Check the top-level tables against the schema; return the kept ones (``extra``)."""
     if not isinstance(d, dict):
         raise GearleverError(f"model must be a table (dict), got {type(d).__name__}")
     depth(d)
+    allowed = schema.allowed_tables()
     for k in d:
         if not isinstance(k, str):
             raise GearleverError(f"table names must be strings, got {_short(k)}")
-        if k not in _TOP and k not in _KEPT_TABLES:
-            hint = _OTHER_FILES.get(k, "")
-            raise GearleverError(f"unknown table [{k}] (allowed: {', '.join(_TOP + _KEPT_TABLES)}){hint}")
-    extra = {k: d[k] for k in _KEPT_TABLES if k in d}
+        if k not in allowed:
+            raise GearleverError(f"unknown table [{k}] (allowed: {', '.join(allowed)}){_OTHER_FILES.get(k, '')}")
+    return {k: d[k] for k in schema.kept_tables() if k in d}
 
-    mech = _table("[mechanism]", d.get("mechanism", {}), _MECH_KEYS + _KEPT_MECH_KEYS)
+
+def _read_mechanism(d, extra: dict) -> tuple:
+    """``(name, units, module)`` of ``[mechanism]``; its force settings go into ``extra``."""
+    mech = _table("[mechanism]", d.get("mechanism", {}), schema.allowed_keys("mechanism"))
     name = _label("mechanism.name", mech["name"]) if "name" in mech else "mechanism"
     units = _name("mechanism.units", mech["units"]) if "units" in mech else ""
     module = None
@@ -535,20 +435,25 @@ def model_from_dict(d) -> MechanismModel:
         module = _num("mechanism.module", mech["module"])
         if module <= 0:
             raise GearleverError(f"mechanism.module must be positive, got {mech['module']!r}")
-    for k in _KEPT_MECH_KEYS:
+    for k in schema.KEPT_MECHANISM_KEYS:
         if k in mech:
             extra[k] = mech[k]
+    return name, units, module
 
-    # points
+
+def _read_points(d) -> dict:
+    """Point name -> sketch position, from ``[points]``."""
     if "points" not in d:
         raise GearleverError("missing table [points]")
     pts = d["points"]
     if not isinstance(pts, dict) or not pts:
         raise GearleverError("[points] must be a non-empty table of NAME = [x, y]")
     _count("[points]", len(pts), MAX_POINTS)
-    points = {_name("[points]", k): _coords(f"points.{k}", v) for k, v in pts.items()}
+    return {_name("[points]", k): _coords(f"points.{k}", v) for k, v in pts.items()}
 
-    # links
+
+def _read_links(d, points: dict) -> dict:
+    """Link name -> :class:`Link`, from ``[links]`` (ground present, scale checked)."""
     if "links" not in d:
         raise GearleverError("missing table [links]")
     lk = d["links"]
@@ -578,10 +483,11 @@ def model_from_dict(d) -> MechanismModel:
             seen.append(p)
         links[lname] = _make_link(lname, tuple(seen), points)
     _check_scale(points, links)
-    moving = tuple(n for n in links if n != GROUND)
-    if not moving:
-        raise GearleverError("[links]: the mechanism needs at least one moving link besides ground")
+    return links
 
+
+def _joints(points: dict, links: dict) -> list:
+    """Revolute pairs ``(point, first carrier, other carrier)``; every point must be carried."""
     carried: dict = {p: [] for p in points}
     for n, link in links.items():
         for p in link.points:
@@ -592,14 +498,17 @@ def model_from_dict(d) -> MechanismModel:
             raise GearleverError(f"points.{p}: no link carries this point (list it in a link of [links], or remove it)")
         for other in carriers[1:]:
             joints.append((p, carriers[0], other))
+    return joints
 
-    # sliders
+
+def _read_sliders(d, points: dict, links: dict) -> list:
+    """The :class:`Slider` of each ``[[sliders]]``."""
     sliders = []
     stab = _array_of_tables("sliders", d.get("sliders", []))
     _count("[[sliders]]", len(stab), MAX_ELEMENTS)
     for i, t in enumerate(stab):
         where = f"sliders[{i}]"
-        _table(where, t, ("name", "link", "on", "point", "direction"), ("link", "on", "point", "direction"))
+        _table(where, t, schema.allowed_keys("sliders"), schema.required_keys("sliders"))
         link = _str(f"{where}.link", t["link"])
         on = _str(f"{where}.on", t["on"])
         for k, v in (("link", link), ("on", on)):
@@ -620,11 +529,12 @@ def model_from_dict(d) -> MechanismModel:
             raise GearleverError(f"{where}.direction must be a non-zero vector, got {t['direction']!r}")
         if any(s.name == sname for s in sliders):
             raise GearleverError(f"{where}: slider name {sname!r} used twice (give each a name)")
-        sliders.append(Slider(sname, link, on, point, (ux / norm, uy / norm)))
+        sliders.append(Slider(sname, link, on, point, (ux / norm, uy / norm), (ux, uy)))
+    return sliders
 
-    _check_connected(links, joints, sliders)
 
-    # gears
+def _read_gears(d, points: dict, links: dict) -> dict:
+    """Gear name -> :class:`Gear`, from ``[gears]``."""
     gtab = d.get("gears", {})
     if not isinstance(gtab, dict):
         raise GearleverError("[gears] must be a table of NAME = { link, centre, teeth }")
@@ -633,8 +543,7 @@ def model_from_dict(d) -> MechanismModel:
     for gname, t in gtab.items():
         _name("[gears]", gname)
         where = f"gears.{gname}"
-        keys = ("link", "centre", "teeth", "internal", "shift", "face_width", "helix")
-        _table(where, t, keys, ("link", "centre", "teeth"))
+        _table(where, t, schema.allowed_keys("gears"), schema.required_keys("gears"))
         link = _str(f"{where}.link", t["link"])
         if link not in links:
             raise GearleverError(f"{where}.link: unknown link {link!r}")
@@ -661,16 +570,20 @@ def model_from_dict(d) -> MechanismModel:
         if not 0.0 <= helix < MAX_HELIX_DEG:
             raise GearleverError(f"{where}.helix must be in [0, {MAX_HELIX_DEG:g}) deg, got {_short(t['helix'])}")
         gears[gname] = Gear(gname, link, centre, int(z), internal, shift, width, math.radians(helix))
+    return gears
 
-    # meshes
+
+def _read_meshes(d, points: dict, links: dict, gears: dict, module) -> list:
+    """The :class:`Mesh` of each ``[[meshes]]`` (carrier found, centre distance checked against the module)."""
     meshes = []
+    mech = d.get("mechanism") if isinstance(d.get("mechanism"), dict) else {}
     pa = mech.get("pressure_angle", 20.0)  # validated later (loads.validate_extra); 20 deg meanwhile if out of range
     alpha = math.radians(float(pa)) if _is_num(pa) and 0.0 < pa < 60.0 else math.radians(20.0)
     mtab = _array_of_tables("meshes", d.get("meshes", []))
     _count("[[meshes]]", len(mtab), MAX_ELEMENTS)
     for i, t in enumerate(mtab):
         where = f"meshes[{i}]"
-        _table(where, t, ("gears", "carrier", "efficiency"), ("gears",))
+        _table(where, t, schema.allowed_keys("meshes"), schema.required_keys("meshes"))
         pair = t["gears"]
         if not isinstance(pair, list) or len(pair) != 2 or not all(isinstance(g, str) for g in pair):
             raise GearleverError(f"{where}.gears must be a pair of gear names, got {pair!r}")
@@ -686,104 +599,103 @@ def model_from_dict(d) -> MechanismModel:
             raise GearleverError(f"{where}: two internal gears cannot mesh")
         if ga.link == gb.link:
             raise GearleverError(f"{where}: both gears are on the same link {ga.link!r}")
-        centres = {ga.centre, gb.centre}
-        if "carrier" in t:
-            carrier = _str(f"{where}.carrier", t["carrier"])
-            if carrier not in links:
-                raise GearleverError(f"{where}.carrier: unknown link {carrier!r}")
-            if not centres <= set(links[carrier].local):
-                raise GearleverError(f"{where}.carrier: link {carrier!r} does not carry both gear centres")
-        else:
-            cands = [n for n in links if centres <= set(links[n].local)]
-            if not cands:
-                raise GearleverError(f"{where}: no carrier (no link carries both centres {ga.centre}, {gb.centre})")
-            if len(cands) > 1:
-                raise GearleverError(f"{where}: two or more carriers {cands}; name one with carrier = ...")
-            carrier = cands[0]
+        carrier = _mesh_carrier(where, t, links, ga, gb)
         if ga.helix != gb.helix:
             raise GearleverError(
                 f"{where}: the helix angles differ ({math.degrees(ga.helix):g} and {math.degrees(gb.helix):g} deg)"
             )
         if module is not None:
-            dist = math.dist(points[ga.centre], points[gb.centre])
-            internal = ga.internal or gb.internal
-            try:
-                want = tight_centre_distance(module, ga, gb, alpha)
-            except GearleverError as exc:
-                raise GearleverError(f"{where}: {exc}") from None
-            if abs(dist - want) > 1e-6 * max(want, 1.0):
-                shifted = ga.shift != 0 or gb.shift != 0 or ga.helix != 0
-                plain = f"m (z_a {'-' if internal else '+'} z_b) / 2"
-                rule = "the working centre distance of its shifts and helix" if shifted else plain
-                raise GearleverError(
-                    f"{where}: centre distance {dist:.9g} does not match module {module:g}: {rule} = {want:.9g}"
-                )
+            _check_module(where, points, module, ga, gb, alpha)
         eff = None
         if "efficiency" in t:
             eff = _num(f"{where}.efficiency", t["efficiency"])
             if not 0.0 < eff <= 1.0:
                 raise GearleverError(f"{where}.efficiency must be in (0, 1], got {t['efficiency']!r}")
         meshes.append(Mesh(f"{a}-{b}", a, b, carrier, eff))
+    return meshes
 
-    # inputs
+
+def _mesh_carrier(where: str, t: dict, links: dict, ga: Gear, gb: Gear) -> str:
+    """The mesh's carrier: the one given, or the one link carrying both centres."""
+    centres = {ga.centre, gb.centre}
+    if "carrier" in t:
+        carrier = _str(f"{where}.carrier", t["carrier"])
+        if carrier not in links:
+            raise GearleverError(f"{where}.carrier: unknown link {carrier!r}")
+        if not centres <= set(links[carrier].local):
+            raise GearleverError(f"{where}.carrier: link {carrier!r} does not carry both gear centres")
+        return carrier
+    cands = [n for n in links if centres <= set(links[n].local)]
+    if not cands:
+        raise GearleverError(f"{where}: no carrier (no link carries both centres {ga.centre}, {gb.centre})")
+    if len(cands) > 1:
+        raise GearleverError(f"{where}: two or more carriers {cands}; name one with carrier = ...")
+    return cands[0]
+
+
+def _check_module(where: str, points: dict, module: float, ga: Gear, gb: Gear, alpha: float) -> None:
+    """Refuse a centre distance that is not the pair's tight one to 1e-6 relative.
+
+    Unshifted spur gears: ``m (z_a +- z_b) / 2``; with shifts or a helix, the
+    working centre distance (:func:`tight_centre_distance`).
+    """
+    dist = math.dist(points[ga.centre], points[gb.centre])
+    internal = ga.internal or gb.internal
+    try:
+        want = tight_centre_distance(module, ga, gb, alpha)
+    except GearleverError as exc:
+        raise GearleverError(f"{where}: {exc}") from None
+    if abs(dist - want) > 1e-6 * max(want, 1.0):
+        shifted = ga.shift != 0 or gb.shift != 0 or ga.helix != 0
+        plain = f"m (z_a {'-' if internal else '+'} z_b) / 2"
+        rule = "the working centre distance of its shifts and helix" if shifted else plain
+        raise GearleverError(
+            f"{where}: centre distance {dist:.9g} does not match module {module:g}: {rule} = {want:.9g}"
+        )
+
+
+def _read_inputs(d, links: dict, sliders: list) -> list:
+    """The :class:`InputSpec` of each ``[[inputs]]`` (at least one)."""
     inputs = []
     itab = _array_of_tables("inputs", d.get("inputs", []))
     _count("[[inputs]]", len(itab), MAX_ELEMENTS)
     for i, t in enumerate(itab):
         where = f"inputs[{i}]"
-        _table(where, t, ("link", "relative_to", "slider"))
+        _table(where, t, schema.allowed_keys("inputs"))
         if ("link" in t) == ("slider" in t):
             raise GearleverError(f"{where}: give exactly one of link = ... or slider = ...")
-        if "slider" in t:
-            if "relative_to" in t:
-                raise GearleverError(f"{where}: relative_to applies to a link input only")
-            s = _str(f"{where}.slider", t["slider"])
-            if not any(sl.name == s for sl in sliders):
-                raise GearleverError(f"{where}.slider: unknown slider {s!r}")
-            spec = InputSpec("slider", s)
-        else:
-            lname = _str(f"{where}.link", t["link"])
-            if lname not in links:
-                raise GearleverError(f"{where}.link: unknown link {lname!r}")
-            if lname == GROUND:
-                raise GearleverError(f"{where}.link: an input cannot be on ground")
-            rel = None
-            if "relative_to" in t:
-                rel = _str(f"{where}.relative_to", t["relative_to"])
-                if rel not in links:
-                    raise GearleverError(f"{where}.relative_to: unknown link {rel!r}")
-                if rel == lname:
-                    raise GearleverError(f"{where}.relative_to: must be another link than {lname!r}")
-            spec = InputSpec("link", lname, rel)
+        spec = _slider_input(where, t, sliders) if "slider" in t else _link_input(where, t, links)
         if spec in inputs:
             raise GearleverError(f"{where}: input {spec.label!r} given twice")
         inputs.append(spec)
     if not inputs:
         raise GearleverError("missing [[inputs]]: give one per degree of freedom")
+    return inputs
 
-    # [lengths]: checked here, used by gearlever.mechanism.assemble (kept raw in extra)
-    if "lengths" in d:
-        parse_lengths(d["lengths"], links)
 
-    _check_columns(points, links, sliders, inputs, units)
-    model = MechanismModel(
-        name=name,
-        units=units,
-        module=module,
-        points=points,
-        links=links,
-        moving=moving,
-        joints=tuple(joints),
-        sliders=tuple(sliders),
-        gears=gears,
-        meshes=tuple(meshes),
-        inputs=tuple(inputs),
-        extra=extra,
-    )
-    from gearlever.mechanism.loads import validate_extra  # loads imports this module
+def _slider_input(where: str, t: dict, sliders: list) -> InputSpec:
+    if "relative_to" in t:
+        raise GearleverError(f"{where}: relative_to applies to a link input only")
+    s = _str(f"{where}.slider", t["slider"])
+    if not any(sl.name == s for sl in sliders):
+        raise GearleverError(f"{where}.slider: unknown slider {s!r}")
+    return InputSpec("slider", s)
 
-    validate_extra(model)
-    return model
+
+def _link_input(where: str, t: dict, links: dict) -> InputSpec:
+    lname = _str(f"{where}.link", t["link"])
+    if lname not in links:
+        raise GearleverError(f"{where}.link: unknown link {lname!r}")
+    if lname == GROUND:
+        raise GearleverError(f"{where}.link: an input cannot be on ground")
+    rel = None
+    if "relative_to" in t:
+        rel = _str(f"{where}.relative_to", t["relative_to"])
+        if rel not in links:
+            raise GearleverError(f"{where}.relative_to: unknown link {rel!r}")
+        if rel == lname:
+            raise GearleverError(f"{where}.relative_to: must be another link than {lname!r}")
+    return InputSpec("link", lname, rel)
 
 
 def _inv_involute(value: float) -> float:

@@ -1,17 +1,14 @@
-"""The one home for writing model files: a synthesized linkage as a model dict and its TOML text.
+"""The synthesized linkages as model dicts.
 
-Every package that writes a model file (the synthesis kinds, the coupler-curve
-library :mod:`gearlever.curves`, the command line, the animation of a
-four-bar in :mod:`gearlever.plotting`) builds its dict with the helpers here
-and writes it with :func:`model_toml`:
-
-- :func:`model_toml`: the TOML text of a model dict (tables in the schema's
-  order, coordinates settled at :data:`COORD_DIGITS` digits of the size);
-- the builders of the synthesized linkages: :func:`fourbar_model`,
-  :func:`slider_crank_model`, :func:`geared_fivebar_model`,
-  :func:`stephenson_sixbar_model`;
-- the pieces other writers share: :func:`mechanism_table` (the
-  ``[mechanism]`` table) and :func:`xy_pair` (a checked point).
+The builders of the synthesized linkages: :func:`fourbar_model`,
+:func:`slider_crank_model`, :func:`geared_fivebar_model`,
+:func:`stephenson_sixbar_model`.  The model file's writer is
+:mod:`gearlever.mechanism.modelfile` (:func:`~gearlever.mechanism.modelfile.model_toml`,
+:func:`~gearlever.mechanism.modelfile.mechanism_table`,
+:func:`~gearlever.mechanism.modelfile.xy_pair`); ``model_toml``,
+``mechanism_table`` and ``xy_pair`` are still importable from here while
+their callers move (deprecated here: import them from
+:mod:`gearlever.mechanism.modelfile`).
 
 The point and link names follow one convention for every synthesized
 four-bar: ``O2`` input (crank) pivot, ``O4`` output (rocker) ground pivot,
@@ -19,7 +16,7 @@ four-bar: ``O2`` input (crank) pivot, ``O4`` output (rocker) ground pivot,
 ``crank``, ``coupler``, ``rocker``; the crank is the input.  The schema is
 that of :mod:`gearlever.mechanism.model`.
 
-Imports only :mod:`gearlever.errors` and :mod:`gearlever._format`.
+Imports only :mod:`gearlever.errors` and :mod:`gearlever.mechanism.modelfile`.
 """
 
 from __future__ import annotations
@@ -27,6 +24,7 @@ from __future__ import annotations
 import math
 
 from gearlever.errors import GearleverError
+from gearlever.mechanism.modelfile import mechanism_table, model_toml, xy_pair
 
 __all__ = [
     "fourbar_model",
@@ -37,58 +35,6 @@ __all__ = [
     "stephenson_sixbar_model",
     "xy_pair",
 ]
-
-#: Significant digits of other numbers written to a model file.
-DIGITS = 15
-
-#: Digits of the model's size at which point coordinates are written
-#: (:mod:`gearlever._format`): exact to 1e-9 of the size, which every
-#: synthesis meets, and a coordinate that is zero up to rounding is written 0.
-COORD_DIGITS = 10
-
-
-def xy_pair(where: str, p) -> list:
-    """A point ``[x, y]`` of a model file: a pair of finite floats (``-0.0`` written ``0.0``).
-
-    Parameters
-    ----------
-    where : str
-        The point's name, in the message of a refusal.
-    p : pair of float
-
-    Raises
-    ------
-    GearleverError
-        Naming ``where`` when ``p`` is not a pair of finite numbers.
-
-    Examples
-    --------
-    >>> xy_pair("A", (1, -0.0))
-    [1.0, 0.0]
-    >>> try:
-    ...     xy_pair("A", (1, float("nan")))
-    ... except GearleverError as exc:
-    ...     print(exc)
-    A must be finite, got (1, nan)
-    """
-    try:
-        x, y = (float(v) for v in p)
-    except (TypeError, ValueError):
-        raise GearleverError(f"{where} must be a pair of numbers (x, y), got {p!r}") from None
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise GearleverError(f"{where} must be finite, got {p!r}")
-    return [x + 0.0, y + 0.0]
-
-
-def mechanism_table(name: str, units: str) -> dict:
-    """The ``[mechanism]`` table of a written model: its name, and its length unit when one is given.
-
-    Examples
-    --------
-    >>> mechanism_table("crank", ""), mechanism_table("crank", "mm")
-    ({'name': 'crank'}, {'name': 'crank', 'units': 'mm'})
-    """
-    return {"name": name, "units": units} if units else {"name": name}
 
 
 def fourbar_model(O2, O4, A, B, P=None, *, name: str = "synthesized four-bar", units: str = "") -> dict:
@@ -170,66 +116,6 @@ def slider_crank_model(
         "sliders": [{"link": "slider", "on": "ground", "point": "B", "direction": u}],
         "inputs": [{"link": "crank"}],
     }
-
-
-def _value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float):
-        if not math.isfinite(v):
-            raise GearleverError(f"a model value must be finite, got {v!r}")
-        text = f"{v + 0.0:.{DIGITS}g}"
-        return text if any(c in text for c in ".en") else text + ".0"
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_value(x) for x in v) + "]"
-    if isinstance(v, dict):
-        return "{ " + ", ".join(f"{_key(k)} = {_value(x)}" for k, x in v.items()) + " }"
-    raise GearleverError(f"cannot write {type(v).__name__} into a model file")
-
-
-def _key(k: str) -> str:
-    k = str(k)
-    return k if k and all(c.isalnum() or c in "_-" for c in k) and k.isascii() else _value(k)
-
-
-def _settled(model: dict) -> dict:
-    """The model with its point coordinates at :data:`COORD_DIGITS` of its size (largest coordinate)."""
-    from gearlever._format import rounded
-
-    pts = model.get("points", {})
-    coords = [abs(float(c)) for p in pts.values() for c in p if isinstance(c, (int, float))]
-    coords = [c for c in coords if math.isfinite(c)]
-    size = max(coords) if coords else 0.0
-    if size == 0.0:
-        return model
-    out = dict(model)
-    out["points"] = {k: rounded([float(c) for c in v], COORD_DIGITS, size) for k, v in pts.items()}
-    return out
-
-
-def model_toml(model: dict, comment: str = "") -> str:
-    """TOML text of a model dict (tables in the order of the schema; arrays of tables as ``[[...]]``).
-
-    Examples
-    --------
-    >>> import tomllib
-    >>> d = fourbar_model((0, 0), (4, 0), (1, 0), (4.5, 2.8))
-    >>> tomllib.loads(model_toml(d)) == d
-    True
-    """
-    lines = [f"# {c}" for c in comment.splitlines()] if comment else []
-    model = _settled(model)
-    for table in ("mechanism", "points", "links", "gears", "masses"):
-        if table in model:
-            lines += ["", f"[{table}]"] + [f"{_key(k)} = {_value(v)}" for k, v in model[table].items()]
-    for array in ("sliders", "meshes", "inputs", "loads"):
-        for item in model.get(array, []):
-            lines += ["", f"[[{array}]]"] + [f"{_key(k)} = {_value(v)}" for k, v in item.items()]
-    return "\n".join(lines).lstrip("\n") + "\n"
 
 
 def geared_fivebar_model(

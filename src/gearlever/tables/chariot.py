@@ -81,7 +81,7 @@ def car_cases_table(
     rows = []
     for name, kw in cases:
         s = car_differential(pinion_teeth, ring_teeth, pinion_speed_rad_s, pinion_torque_N_m, **kw)
-        d = s.as_dict()
+        d = s.summary()
         rows.append(
             {
                 "case": name,

@@ -112,7 +112,7 @@ def _factor_rec(n, k, lo, hi, prefix, out, budget) -> None:
 
 
 @dataclass(frozen=True)
-class TrainDesign:
+class TrainDesign(Result):
     """One train: drivers and followers paired for even wear.
 
     Attributes
@@ -152,7 +152,12 @@ class TrainDesign:
     def total_teeth(self) -> int:
         return sum(self.drivers) + sum(self.followers)
 
-    def as_dict(self) -> dict:
+    def _frame_columns(self) -> dict:
+        """One row: teeth as space-separated text, exact and float ratio (as :class:`DesignResult`'s rows)."""
+        return _design_columns((self,))
+
+    def summary(self) -> dict:
+        """JSON-ready record of the design (the command line's json): exact ratio as ``"p/q"``, its error, gcds."""
         return {
             "drivers": list(self.drivers),
             "followers": list(self.followers),
@@ -303,7 +308,7 @@ def _has_prime_factor_above(n: int, bound: int) -> bool:
 class DesignResult(Result):
     """Result of :func:`design_train`.
 
-    :meth:`as_dict` gives JSON-ready values (ratios as ``"B/C"`` text);
+    :meth:`summary` gives JSON-ready values (ratios as ``"B/C"`` text);
     :meth:`to_frame` one row per design.
 
     Attributes
@@ -336,7 +341,8 @@ class DesignResult(Result):
     designs: tuple[TrainDesign, ...]
     tried: tuple
 
-    def as_dict(self) -> dict:
+    def summary(self) -> dict:
+        """JSON-ready record of the result (the command line's json): bounds, method and every design."""
         return {
             "target": f"{self.target.numerator}/{self.target.denominator}",
             "target_float": float(self.target),
@@ -347,7 +353,7 @@ class DesignResult(Result):
             "pairs_young": self.bounds.young,
             "method": self.method,
             "approximation": f"{self.approximation.numerator}/{self.approximation.denominator}",
-            "designs": [d.as_dict() for d in self.designs],
+            "designs": [d.summary() for d in self.designs],
         }
 
     def _frame_columns(self) -> dict:

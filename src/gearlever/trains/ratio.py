@@ -22,13 +22,14 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from gearlever import _validate
+from gearlever._result import Result
 from gearlever.errors import GearleverError
 
 __all__ = ["TrainRatio", "train_ratio"]
 
 
 @dataclass(frozen=True)
-class TrainRatio:
+class TrainRatio(Result):
     """Result of :func:`train_ratio`.
 
     Attributes
@@ -71,8 +72,8 @@ class TrainRatio:
         """Signed ratio as a float."""
         return float(self.ratio)
 
-    def as_dict(self) -> dict:
-        """Plain-Python record (the CLI's json)."""
+    def summary(self) -> dict:
+        """JSON-ready record (the command line's json): exact ratio ``"p/q"``, its float and sense."""
         return {
             "drivers": list(self.drivers),
             "followers": list(self.followers),

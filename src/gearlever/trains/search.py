@@ -294,7 +294,7 @@ def _iter_factorizations(n: int, k: int, lo: int, hi: int) -> Iterator[tuple[int
 
 
 @dataclass(frozen=True)
-class TrainSolution:
+class TrainSolution(Result):
     """One optimal tooth set (drivers and followers each as a sorted multiset).
 
     Attributes
@@ -313,7 +313,8 @@ class TrainSolution:
         """Driver-follower pairs arranged for the least gcd (:func:`~gearlever.trains.pairing.best_pairing`)."""
         return best_pairing(self.drivers, self.followers)
 
-    def as_dict(self) -> dict:
+    def summary(self) -> dict:
+        """JSON-ready record (the command line's json): teeth, exact ratio ``"p/q"``, pairing and gcds."""
         pairing = self.pairing
         return {
             "drivers": list(self.drivers),
@@ -328,7 +329,7 @@ class TrainSolution:
 class SearchResult(Result):
     """Result of :func:`search_best`.
 
-    :meth:`as_dict` gives JSON-ready values; :meth:`to_frame` one row per
+    :meth:`summary` gives JSON-ready values; :meth:`to_frame` one row per
     listed solution.
 
     Attributes
@@ -396,7 +397,8 @@ class SearchResult(Result):
         """True if every optimal tooth set is listed."""
         return len(self.solutions) == self.n_solutions
 
-    def as_dict(self) -> dict:
+    def summary(self) -> dict:
+        """JSON-ready record of the search (the command line's json), every listed solution included."""
         return {
             "target": f"{self.target.numerator}/{self.target.denominator}",
             "target_float": float(self.target),
@@ -416,7 +418,7 @@ class SearchResult(Result):
             "space_size": self.space_size,
             "limit": self.limit,
             "listed": len(self.solutions),
-            "solutions": [s.as_dict() for s in self.solutions],
+            "solutions": [s.summary() for s in self.solutions],
         }
 
     def _frame_columns(self) -> dict:
