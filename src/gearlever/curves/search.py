@@ -67,6 +67,7 @@ from gearlever.curves.targets import check_target
 from gearlever.curves.topology import Topology, _topology
 from gearlever.errors import GearleverError
 from gearlever.synthesis.driver import Start, check_budget, multistart, order
+from gearlever.synthesis.registry import Kind, register
 
 __all__ = [
     "CurveSynthesis",
@@ -759,3 +760,23 @@ def synthesize_curve(
         int(lib.descriptors.shape[0]),
         time.monotonic() - t0,
     )
+
+
+def _example() -> tuple:
+    """The tiny problem of the curve synthesis: an egg-shaped closed curve, a library of 600 mechanisms."""
+    t = np.linspace(0, 2 * np.pi, 120)
+    egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
+    return (egg,), {"library_size": 600, "designs": 20, "use_cache": False}
+
+
+register(
+    Kind(
+        "curve",
+        "topology",
+        "linkage topology and dimensions tracing a closed curve: library retrieval, refinement, NSGA-II front",
+        "gearlever.curves.search:synthesize_curve",
+        kind_arg=None,
+        min_budget=MIN_BUDGET,
+        example=_example,
+    )
+)

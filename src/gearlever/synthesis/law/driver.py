@@ -71,6 +71,56 @@ def target_of_law(law, samples: int = SAMPLES, dwell_weight: float | None = None
     )
 
 
+def _sine(power: int = 1, **kwargs):
+    """A 20 deg sine of the input (to ``power``) sampled at 72 inputs, and the keyword arguments."""
+
+    def make() -> tuple:
+        th = np.linspace(0.0, 2 * math.pi, 72, endpoint=False)
+        return (law_target(th, math.radians(20) * np.sin(th) ** power),), dict(kwargs)
+
+    return make
+
+
+def _segments(output: str, units: str, segments: list):
+    def make() -> tuple:
+        from gearlever.laws import law_from_segments
+
+        return (law_from_segments(output, units, segments),), {}
+
+    return make
+
+
+#: Dwell, cycloidal rise of 45 deg, 3-4-5 return (a law with a dwell).
+DWELL = [
+    {"to": 120, "motion": "dwell"},
+    {"to": 240, "motion": "cycloidal", "rise": 45},
+    {"to": 360, "motion": "345", "rise": -45},
+]
+
+#: The tiny problem of each kind (a law it can give): kind -> ``example()`` giving ``(args, kwargs)``.
+EXAMPLES = {
+    "fourbar": _sine(),
+    "slider-crank": _segments(
+        "displacement",
+        "mm",
+        [{"to": 180, "motion": "harmonic", "rise": 40}, {"to": 360, "motion": "harmonic", "rise": -40}],
+    ),
+    "geared-fourbar": _segments("angle", "deg", DWELL),
+    "sixbar-dwell": _segments("angle", "deg", DWELL),
+    "gear-lever": _sine(2, teeth=(20, 40)),
+}
+
+
+def example(kind: str):
+    """The tiny problem of law kind ``kind``: ``example()`` gives ``(args, kwargs)`` of :func:`synthesize_law`.
+
+    >>> args, kwargs = example("gear-lever")()
+    >>> args[0].theta.size, kwargs
+    (72, {'teeth': (20, 40)})
+    """
+    return EXAMPLES.get(kind, _sine())
+
+
 def _target_spec(t: LawTarget) -> dict:
     return {
         "theta": t.theta.tolist(),
@@ -324,11 +374,11 @@ def synthesize_law(
             method=method,
         )
         evals += sum(s.evaluations + s.polish_evaluations for s in results)
-        best = results[0]
-        if best.x is None or not math.isfinite(best.objective):
+        top = results[0]
+        if top.x is None or not math.isfinite(top.objective):
             tried[kd] = None
             continue
-        f, z, off = best.objective, best.x, best.info["offset"]
+        f, z, off = top.objective, top.x, top.info["offset"]
         # the best start polished further (after the reduction: the same for any workers)
         z2, off2, f2 = pb.polish(np.asarray(z), rounds=FINAL_ROUNDS)
         if f2 < f:
