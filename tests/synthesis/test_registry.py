@@ -175,6 +175,7 @@ class DummyKind(PathKind):
 
 @pytest.fixture
 def dummy(monkeypatch):
+    registry.kinds()  # every family loaded first: the copy holds them all
     monkeypatch.setattr(registry, "_KINDS", {**registry._KINDS})
     path_kinds.register(DummyKind)
     return path_kinds.get("dummy")
