@@ -35,6 +35,8 @@ from __future__ import annotations
 import functools
 import importlib
 import math
+import sys
+import types
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -51,8 +53,15 @@ FAMILIES = {
     "curve": ("gearlever.curves.search",),
 }
 
-#: (family, name) -> :class:`Kind`, filled by :func:`register`.
-_KINDS: dict = {}
+#: (family, name) -> :class:`Kind`, filled by :func:`register`.  The dict is kept in a module of its own
+#: without a file (``sys.modules[STORE]``), so it outlives a second execution of this file (pytest's
+#: importlib import mode runs a collected module's file again): the kinds the family modules registered
+#: at their import stay known.
+STORE = "gearlever.synthesis._registered_kinds"
+if STORE not in sys.modules:
+    sys.modules[STORE] = types.ModuleType(STORE, "The registered synthesis kinds (gearlever.synthesis.registry).")
+    sys.modules[STORE].kinds = {}
+_KINDS: dict = sys.modules[STORE].kinds
 
 
 @dataclass(frozen=True)
