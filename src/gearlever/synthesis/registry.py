@@ -145,7 +145,7 @@ def register(kind: Kind) -> Kind:
     'probe'
     >>> _ = _KINDS.pop(("path", "probe"))
     """
-    if not all(hasattr(kind, a) for a in ("family", "name", "entry", "synthesize")):  # a Kind (of any copy of it)
+    if not all(hasattr(kind, a) for a in ("family", "name", "entry", "kind_arg")):  # a Kind (of any copy of it)
         raise GearleverError(f"kind must be a Kind record, got {kind!r}")
     if kind.family not in FAMILIES:
         raise GearleverError(f"family must be one of {', '.join(FAMILIES)}, got {kind.family!r}")
