@@ -182,3 +182,18 @@ def test_the_budget_rule():
     for bad in (99, 10**7 + 1, 500.5, float("nan"), float("inf"), True, "500", None):
         with pytest.raises(GearleverError, match=r"^budget must be a whole number from 100 to 10000000"):
             driver.check_budget("budget", bad, 100, 10**7)
+
+
+def test_workers_an_int_or_a_map_like_give_the_same_starts():
+    from concurrent.futures import ThreadPoolExecutor
+
+    from gearlever.synthesis.path import search_problem
+
+    make = search_problem({"targets": [[1.0, 2.0], [1.5, 2.4], [1.8, 3.0], [1.2, 3.5]], "coord_range": (-5, 5)})
+    one = driver.multistart(make, 4, 7, budget=2000, workers=1)
+    with ThreadPoolExecutor(2) as pool:
+        mapped = driver.multistart(make, 4, 7, budget=2000, workers=pool)
+    _same(one, mapped)
+    assert [s.index for s in one] != [] and all(s.evaluations <= 500 for s in one)
+    with pytest.raises(GearleverError, match="workers must be a number of threads, a map-like"):
+        driver.multistart(make, 4, 7, budget=2000, workers=2.5)
