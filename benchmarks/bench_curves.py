@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from gearlever.curves import search as S
+from gearlever.curves import topology as T
 from gearlever.curves.simulate import simulate
 from gearlever.curves.targets import SUITE_RMS, known_mechanism
 
@@ -117,8 +118,8 @@ def _jax_solver(dirpath):
 
 def speed(dirpath, batch=1000, repeats=5):
     rng = np.random.default_rng(7)
-    topo = S.random_topology(rng, 9, 2)  # 12 joints: pivot, tip, one more pivot, nine dyads
-    x0 = S.random_sketches(rng, topo, batch)
+    topo = T.random_topology(rng, 9, 2)  # 12 joints: pivot, tip, one more pivot, nine dyads
+    x0 = T.random_sketches(rng, topo, batch)
     steps = 200
     simulate(x0, topo.plan)
     t_ours = min(_timed(lambda: simulate(x0, topo.plan)) for _ in range(repeats))

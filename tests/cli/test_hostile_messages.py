@@ -412,20 +412,21 @@ def test_path_budget_below_the_minimum_is_refused_naming_it():
     from gearlever.synthesis.path import min_budget, synthesize_path
 
     T = [[0.0, 0.0], [1.0, 0.2], [2.0, 1.0]]
-    with pytest.raises(GearleverError, match=r"^budget must be 480\.\.10000000 .* got 100$"):
+    with pytest.raises(GearleverError, match=r"^budget must be a whole number from 480 to 10000000 .* got 100$"):
         synthesize_path(T, budget=100)
     assert min_budget(10) == 480
 
 
 def test_one_start_evaluates_at_most_its_share_of_the_budget():
     """A start's search is capped by its evaluations (the polish after it is not counted)."""
-    from gearlever.synthesis.path import population, run_start
+    from gearlever.synthesis.driver import search_start
+    from gearlever.synthesis.path import population, search_problem
 
     spec = {"targets": [[1.0, 2.0], [1.5, 2.4], [1.8, 3.0], [1.2, 3.5]], "length_range": (0.2, 5)}
     spec["coord_range"] = (-5, 5)
     for evals in (population(10), 200):
-        f, k, w, sigma, used = run_start(spec, 0, 0, evals)
-        assert 0 < used <= evals
+        start = search_start(search_problem(spec), 0, 0, evals)
+        assert 0 < start.evaluations <= evals
 
 
 @pytest.mark.parametrize(

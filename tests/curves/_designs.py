@@ -10,7 +10,9 @@ in a second or two).  A test module takes a fixture with ``cache = _designs.cach
 import numpy as np
 import pytest
 
+from gearlever.curves import library as L
 from gearlever.curves import search as S
+from gearlever.curves import topology as T
 from gearlever.curves.simulate import simulate
 
 SIXBAR = {
@@ -29,8 +31,8 @@ def turning(n_dyads, seed, **simulate_kw):
     """
     rng = np.random.default_rng(seed)
     while True:
-        topo = S.random_topology(rng, n_dyads, 2)
-        x0 = S.random_sketches(rng, topo, 200)
+        topo = T.random_topology(rng, n_dyads, 2)
+        x0 = T.random_sketches(rng, topo, 200)
         ok = np.isfinite(simulate(x0, topo.plan, **simulate_kw)).all(axis=(1, 2, 3))
         if ok.any():
             return topo, x0[np.flatnonzero(ok)[0]]
@@ -47,8 +49,8 @@ def cache(tmp_path, monkeypatch):
 @pytest.fixture
 def small(monkeypatch):
     """A small library (8 topologies x 60 sketches) and search (2 starts, 4 preselected, 3 lambdas)."""
-    monkeypatch.setattr(S, "LIBRARY_TOPOLOGIES", 8)
-    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 60)
+    monkeypatch.setattr(L, "LIBRARY_TOPOLOGIES", 8)
+    monkeypatch.setattr(L, "LIBRARY_SKETCHES", 60)
     monkeypatch.setattr(S, "STARTS", 2)
     monkeypatch.setattr(S, "PRESELECT", 4)
     monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))

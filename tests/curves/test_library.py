@@ -26,12 +26,12 @@ def test_a_stored_library_is_the_built_one_bit_for_bit_and_limits_like_a_build(c
     built, path = L.build_cached(1000, 3)
     assert path == cache / "curves-library-v1-size1000-seed3.npz" and path.is_file()
     assert sorted(p.name for p in cache.iterdir()) == [path.name]  # no temporary file left
-    again = S.build_library(3, size=1000)
+    again = L.build_library(3, size=1000)
     _same(built, again)
     loaded = L.cached_library(1000, 3)
     _same(loaded, again)
     for mj in (4, 6, 8):
-        _same(loaded.limited(mj), S.build_library(3, size=1000, max_joints=mj))
+        _same(loaded.limited(mj), L.build_library(3, size=1000, max_joints=mj))
     assert L.cached_library(1000, 4) is None and L.cached_library(999, 3) is None
     (row,) = L.library_files()
     assert (row["size"], row["seed"], row["entries"], row["bytes"]) == (1000, 3, again.rms.size, path.stat().st_size)
@@ -39,14 +39,14 @@ def test_a_stored_library_is_the_built_one_bit_for_bit_and_limits_like_a_build(c
 
 
 def test_the_default_size_is_the_synthesis_library():
-    assert S.library_counts(S.LIBRARY_TOPOLOGIES * S.LIBRARY_SKETCHES) == [S.LIBRARY_SKETCHES] * S.LIBRARY_TOPOLOGIES
-    _same(S.build_library(0, size=600), S.build_library(0, 2, 300))
+    assert L.library_counts(L.LIBRARY_TOPOLOGIES * L.LIBRARY_SKETCHES) == [L.LIBRARY_SKETCHES] * L.LIBRARY_TOPOLOGIES
+    _same(L.build_library(0, size=600), L.build_library(0, 2, 300))
     with pytest.raises(GearleverError, match="library_size must be 1 to 200000"):
-        S.library_counts(200_001)
+        L.library_counts(200_001)
 
 
 def _dump(res):
-    return json.dumps(res.as_dict()), [lk.as_dict() for lk in res.designs]
+    return json.dumps(res.summary()), [lk.as_dict() for lk in res.designs]
 
 
 @pytest.mark.parametrize("max_joints", [20, 6])
@@ -101,7 +101,7 @@ def test_files_of_another_format_or_settings_are_listed_and_not_used(cache, monk
     L.build_cached(300, 0)
     old = cache / "curves-library-v0-size300-seed0.npz"
     old.write_bytes(b"old")
-    monkeypatch.setattr(S, "LIBRARY_SKETCHES", 100)  # another build setting: the stored file does not match it
+    monkeypatch.setattr(L, "LIBRARY_SKETCHES", 100)  # another build setting: the stored file does not match it
     assert L.cached_library(300, 0) is None
     rows = L.library_files()
     assert [r["format"] for r in rows] == [1, 0]

@@ -5,7 +5,9 @@ import json
 import numpy as np
 import pytest
 
+from gearlever.curves import library as L
 from gearlever.curves import search as S
+from gearlever.curves import topology as T
 from gearlever.curves.links import solve_plan
 from gearlever.curves.score import distance, material
 from gearlever.curves.simulate import simulate
@@ -37,16 +39,16 @@ def test_descriptor_is_invariant_to_rotation_start_direction_and_size():
     kidney = np.stack([np.cos(t) + 0.4 * np.cos(2 * t), np.sin(t) + 0.1 * np.sin(3 * t)], -1)
     c, s = np.cos(0.8), np.sin(0.8)
     copies = [kidney @ np.array([[c, -s], [s, c]]).T * 3 + 5, np.roll(kidney[:-1], 70, 0)[::-1], 0.2 * kidney]
-    d0 = S.descriptor(kidney[None])[0]
+    d0 = L.descriptor(kidney[None])[0]
     for cp in copies:
-        np.testing.assert_allclose(S.descriptor(cp[None])[0], d0, atol=2e-3)
+        np.testing.assert_allclose(L.descriptor(cp[None])[0], d0, atol=2e-3)
     egg = np.stack([np.cos(t) * (1 + 0.2 * np.sin(t)), 0.8 * np.sin(t)], -1)
-    assert np.abs(S.descriptor(egg[None])[0] - d0).max() > 0.02
+    assert np.abs(L.descriptor(egg[None])[0] - d0).max() > 0.02
 
 
 def test_prune_keeps_only_the_joints_the_traced_joint_needs():
     topo, x0 = _turning(4)
-    sub, keep = S.prune(topo, 3)
+    sub, keep = T.prune(topo, 3)
     assert sub.n < topo.n and 3 in keep and 0 in keep and 1 in keep
     full = simulate(x0[None], topo.plan)[0, 3]
     pruned = simulate(x0[keep][None], sub.plan)[0, sub.target]
@@ -66,11 +68,11 @@ def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers_and_on_a_
     egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
     a = S.synthesize_curve(egg, budget=1000, seed=3, workers=1)
     b = S.synthesize_curve(egg, budget=1000, seed=3, workers=2)
-    assert json.dumps(a.as_dict()) == json.dumps(b.as_dict())
+    assert json.dumps(a.summary()) == json.dumps(b.summary())
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as c:
         on_cluster = S.synthesize_curve(egg, budget=1000, seed=3, scheduler=c.scheduler_address)
-    assert json.dumps(on_cluster.as_dict()) == json.dumps(a.as_dict())
+    assert json.dumps(on_cluster.summary()) == json.dumps(a.summary())
     assert [lk.x0.tolist() for lk in on_cluster.designs] == [lk.x0.tolist() for lk in a.designs]
     assert [lk.x0.tolist() for lk in a.designs] == [lk.x0.tolist() for lk in b.designs]
     assert len(a.designs) >= 1 and a.hypervolume > 0

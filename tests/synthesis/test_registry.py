@@ -14,7 +14,7 @@ import pytest
 
 import gearlever.synthesis
 from gearlever.errors import GearleverError
-from gearlever.synthesis import path, path_kinds
+from gearlever.synthesis import path, path_kinds, registry
 from gearlever.synthesis.model import model_toml
 from gearlever.synthesis.path_fourbar import FourBarPathProblem, fourbar_result
 from gearlever.synthesis.path_kinds import PathKind, PathSynthesis
@@ -175,7 +175,8 @@ class DummyKind(PathKind):
 
 @pytest.fixture
 def dummy(monkeypatch):
-    monkeypatch.setattr(path_kinds, "_KINDS", {**path_kinds._KINDS})
+    registry.kinds()  # every family loaded first: the copy holds them all
+    monkeypatch.setattr(registry, "_KINDS", {**registry._KINDS})
     path_kinds.register(DummyKind)
     return path_kinds.get("dummy")
 

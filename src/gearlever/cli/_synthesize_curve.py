@@ -60,7 +60,7 @@ def register_curve(ss) -> None:
     w = p.add_mutually_exclusive_group()
     w.add_argument("--workers", type=capped_int(MAX_WORKERS), default=None, help="local dask threads")
     w.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a dask.distributed scheduler")
-    from gearlever.curves.search import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
+    from gearlever.curves.library import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
 
     p.add_argument(
         "--library-size",
@@ -148,7 +148,7 @@ def _run(args) -> int:
         "links": [len(lk.edges) for lk in res.designs],
     }
     write_text_atomic(out / "pareto.csv", table_text(cols) + "\n", mkdir=True)
-    rep = res.as_dict()
+    rep = res.summary()
     rep["seconds"] = round(float(res.seconds), 2)
     rep["budget"] = budget
     rep["out"] = str(out)

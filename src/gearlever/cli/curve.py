@@ -41,7 +41,7 @@ def register(sub) -> None:
     s.add_argument("--out", help="file to write (default stdout)")
     s.set_defaults(func=_score)
 
-    from gearlever.curves.search import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
+    from gearlever.curves.library import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
 
     lib = cs.add_parser("library", help="the retrieval library of synthesize curve, kept in the cache folder")
     ls = lib.add_subparsers(dest="library_command", metavar="ACTION")

@@ -76,7 +76,9 @@ def register(sub) -> None:
     )
     f.add_argument("--points", type=capped_int(MAX_ROWS), default=3, help="precision points (default 3: exact)")
     f.add_argument("--spacing", choices=("chebyshev", "even"), default="chebyshev")
-    f.add_argument("--type", choices=("fourbar", "slider-crank"), default="fourbar", dest="kind")
+    from gearlever.synthesis.registry import names as kind_names  # --type: the registered function kinds
+
+    f.add_argument("--type", choices=kind_names("function"), default="fourbar", dest="kind")
     f.add_argument(
         "--ground", type=capped_float(1e12), default=1.0, help="four-bar ground link length (scale; default 1)"
     )

@@ -1,6 +1,6 @@
-"""The retrieval library of the curve synthesis, built once and kept in the user's cache folder.
+"""The retrieval library of the curve synthesis: built from random mechanisms, kept in the user's cache folder.
 
-:func:`gearlever.curves.search.build_library` simulates a library of random
+:func:`build_library` simulates a library of random
 dyadic mechanisms (about 0.6 s for the default 14 400).  A larger library
 finds closer starts but takes longer, so it can be built once
 (``gearlever curve library build --size N``) and stored as a compressed
@@ -32,14 +32,22 @@ from __future__ import annotations
 import os
 import re
 import zipfile
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from gearlever.curves.score import resample
+from gearlever.curves.simulate import simulate
+from gearlever.curves.topology import _topology, prune, random_sketches, random_topology
 from gearlever.errors import GearleverError
 
 __all__ = [
     "FORMAT",
+    "Library",
+    "build_library",
+    "descriptor",
+    "library_counts",
     "build_cached",
     "cache_folder",
     "cached_library",
@@ -49,12 +57,185 @@ __all__ = [
     "save_library",
 ]
 
+#: Most dyads of a library topology (eight joints beyond the crank: up to 12 joints).
+MAX_LIBRARY_DYADS = 8
+#: Library topologies and sketches per topology (built at run time with a fixed seed).
+LIBRARY_TOPOLOGIES = 48
+LIBRARY_SKETCHES = 300
+#: Most mechanisms a library may simulate (``--size``): about 1.9 x 10^5 entries, 230 MB of memory at the peak,
+#: 11 s to build, a 40 MB file (measured).
+MAX_LIBRARY_SIZE = 200_000
+#: Fourier harmonics of the descriptor.
+HARMONICS = 12
 #: Format version of a stored library: raised whenever the file layout or the library's construction changes.
 FORMAT = 1
 #: Largest library file read (bytes): the largest library (2 x 10^5 mechanisms) takes 40 MB.
 MAX_FILE_BYTES = 2**30
 #: File name of a stored library.
 NAME = re.compile(r"curves-library-v(\d+)-size(\d+)-seed(\d+)\.npz")
+
+
+def descriptor(curves, harmonics: int = HARMONICS) -> np.ndarray:
+    """Rotation-, start-, direction- and size-invariant Fourier descriptor of curves (B, M, 2) -> (B, 2 H)."""
+    c = resample(curves, 64)
+    z = c[..., 0] + 1j * c[..., 1]
+    z = z[:, :-1] - z[:, :-1].mean(1, keepdims=True)
+    rms = np.sqrt((np.abs(z) ** 2).mean(1, keepdims=True))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        C = np.abs(np.fft.fft(z / rms, axis=1)) / z.shape[1]
+    k = np.arange(1, harmonics + 1)
+    a, b = C[:, k], C[:, -k]
+    return np.concatenate([a + b, np.abs(a - b)], 1)
+
+
+@dataclass(frozen=True, eq=False)
+class Library:
+    """Pre-simulated curves: topology per entry, its sketch, descriptor and the curve's RMS radius.
+
+    Examples
+    --------
+    >>> lib = build_library(0, 4, 30)
+    >>> lib.descriptors.shape[1], len(lib.sketches) == lib.rms.size == lib.entry_topology.size
+    (24, True)
+    >>> four = lib.limited(4)
+    >>> max(four.topologies[t].n for t in four.entry_topology) <= 4 < max(t.n for t in lib.topologies)
+    True
+    """
+
+    topologies: list
+    entry_topology: np.ndarray
+    sketches: list
+    descriptors: np.ndarray
+    rms: np.ndarray
+    #: Joints of the topology each entry was simulated in (before pruning).
+    source_joints: np.ndarray
+
+    def limited(self, max_joints: int) -> Library:
+        """The entries whose (pruned) linkage has at most ``max_joints`` joints, in the same order.
+
+        Equal, array for array, to :func:`build_library` run with that
+        ``max_joints`` (the random draws do not depend on it).
+        """
+        ok = self.source_joints <= max_joints
+        if ok.all():
+            return self
+        index, topos, ent = {}, [], []
+        for t in self.entry_topology[ok].tolist():  # numbered in the order of their first entry, as built
+            if t not in index:
+                index[t] = len(topos)
+                topos.append(self.topologies[t])
+            ent.append(index[t])
+        keep = np.flatnonzero(ok)
+        return Library(
+            topos,
+            np.array(ent, dtype=self.entry_topology.dtype),
+            [self.sketches[int(e)] for e in keep],
+            self.descriptors[keep],
+            self.rms[keep],
+            self.source_joints[keep],
+        )
+
+
+def library_counts(size: int, sketches: int | None = None) -> list[int]:
+    """Sketches per topology of a library of ``size`` mechanisms: ``sketches`` each (the last one fewer).
+
+    >>> len(library_counts(14400)), library_counts(700, 300)
+    (48, [300, 300, 100])
+    """
+    per = LIBRARY_SKETCHES if sketches is None else int(sketches)
+    size = int(size)
+    if not 1 <= size <= MAX_LIBRARY_SIZE:
+        raise GearleverError(f"library_size must be 1 to {MAX_LIBRARY_SIZE}, got {size}")
+    full, rest = divmod(size, per)
+    return [per] * full + ([rest] if rest else [])
+
+
+def build_library(
+    seed: int = 0,
+    topologies: int | None = None,
+    sketches: int | None = None,
+    max_joints: int = 20,
+    *,
+    size: int | None = None,
+    progress=None,
+) -> Library:
+    """Random topologies x random sketches, simulated in batches; each turning moving joint is an entry.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the library's random draws (the synthesis uses 0).
+    topologies, sketches : int, optional
+        Topologies and sketches per topology (default :data:`LIBRARY_TOPOLOGIES`
+        and :data:`LIBRARY_SKETCHES`).
+    max_joints : int
+        Entries whose pruned linkage has more joints are left out (the
+        random draws are the same: see :meth:`Library.limited`).
+    size : int, optional
+        Mechanisms simulated in all, 1 to :data:`MAX_LIBRARY_SIZE`, in place
+        of ``topologies``: ``sketches`` per topology, the last one fewer
+        (:func:`library_counts`).
+    progress : callable, optional
+        ``progress(label, done, total)`` after each topology.
+
+    Returns
+    -------
+    Library
+
+    Examples
+    --------
+    >>> lib = build_library(0, 2, 50)
+    >>> 0 < lib.rms.size <= 2 * 50 * 3
+    True
+    """
+    per = LIBRARY_SKETCHES if sketches is None else int(sketches)
+    if size is not None:
+        counts = library_counts(size, per)
+    else:
+        counts = [per] * (LIBRARY_TOPOLOGIES if topologies is None else int(topologies))
+    rng = np.random.default_rng([seed, 271828])
+    topos, ent_t, ent_x, descs, rmss, src = [], [], [], [], [], []
+    cache = {}
+    for n, count in enumerate(counts):
+        n_dyads = 1 + n % MAX_LIBRARY_DYADS
+        n_fixed = 2 + (n // MAX_LIBRARY_DYADS) % 2
+        topo = random_topology(rng, n_dyads, n_fixed)
+        x0 = random_sketches(rng, topo, count)
+        if progress is not None:
+            progress("library", n + 1, len(counts))
+        if topo.n > max_joints:
+            continue  # drawn all the same, so that a smaller max_joints only leaves entries out
+        x = simulate(x0, topo.plan, steps=100)
+        turns = np.isfinite(x).all(axis=(1, 2, 3))
+        if not turns.any():
+            continue
+        xs, xt = x0[turns], x[turns]
+        for target in range(topo.n):
+            if target in set(topo.fixed.tolist()) or target == topo.motor[1] and n_dyads > 1:
+                continue
+            sub, keep = prune(topo, target)
+            if sub.n > max_joints:
+                continue
+            curves = xt[:, target]
+            d = descriptor(curves)
+            ok = np.isfinite(d).all(1)
+            if not ok.any():
+                continue
+            key = sub.key()
+            if key not in cache:  # numbered in the order of their first entry
+                cache[key] = len(topos)
+                topos.append(sub)
+            c = curves[ok] - curves[ok].mean(1, keepdims=True)
+            rmss.append(np.sqrt((c**2).sum(-1).mean(1)))
+            descs.append(d[ok])
+            ent_t.append(np.full(ok.sum(), cache[key]))
+            ent_x.extend(xs[ok][:, keep])
+            src.append(np.full(ok.sum(), topo.n))
+    if not descs:
+        z = np.zeros(0, dtype=int)
+        return Library([], z, [], np.zeros((0, 2 * HARMONICS)), np.zeros(0), z)
+    ent_t, descs, rmss, src = (np.concatenate(a) for a in (ent_t, descs, rmss, src))
+    return Library(topos, ent_t, ent_x, descs, rmss, src)
 
 
 def cache_folder() -> Path:
@@ -86,9 +267,7 @@ def library_path(size: int, seed: int = 0) -> Path:
 
 
 def _settings(size: int, seed: int) -> np.ndarray:
-    from gearlever.curves import search as S
-
-    return np.array([FORMAT, size, seed, S.LIBRARY_SKETCHES, S.MAX_LIBRARY_DYADS, S.HARMONICS], dtype=np.int64)
+    return np.array([FORMAT, size, seed, LIBRARY_SKETCHES, MAX_LIBRARY_DYADS, HARMONICS], dtype=np.int64)
 
 
 def _arrays(lib, size: int, seed: int) -> dict:
@@ -133,8 +312,6 @@ def load_library(path, size: int, seed: int):
     GearleverError
         Naming the file: unreadable, not a library, other settings or format.
     """
-    from gearlever.curves.search import Library, _topology
-
     p = Path(path)
     try:
         if p.stat().st_size > MAX_FILE_BYTES:
@@ -192,8 +369,6 @@ def cached_library(size: int, seed: int = 0):
 
 def build_cached(size: int, seed: int = 0, progress=None):
     """Build the library of ``size`` mechanisms and ``seed`` and store it; return ``(library, path)``."""
-    from gearlever.curves.search import build_library
-
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**31:
         raise GearleverError(f"seed must be an integer 0 to 2^31 - 1, got {seed!r}")
     lib = build_library(int(seed), size=int(size), progress=progress)

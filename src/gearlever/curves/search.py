@@ -4,7 +4,7 @@ The search, in order (every step seeded from ``numpy.random.default_rng``
 with the user's seed, so a fixed ``budget`` gives the same designs on any
 machine and any number of workers):
 
-1. **Library** (:func:`build_library`): random dyadic topologies of four-,
+1. **Library** (:func:`gearlever.curves.library.build_library`): random dyadic topologies of four-,
    six- and eight-bar size (one to :data:`MAX_LIBRARY_DYADS` dyads on a crank
    and two or three ground pivots), each with random sketches, simulated in
    one batch per topology; every moving joint of a sketch that turns fully is
@@ -49,39 +49,35 @@ hand-made descriptor in place of a learned one.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
-from gearlever.curves.links import Linkage, SolvePlan, linkage_from_dict
+from gearlever._result import Result
+from gearlever.curves import library as _library
+from gearlever.curves.library import Library, build_library, cached_library, descriptor
+from gearlever.curves.links import linkage_from_dict
 from gearlever.curves.score import MAX_DISTANCE, MAX_MATERIAL, RESOLUTION, distance, hypervolume, material, resample
 from gearlever.curves.simulate import simulate, simulate_jacobian
+from gearlever.curves.targets import check_target
+from gearlever.curves.topology import Topology, _topology
 from gearlever.errors import GearleverError
+from gearlever.synthesis.driver import Start, check_budget, multistart, order
+from gearlever.synthesis.registry import Kind, register
 
 __all__ = [
     "CurveSynthesis",
-    "Topology",
-    "Library",
-    "build_library",
-    "library_counts",
+    "Design",
     "refine",
     "retrieve",
     "run_start",
     "synthesize_curve",
 ]
 
-#: Most dyads of a library topology (eight joints beyond the crank: up to 12 joints).
-MAX_LIBRARY_DYADS = 8
-#: Library topologies and sketches per topology (built at run time with a fixed seed).
-LIBRARY_TOPOLOGIES = 48
-LIBRARY_SKETCHES = 300
-#: Most mechanisms a library may simulate (``--size``): about 1.9 x 10^5 entries, 230 MB of memory at the peak,
-#: 11 s to build, a 40 MB file (measured).
-MAX_LIBRARY_SIZE = 200_000
-#: Fourier harmonics of the descriptor.
-HARMONICS = 12
 #: Retrieved entries refined briefly, and the best of them kept as starts.
 PRESELECT = 100
 STARTS = 8
@@ -104,251 +100,11 @@ SPREAD = 6
 SPREAD_WEIGHTS = (0.01, 0.1, 0.3)
 #: Material weights of the refinement chain.
 LAMBDAS = np.geomspace(1e-3, 0.3, 10)
-#: Caps.
+#: Caps (and the least budget).
+MIN_BUDGET = 1000
 MAX_BUDGET = 10**7
 MAX_DESIGNS = 1000
 MAX_TIME = 86_400.0
-
-
-@dataclass(frozen=True, eq=False)
-class Topology:
-    """A dyadic topology: joints, edges, fixed joints, motor, traced joint and its solve plan."""
-
-    n: int
-    edges: np.ndarray
-    fixed: np.ndarray
-    motor: tuple
-    target: int
-    plan: SolvePlan
-
-    def linkage(self, x0) -> Linkage:
-        return Linkage(np.asarray(x0, dtype=float) + 0.0, self.edges, self.fixed, self.motor, self.target)
-
-    def key(self) -> tuple:
-        return (self.n, tuple(map(tuple, self.edges.tolist())), tuple(self.fixed.tolist()), self.motor, self.target)
-
-
-def _topology(n, edges, fixed, motor, target) -> Topology:
-    from gearlever.curves.links import _plan
-
-    edges = np.asarray(edges, dtype=int).reshape(-1, 2)
-    fixed = np.asarray(sorted(set(int(f) for f in fixed)), dtype=int)
-    plan = _plan(n, edges, fixed, int(motor[0]), int(motor[1]))
-    return Topology(n, edges, fixed, (int(motor[0]), int(motor[1])), int(target), plan)
-
-
-def random_topology(rng, n_dyads: int, n_fixed: int) -> Topology:
-    """A random dyadic topology: joint 0 the motor pivot, 1 the crank tip, then other fixed joints, then dyads."""
-    fixed = list(range(2, 1 + n_fixed)) + [0]
-    edges = [[0, 1]]
-    n = 1 + n_fixed
-    moving = [1]
-    for _ in range(n_dyads):
-        k = n
-        while True:
-            i, j = sorted(rng.choice(n, 2, replace=False).tolist())
-            if (i in fixed and j in fixed) or {i, j} == {0, 1}:
-                continue
-            # prefer parents among the newest moving joints: deeper chains
-            break
-        edges += [[i, k], [j, k]]
-        moving.append(k)
-        n += 1
-    return _topology(n, edges, fixed, (0, 1), n - 1)
-
-
-def prune(topo: Topology, target: int) -> tuple[Topology, np.ndarray]:
-    """The topology reduced to the joints ``target`` needs, and the kept joint indices (old numbering)."""
-    parents = {int(k): (int(i), int(j)) for k, i, j, _ in topo.plan.dyads}
-    need = {topo.motor[0], topo.motor[1], target}
-    stack = [target]
-    while stack:
-        for p in parents.get(stack.pop(), ()):
-            if p not in need or p in parents:
-                stack.append(p)
-            need.add(p)
-    keep = np.array(sorted(need), dtype=int)
-    new = {int(o): n for n, o in enumerate(keep)}
-    edges = [[new[int(i)], new[int(j)]] for i, j in topo.edges if int(i) in new and int(j) in new]
-    # fixed-fixed edges carry no motion: drop them
-    fixed = [new[int(f)] for f in topo.fixed if int(f) in new]
-    fs = set(fixed)
-    edges = [e for e in edges if not (e[0] in fs and e[1] in fs)]
-    return _topology(len(keep), edges, fixed, (new[topo.motor[0]], new[topo.motor[1]]), new[target]), keep
-
-
-def random_sketches(rng, topo: Topology, count: int) -> np.ndarray:
-    """Random sketches: joints uniform in the unit square around the origin, a short crank."""
-    x = rng.uniform(-1.0, 1.0, (count, topo.n, 2))
-    r = rng.uniform(0.05, 0.5, count)
-    a = rng.uniform(0.0, 2 * math.pi, count)
-    p, t = topo.motor
-    x[:, t, 0] = x[:, p, 0] + r * np.cos(a)
-    x[:, t, 1] = x[:, p, 1] + r * np.sin(a)
-    return x
-
-
-def descriptor(curves, harmonics: int = HARMONICS) -> np.ndarray:
-    """Rotation-, start-, direction- and size-invariant Fourier descriptor of curves (B, M, 2) -> (B, 2 H)."""
-    c = resample(curves, 64)
-    z = c[..., 0] + 1j * c[..., 1]
-    z = z[:, :-1] - z[:, :-1].mean(1, keepdims=True)
-    rms = np.sqrt((np.abs(z) ** 2).mean(1, keepdims=True))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        C = np.abs(np.fft.fft(z / rms, axis=1)) / z.shape[1]
-    k = np.arange(1, harmonics + 1)
-    a, b = C[:, k], C[:, -k]
-    return np.concatenate([a + b, np.abs(a - b)], 1)
-
-
-@dataclass(frozen=True, eq=False)
-class Library:
-    """Pre-simulated curves: topology per entry, its sketch, descriptor and the curve's RMS radius.
-
-    Examples
-    --------
-    >>> lib = build_library(0, 4, 30)
-    >>> lib.descriptors.shape[1], len(lib.sketches) == lib.rms.size == lib.entry_topology.size
-    (24, True)
-    >>> four = lib.limited(4)
-    >>> max(four.topologies[t].n for t in four.entry_topology) <= 4 < max(t.n for t in lib.topologies)
-    True
-    """
-
-    topologies: list
-    entry_topology: np.ndarray
-    sketches: list
-    descriptors: np.ndarray
-    rms: np.ndarray
-    #: Joints of the topology each entry was simulated in (before pruning).
-    source_joints: np.ndarray
-
-    def limited(self, max_joints: int) -> Library:
-        """The entries whose (pruned) linkage has at most ``max_joints`` joints, in the same order.
-
-        Equal, array for array, to :func:`build_library` run with that
-        ``max_joints`` (the random draws do not depend on it).
-        """
-        ok = self.source_joints <= max_joints
-        if ok.all():
-            return self
-        index, topos, ent = {}, [], []
-        for t in self.entry_topology[ok].tolist():  # numbered in the order of their first entry, as built
-            if t not in index:
-                index[t] = len(topos)
-                topos.append(self.topologies[t])
-            ent.append(index[t])
-        keep = np.flatnonzero(ok)
-        return Library(
-            topos,
-            np.array(ent, dtype=self.entry_topology.dtype),
-            [self.sketches[int(e)] for e in keep],
-            self.descriptors[keep],
-            self.rms[keep],
-            self.source_joints[keep],
-        )
-
-
-def library_counts(size: int, sketches: int | None = None) -> list[int]:
-    """Sketches per topology of a library of ``size`` mechanisms: ``sketches`` each (the last one fewer).
-
-    >>> len(library_counts(14400)), library_counts(700, 300)
-    (48, [300, 300, 100])
-    """
-    per = LIBRARY_SKETCHES if sketches is None else int(sketches)
-    size = int(size)
-    if not 1 <= size <= MAX_LIBRARY_SIZE:
-        raise GearleverError(f"library_size must be 1 to {MAX_LIBRARY_SIZE}, got {size}")
-    full, rest = divmod(size, per)
-    return [per] * full + ([rest] if rest else [])
-
-
-def build_library(
-    seed: int = 0,
-    topologies: int | None = None,
-    sketches: int | None = None,
-    max_joints: int = 20,
-    *,
-    size: int | None = None,
-    progress=None,
-) -> Library:
-    """Random topologies x random sketches, simulated in batches; each turning moving joint is an entry.
-
-    Parameters
-    ----------
-    seed : int
-        Seed of the library's random draws (the synthesis uses 0).
-    topologies, sketches : int, optional
-        Topologies and sketches per topology (default :data:`LIBRARY_TOPOLOGIES`
-        and :data:`LIBRARY_SKETCHES`).
-    max_joints : int
-        Entries whose pruned linkage has more joints are left out (the
-        random draws are the same: see :meth:`Library.limited`).
-    size : int, optional
-        Mechanisms simulated in all, 1 to :data:`MAX_LIBRARY_SIZE`, in place
-        of ``topologies``: ``sketches`` per topology, the last one fewer
-        (:func:`library_counts`).
-    progress : callable, optional
-        ``progress(label, done, total)`` after each topology.
-
-    Returns
-    -------
-    Library
-
-    Examples
-    --------
-    >>> lib = build_library(0, 2, 50)
-    >>> 0 < lib.rms.size <= 2 * 50 * 3
-    True
-    """
-    per = LIBRARY_SKETCHES if sketches is None else int(sketches)
-    if size is not None:
-        counts = library_counts(size, per)
-    else:
-        counts = [per] * (LIBRARY_TOPOLOGIES if topologies is None else int(topologies))
-    rng = np.random.default_rng([seed, 271828])
-    topos, ent_t, ent_x, descs, rmss, src = [], [], [], [], [], []
-    cache = {}
-    for n, count in enumerate(counts):
-        n_dyads = 1 + n % MAX_LIBRARY_DYADS
-        n_fixed = 2 + (n // MAX_LIBRARY_DYADS) % 2
-        topo = random_topology(rng, n_dyads, n_fixed)
-        x0 = random_sketches(rng, topo, count)
-        if progress is not None:
-            progress("library", n + 1, len(counts))
-        if topo.n > max_joints:
-            continue  # drawn all the same, so that a smaller max_joints only leaves entries out
-        x = simulate(x0, topo.plan, steps=100)
-        turns = np.isfinite(x).all(axis=(1, 2, 3))
-        if not turns.any():
-            continue
-        xs, xt = x0[turns], x[turns]
-        for target in range(topo.n):
-            if target in set(topo.fixed.tolist()) or target == topo.motor[1] and n_dyads > 1:
-                continue
-            sub, keep = prune(topo, target)
-            if sub.n > max_joints:
-                continue
-            curves = xt[:, target]
-            d = descriptor(curves)
-            ok = np.isfinite(d).all(1)
-            if not ok.any():
-                continue
-            key = sub.key()
-            if key not in cache:  # numbered in the order of their first entry
-                cache[key] = len(topos)
-                topos.append(sub)
-            c = curves[ok] - curves[ok].mean(1, keepdims=True)
-            rmss.append(np.sqrt((c**2).sum(-1).mean(1)))
-            descs.append(d[ok])
-            ent_t.append(np.full(ok.sum(), cache[key]))
-            ent_x.extend(xs[ok][:, keep])
-            src.append(np.full(ok.sum(), topo.n))
-    if not descs:
-        z = np.zeros(0, dtype=int)
-        return Library([], z, [], np.zeros((0, 2 * HARMONICS)), np.zeros(0), z)
-    ent_t, descs, rmss, src = (np.concatenate(a) for a in (ent_t, descs, rmss, src))
-    return Library(topos, ent_t, ent_x, descs, rmss, src)
 
 
 def _target_rms(target) -> float:
@@ -664,11 +420,17 @@ def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
     return pop.get("X").reshape(-1, N, 2), pop.get("F")
 
 
-def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list:
-    """One start: refine, topology moves, NSGA-II, refine the front, scaled copies; list of designs.
+class Design(NamedTuple):
+    """A design of one start: exact distance, material, topology (plain data) and sketch (lists)."""
 
-    A design is ``(distance, material, topology_dict, x0_list)`` with exact distances.
-    """
+    distance: float
+    material: float
+    topology: dict
+    x0: list
+
+
+def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list[Design]:
+    """One start: refine, topology moves, NSGA-II, refine the front, scaled copies; its :class:`Design` list."""
     rng = np.random.default_rng([seed, k])
     target = np.asarray(spec["target"], dtype=float)
     tc = _target(target)
@@ -740,7 +502,7 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list:
         "motor": list(topo.motor),
         "target": topo.target,
     }
-    return [(dd, mm, td, xx.tolist()) for dd, mm, xx in designs if math.isfinite(dd)]
+    return [Design(dd, mm, td, xx.tolist()) for dd, mm, xx in designs if math.isfinite(dd)]
 
 
 def _pick_starts(refined, count: int) -> list:
@@ -767,18 +529,48 @@ def _nondominated(d, m) -> np.ndarray:
     return np.array(out, dtype=int)
 
 
-def _chunk(spec, seed, ks, evals, method):
-    deadline = spec.get("deadline")
-    out = []
-    for k in ks:
-        for dd, mm, td, xx in run_start(spec, seed, k, evals, deadline):
-            out.append((dd, k, mm, td, xx))
-    return out
+def _spec(spec: dict) -> dict:
+    return spec
+
+
+def curve_start(make, seed: int, k: int, evals: int, method: str = "nsga2") -> Start:
+    """Start ``k`` of the driver (:func:`gearlever.synthesis.driver.multistart`): :func:`run_start` as a record.
+
+    ``make()`` gives the spec; the start's designs are in ``info["designs"]``,
+    its objective the smallest distance among them; ``evaluations`` is the
+    start's share of the budget (the refinements' function calls are not counted).
+    """
+    spec = make()
+    designs = run_start(spec, seed, k, evals, spec.get("deadline"))
+    best = min(designs, key=lambda d: d.distance, default=None)
+    return Start(
+        index=k,
+        x=None if best is None else np.asarray(best.x0, dtype=float),
+        objective=math.inf if best is None else best.distance,
+        feasible=any(d.distance < MAX_DISTANCE and d.material < MAX_MATERIAL for d in designs),
+        evaluations=int(evals),
+        info={"designs": designs},
+    )
 
 
 @dataclass(frozen=True, eq=False)
-class CurveSynthesis:
-    """Result of :func:`synthesize_curve`: the Pareto designs (distance ascending) and the run's facts."""
+class CurveSynthesis(Result):
+    """Result of :func:`synthesize_curve`: the Pareto designs (distance ascending) and the run's facts.
+
+    Attributes
+    ----------
+    designs : tuple of gearlever.curves.links.Linkage
+        The front, distance ascending.
+    distance, material : ndarray
+        Their challenge distance and material (:mod:`gearlever.curves.score`).
+    hypervolume : float
+        Of the front against the reference (:data:`~gearlever.curves.score.MAX_DISTANCE`,
+        :data:`~gearlever.curves.score.MAX_MATERIAL`).
+    evaluations : int
+        The budget of the search after retrieval (the refinements' calls are not counted).
+    seed, starts, library_size : int
+    seconds : float
+    """
 
     designs: tuple
     distance: np.ndarray
@@ -790,7 +582,8 @@ class CurveSynthesis:
     library_size: int
     seconds: float = field(default=0.0)
 
-    def as_dict(self) -> dict:
+    def summary(self) -> dict:
+        """Strict-JSON-ready summary: hypervolume, reference, counts and the front."""
         return {
             "hypervolume": self.hypervolume,
             "reference": [MAX_DISTANCE, MAX_MATERIAL],
@@ -834,17 +627,20 @@ def synthesize_curve(
     designs : int
         Most designs returned (1 to 1000).
     budget : int, optional
-        Evaluations of the search after retrieval (reproducible).
+        Evaluations of the search after retrieval (reproducible), :data:`MIN_BUDGET` to
+        :data:`MAX_BUDGET` (:func:`gearlever.synthesis.driver.check_budget`).
     time_limit : float, optional
         Seconds: the search stops on the clock (not reproducible).
     seed : int
     workers, scheduler
-        Local threads, or the address of a dask.distributed scheduler.
+        Local threads (an int), a map-like, or the address of a dask.distributed scheduler
+        (:func:`gearlever.synthesis.driver.multistart`).
     progress : callable, optional
         ``progress(label, done, total)``.
     library_size : int, optional
-        Mechanisms of the retrieval library, 1 to :data:`MAX_LIBRARY_SIZE`
-        (default :data:`LIBRARY_TOPOLOGIES` x :data:`LIBRARY_SKETCHES`).
+        Mechanisms of the retrieval library, 1 to :data:`~gearlever.curves.library.MAX_LIBRARY_SIZE`
+        (default :data:`~gearlever.curves.library.LIBRARY_TOPOLOGIES` x
+        :data:`~gearlever.curves.library.LIBRARY_SKETCHES`).
     library_seed : int
         Seed of the library's draws (0 to 2^31 - 1).
     use_cache : bool
@@ -861,23 +657,19 @@ def synthesize_curve(
     -----
     The steps and their sources are in the module docstring.
     """
-    from gearlever.curves.library import cached_library
-    from gearlever.curves.targets import check_target
-    from gearlever.synthesis._dask import run_starts
-
     t0 = time.monotonic()
     target = check_target(target)
     if not 4 <= int(max_joints) <= 20:
         raise GearleverError(f"max_joints must be 4 to 20, got {max_joints}")
     if not 1 <= int(designs) <= MAX_DESIGNS:
         raise GearleverError(f"designs must be 1 to {MAX_DESIGNS}, got {designs}")
-    if budget is not None and not 1000 <= int(budget) <= MAX_BUDGET:
-        raise GearleverError(f"budget must be 1000 to {MAX_BUDGET}, got {budget}")
+    if budget is not None:
+        budget = check_budget("budget", budget, MIN_BUDGET, MAX_BUDGET)
     if time_limit is not None and not 1.0 <= float(time_limit) <= MAX_TIME:
         raise GearleverError(f"time_limit must be 1 to {MAX_TIME:g} seconds, got {time_limit}")
-    size = LIBRARY_TOPOLOGIES * LIBRARY_SKETCHES if library_size is None else library_size
-    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or not 1 <= size <= MAX_LIBRARY_SIZE:
-        raise GearleverError(f"library_size must be an integer 1 to {MAX_LIBRARY_SIZE}, got {library_size!r}")
+    size = _library.LIBRARY_TOPOLOGIES * _library.LIBRARY_SKETCHES if library_size is None else library_size
+    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or not 1 <= size <= _library.MAX_LIBRARY_SIZE:
+        raise GearleverError(f"library_size must be an integer 1 to {_library.MAX_LIBRARY_SIZE}, got {library_size!r}")
     if isinstance(library_seed, bool) or not isinstance(library_seed, (int, np.integer)):
         raise GearleverError(f"library_seed must be an integer 0 to 2^31 - 1, got {library_seed!r}")
     if not 0 <= library_seed < 2**31:
@@ -917,12 +709,23 @@ def synthesize_curve(
         ],
         "deadline": None if time_limit is None else t0 + float(time_limit),
     }
-    res = run_starts(
-        spec, seed, len(starts), evals, "nsga2", workers=workers, scheduler=scheduler, progress=progress, fn=_chunk
+    runs = multistart(
+        functools.partial(_spec, spec),
+        len(starts),
+        seed,
+        budget=evals * len(starts),
+        workers=workers if scheduler is None else scheduler,
+        progress=progress,
+        method="nsga2",
+        start=curve_start,
     )
-    # every design, exact distance; the non-dominated feasible ones, evenly thinned to `designs`
-    dd = np.array([r[0] for r in res])
-    mm = np.array([r[2] for r in res])
+    # every design of every start (in start order), by exact distance then start
+    runs = sorted(runs, key=lambda r: r.index)
+    res = order([(d, r.index) for r in runs for d in r.info["designs"]], lambda t: t[0].distance, lambda t: t[1])
+    res = [d for d, _ in res]
+    # the non-dominated feasible ones, evenly thinned to `designs`
+    dd = np.array([r.distance for r in res])
+    mm = np.array([r.material for r in res])
     feas = (dd < MAX_DISTANCE) & (mm < MAX_MATERIAL)
     idx = np.flatnonzero(feas)
     front = idx[_nondominated(dd[idx], mm[idx])] if idx.size else idx
@@ -931,7 +734,7 @@ def synthesize_curve(
         front = front[pick]
     out = []
     for i in front:
-        _, _, _, td, xx = res[i]
+        td, xx = res[i].topology, res[i].x0
         out.append(
             linkage_from_dict(
                 {
@@ -957,3 +760,23 @@ def synthesize_curve(
         int(lib.descriptors.shape[0]),
         time.monotonic() - t0,
     )
+
+
+def _example() -> tuple:
+    """The tiny problem of the curve synthesis: an egg-shaped closed curve, a library of 600 mechanisms."""
+    t = np.linspace(0, 2 * np.pi, 120)
+    egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
+    return (egg,), {"library_size": 600, "designs": 20, "use_cache": False}
+
+
+register(
+    Kind(
+        "curve",
+        "topology",
+        "linkage topology and dimensions tracing a closed curve: library retrieval, refinement, NSGA-II front",
+        "gearlever.curves.search:synthesize_curve",
+        kind_arg=None,
+        min_budget=MIN_BUDGET,
+        example=_example,
+    )
+)

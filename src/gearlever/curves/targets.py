@@ -107,7 +107,7 @@ def known_mechanism(n_dyads: int, seed: int, rms: float = SUITE_RMS):
 
     Returns
     -------
-    topology : gearlever.curves.search.Topology
+    topology : gearlever.curves.topology.Topology
     x0 : ndarray, shape (N, 2)
         The sketch.
     curve : ndarray, shape (200, 2)
@@ -115,8 +115,8 @@ def known_mechanism(n_dyads: int, seed: int, rms: float = SUITE_RMS):
 
     Notes
     -----
-    Draws of :func:`gearlever.curves.search.random_topology` and
-    :func:`~gearlever.curves.search.random_sketches` from
+    Draws of :func:`gearlever.curves.topology.random_topology` and
+    :func:`~gearlever.curves.topology.random_sketches` from
     ``numpy.random.default_rng(seed)``; the challenge's material and bound
     as :mod:`gearlever.curves.score`.
 
@@ -127,8 +127,8 @@ def known_mechanism(n_dyads: int, seed: int, rms: float = SUITE_RMS):
     (9, (200, 2))
     """
     from gearlever.curves.score import MAX_MATERIAL, material
-    from gearlever.curves.search import random_sketches, random_topology
     from gearlever.curves.simulate import simulate
+    from gearlever.curves.topology import random_sketches, random_topology
 
     rng = np.random.default_rng(seed)
     while True:

@@ -20,7 +20,14 @@
   :mod:`~gearlever.synthesis.path_fourbar` (four-bar),
   :mod:`~gearlever.synthesis.fivebar` (geared five-bar),
   :mod:`~gearlever.synthesis.sixbar` (Stephenson six-bar).
-- :mod:`~gearlever.synthesis.law`: law synthesis (its own registry of kinds).
+- :mod:`~gearlever.synthesis.law`: law synthesis.
+- :mod:`~gearlever.synthesis.driver`: the one multistart driver of the
+  searched families (path, law, curve): the problem protocol, a named
+  record per start, ``workers=`` an int, a map-like or a dask scheduler
+  address, the one budget rule.
+- :mod:`~gearlever.synthesis.registry`: the one registry of every kind of
+  every family (function, motion, path, law, curve); :func:`kinds` lists
+  them.
 
 Within the layering of the guide's architecture page (held by
 ``tests/test_imports.py``) it may import numpy, scipy, (for scale-out) dask and
@@ -47,20 +54,24 @@ from gearlever.synthesis.motion import (
     moving_pivot,
     synthesize_motion,
 )
+from gearlever.synthesis.registry import Kind, kinds, register
 
 __all__ = [
     "BurmesterCurves",
     "Dyad",
     "FunctionSynthesis",
     "FunctionTargets",
+    "Kind",
     "MotionSolution",
     "MotionSynthesis",
     "burmester_curves",
     "burmester_points",
     "fixed_pivot",
     "function_targets",
+    "kinds",
     "moving_pivot",
     "precision_points",
+    "register",
     "synthesize_function",
     "synthesize_motion",
 ]

@@ -5,17 +5,22 @@ draws from ``numpy.random.default_rng([seed, k])``, a chunk of
 :data:`CHUNK` consecutive starts is one task, and the results are reduced
 deterministically (sorted by objective at :data:`TIE_DIGITS` digits, then
 start index).  The answer is therefore the same, bit for bit, for any number
-of workers and on any scheduler.
+of workers and on any scheduler.  The reduction and the records of the starts
+are :mod:`gearlever.synthesis.driver`'s; this module only runs chunks of them.
+
+A leaf: imports :mod:`gearlever.errors` and :mod:`gearlever.synthesis._search`
+(dask and dask.distributed when work is run).
 """
 
 from __future__ import annotations
 
-import math
+import numbers
 import re
 
 from gearlever.errors import GearleverError
+from gearlever.synthesis._search import STOP
 
-__all__ = ["run_starts", "check_address", "CHUNK", "CONNECT_TIMEOUT", "SCHEMES"]
+__all__ = ["run_tasks", "check_address", "CHUNK", "CONNECT_TIMEOUT", "SCHEMES"]
 
 #: Starts per dask task.
 CHUNK = 2
@@ -28,32 +33,10 @@ def _chunks(n: int):
 
 
 #: Significant digits at which two starts' objectives are compared; objectives
-#: below :data:`TIE_FLOOR` of the largest finite one are equal (zero).
+#: below :data:`TIE_FLOOR` of the largest finite one are equal (zero) (see
+#: :func:`gearlever.synthesis.driver.order`).
 TIE_DIGITS = 6
 TIE_FLOOR = 1e-12
-
-
-def _order(results, tie: float | None = None):
-    """Results sorted by objective, then start index; equally good starts keep their index order.
-
-    The last digits of an objective differ between machines (OpenBLAS picks its
-    kernels by CPU): compared at :data:`TIE_DIGITS` digits, and with exact
-    solutions (objectives at rounding level) all equal, the start chosen is
-    the same on every machine.  ``tie``: the objective below which a start
-    is exact (default :data:`TIE_FLOOR` of the largest finite objective).
-    """
-    from gearlever._format import quantize
-
-    fin = [abs(r[0]) for r in results if math.isfinite(r[0])]
-    floor = float(tie) if tie is not None else (TIE_FLOOR * max(fin) if fin else 0.0)
-
-    def key(r):
-        f = r[0]
-        if not math.isfinite(f):
-            return (math.inf, r[1])
-        return (0.0 if abs(f) <= floor else quantize(f, 0.0, TIE_DIGITS), r[1])
-
-    return sorted(results, key=key)
 
 
 #: Address schemes of a dask.distributed scheduler that can be reached from here.
@@ -135,42 +118,57 @@ def _quiet_stop(client) -> None:
         pass
 
 
-def run_starts(
-    spec, seed, n_starts, evals, method="de", *, workers=None, scheduler=None, progress=None, fn=None, tie=None
-):
-    """Run ``n_starts`` seeded starts in chunks on dask; results sorted by (objective, start).
+def _workers(workers) -> tuple:
+    """``(threads, scheduler, mapper)`` of a ``workers`` value: an int, a map-like or a scheduler address."""
+    if workers is None or (isinstance(workers, numbers.Integral) and not isinstance(workers, bool)):
+        return workers, None, None
+    if isinstance(workers, str):
+        return None, workers, None
+    if callable(getattr(workers, "map", None)):
+        return None, None, workers
+    raise GearleverError(
+        f"workers must be a number of threads, a map-like (with .map) or a scheduler address, got {workers!r}"
+    )
+
+
+def run_tasks(fn, args: tuple, n_starts: int, evals: int, method: str = "de", *, workers=None, progress=None) -> list:
+    """``fn(*args, ks, evals, method)`` for chunks ``ks`` of :data:`CHUNK` starts; the chunks' lists joined in order.
 
     Parameters
     ----------
-    spec : dict
-        Keyword arguments of the problem (plain lists and numbers: sent to workers).
-    seed, n_starts, evals : int
-        Seed, number of starts, evaluations per start.
+    fn : callable
+        Chunk function returning a list (module-level, for a scheduler).
+    args : tuple
+        Its leading arguments (plain data or module-level callables: sent to workers).
+    n_starts, evals : int
+        Number of starts, evaluations per start.
     method : str
-    workers : int, optional
-        Local threads (ignored with ``scheduler``).
-    scheduler : str, optional
-        Address of a running dask.distributed scheduler.
+    workers : int, map-like or str, optional
+        Local dask threads (an int; default dask's default), anything with a
+        ``.map`` (called in chunk order), or the address of a running
+        dask.distributed scheduler (:func:`check_address`).
     progress : callable, optional
         ``progress("starts", done, total)`` after each finished chunk.
-    fn : callable, optional
-        Chunk function ``fn(spec, seed, ks, evals, method) -> list`` (default
-        :func:`gearlever.synthesis.path.run_chunk`).
-    tie : float, optional
-        Objective at or below which a start counts as exact (see :func:`_order`): exact starts are
-        taken in start order, whatever the last digits of their objectives.
-    """
-    from gearlever.synthesis._search import STOP
 
-    if fn is None:
-        from gearlever.synthesis.path import run_chunk as fn
+    Examples
+    --------
+    >>> def chunk(base, ks, evals, method):
+    ...     return [base + k for k in ks]
+    >>> run_tasks(chunk, (10,), 5, 1, workers=1)
+    [10, 11, 12, 13, 14]
+    >>> from concurrent.futures import ThreadPoolExecutor
+    >>> with ThreadPoolExecutor(2) as pool:
+    ...     run_tasks(chunk, (10,), 5, 1, workers=pool)
+    [10, 11, 12, 13, 14]
+    """
+    threads, scheduler, mapper = _workers(workers)
     STOP.clear()
     chunks = _chunks(n_starts)
     total = len(chunks)
     if scheduler is not None:
         client = _connect(scheduler)
         try:
-            futs = [client.submit(fn, spec, seed, ks, evals, method, pure=False) for ks in chunks]
+            futs = [client.submit(fn, *args, ks, evals, method, pure=False) for ks in chunks]
             out = []
             try:
                 for done, fut in enumerate(futs, 1):
@@ -182,6 +180,16 @@ def run_starts(
                 raise
         finally:
             client.close()
+    elif mapper is not None:
+        out = []
+        try:
+            for done, res in enumerate(mapper.map(_Call(fn, args, evals, method), chunks), 1):
+                out.append(res)
+                if progress is not None:
+                    progress("starts", done, total)
+        except KeyboardInterrupt:
+            STOP.set()
+            raise
     else:
         import dask
         from dask.callbacks import Callback
@@ -196,11 +204,21 @@ def run_starts(
                     self.done += 1
                     progress("starts", self.done, total)
 
-        tasks = [dask.delayed(fn, pure=False)(spec, seed, ks, evals, method) for ks in chunks]
+        tasks = [dask.delayed(fn, pure=False)(*args, ks, evals, method) for ks in chunks]
         try:
             with _Tick():
-                out = dask.compute(*tasks, scheduler="threads", num_workers=workers)
+                out = dask.compute(*tasks, scheduler="threads", num_workers=threads)
         except KeyboardInterrupt:
             STOP.set()  # the worker threads end their searches at the next generation
             raise
-    return _order([r for chunk in out for r in chunk], tie)
+    return [r for chunk in out for r in chunk]
+
+
+class _Call:
+    """``fn(*args, ks, evals, method)`` as a one-argument callable of ``ks`` (picklable for process pools)."""
+
+    def __init__(self, fn, args, evals, method):
+        self.fn, self.args, self.evals, self.method = fn, args, evals, method
+
+    def __call__(self, ks):
+        return self.fn(*self.args, ks, self.evals, self.method)

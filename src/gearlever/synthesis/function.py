@@ -29,6 +29,7 @@ from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.loops.fourbar import fourbar, grashof, transmission_angle
 from gearlever.synthesis.expr import parse_expression, shown
 from gearlever.synthesis.model import fourbar_model, model_toml, slider_crank_model
+from gearlever.synthesis.registry import Kind, register
 
 __all__ = [
     "FunctionTargets",
@@ -545,10 +546,8 @@ def synthesize_function(
         want = np.interp(dense, phi[order], seq)
     else:
         want = _desired_values(desired, dense)
-    if kind == "fourbar":
-        r = _fourbar(phi, out, d, dense, want, name or "synthesized four-bar function generator")
-    else:
-        r = _slider(phi, out, dense, want, name or "synthesized slider-crank function generator")
+    solve, default_name = _SOLVERS[kind]
+    r = solve(phi, out, d, dense, want, name or default_name)
     note = "" if r.defect else r.proportions()
     if note:
         warnings.warn(
@@ -763,4 +762,47 @@ def _slider(phi, s, dense, want, name):
         q_off,
         0.0,
         max(A_, b, abs(e)) / min(A_, b),
+    )
+
+
+def _slider_scaled(phi, s, d, dense, want, name):
+    """:func:`_slider` with the four-bar's arguments (the slider-crank is scaled by its travels, not ``d``)."""
+    return _slider(phi, s, dense, want, name)
+
+
+#: kind -> (solver, default model name).
+_SOLVERS = {
+    "fourbar": (_fourbar, "synthesized four-bar function generator"),
+    "slider-crank": (_slider_scaled, "synthesized slider-crank function generator"),
+}
+
+
+def _example_fourbar() -> tuple:
+    """Three Chebyshev precision points of ``log10`` on 1..2 (crank 45..105 deg, rocker 135..225 deg)."""
+    t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
+    return (t.input_angle, t.output), {"desired": t.desired}
+
+
+def _example_slider() -> tuple:
+    """Six travels of a known offset slider-crank (crank 2, rod 5, offset 1) for crank angles 10..150 deg."""
+    phi = np.radians(np.linspace(10, 150, 6))
+    return (phi, 2 * np.cos(phi) + np.sqrt(25 - (1 - 2 * np.sin(phi)) ** 2)), {}
+
+
+for _order, (_name, _what, _example) in enumerate(
+    [
+        ("fourbar", "four-bar function generator by Freudenstein's equation", _example_fourbar),
+        ("slider-crank", "offset slider-crank function generator (slider travel)", _example_slider),
+    ]
+):
+    register(
+        Kind(
+            "function",
+            _name,
+            f"{_what}: exact through three precision points, least squares through more",
+            "gearlever.synthesis.function:synthesize_function",
+            searched=False,
+            order=_order,
+            example=_example,
+        )
     )

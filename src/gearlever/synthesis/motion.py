@@ -34,6 +34,7 @@ from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.loops.fourbar import fourbar, grashof, transmission_angle
 from gearlever.synthesis.model import fourbar_model
+from gearlever.synthesis.registry import Kind, register
 
 __all__ = [
     "Dyad",
@@ -742,3 +743,44 @@ def synthesize_motion(
 def z_pts(z):
     """Complex points as an ``(N, 2)`` array."""
     return np.column_stack([np.real(z), np.imag(z)])
+
+
+def _example_poses(n: int) -> tuple:
+    """``(points, angles)`` of ``n`` coupler poses of a known four-bar (O2 (0, 0), O4 (4, 0), A (1, 0.3),
+    B (4.5, 2.8), coupler point (2, 3)) over 1.6 rad of crank turn."""
+    o4, a, b, p = np.array([4.0, 0.0]), np.array([1.0, 0.3]), np.array([4.5, 2.8]), np.array([2.0, 3.0])
+    phi = math.atan2(a[1], a[0]) + np.linspace(0.0, 1.6, n)
+    lengths = (4.0, float(np.hypot(*a)), float(np.hypot(*(b - a))), float(np.hypot(*(b - o4))))
+    th3 = fourbar(*lengths, phi, branch="open").theta3
+    gamma = math.atan2(*(p - a)[::-1]) - math.atan2(*(b - a)[::-1])
+    r = float(np.hypot(*(p - a)))
+    pts = np.column_stack([lengths[1] * np.cos(phi), lengths[1] * np.sin(phi)])
+    pts += r * np.column_stack([np.cos(th3 + gamma), np.sin(th3 + gamma)])
+    return pts, th3
+
+
+def _example(n: int):
+    def example() -> tuple:
+        pts, ang = _example_poses(n)
+        return (pts, ang), ({"fixed_pivots": [(0.0, 0.0), (4.0, 0.0)]} if n == 3 else {})
+
+    return example
+
+
+for _n, _how in [
+    (3, "given the two fixed (or moving) pivots: the other two in closed form"),
+    (4, "along the centre-point curve (Burmester curves)"),
+    (5, "on the Burmester points"),
+]:
+    register(
+        Kind(
+            "motion",
+            f"{_n}-poses",
+            f"four-bar guiding a coupler through {_n} poses, {_how}",
+            "gearlever.synthesis.motion:synthesize_motion",
+            kind_arg=None,
+            searched=False,
+            order=_n,
+            example=_example(_n),
+        )
+    )

@@ -58,6 +58,7 @@ Pure numpy and scipy.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 
@@ -65,6 +66,7 @@ import numpy as np
 
 from gearlever.errors import GearleverError
 from gearlever.synthesis import path_kinds
+from gearlever.synthesis.driver import check_budget, multistart, population
 from gearlever.synthesis.path_fourbar import FourBarPathProblem, _targets
 from gearlever.synthesis.path_kinds import PathSynthesis
 
@@ -74,6 +76,7 @@ __all__ = [
     "synthesize_path",
     "n_starts",
     "population",
+    "search_problem",
     "min_budget",
     "DEFAULT_BUDGET",
     "MAX_BUDGET",
@@ -105,31 +108,48 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> tuple:
-    """One start: a seeded global search (``default_rng([seed, k])``) and its polish.
+class PathSearch:
+    """A path problem as the driver's :class:`~gearlever.synthesis.driver.Problem`: its box, sampling,
+    batched objective and a polish ``polish(z) -> (w, objective, {"mode": sigma})``.
 
-    Returns ``(objective, k, w, sigma, evaluations)`` (the candidate
-    evaluations of the global search, at most ``evals``; the polish's are not
-    counted); the same for the same arguments on any machine, thread or process.
+    The search runs over the problem's search vector ``z``; the polish maps
+    the search's best to the polish vector ``w`` with its discrete mode
+    ``sigma`` (:meth:`FourBarPathProblem.mode_of`, :meth:`FourBarPathProblem.to_w`)
+    and polishes it by least squares (:meth:`FourBarPathProblem.polish`).
     """
-    from gearlever.synthesis import _search
 
-    pb = make_problem(spec)
-    rng = np.random.default_rng([seed, k])
-    pop = population(pb.d)
-    if method == "de":
-        z, _, _ = _search.differential_evolution(pb.objective, pb.lo, pb.hi, rng, budget=evals, pop=pop, init=pb.sample)
-    elif method == "cma":
-        z, _, _ = _search.cma_es(pb.objective, pb.lo, pb.hi, rng, budget=evals, pop=pop, init=pb.sample)
-    else:
-        raise GearleverError(f"method must be 'de' or 'cma', got {method!r}")
-    searched = pb.evaluations  # the global search's candidate evaluations (at most ``evals``); the polish is apart
-    if z is None:
-        return (math.inf, k, None, 1.0, searched)
-    sigma = float(pb.mode_of(z[None, :])[0])
-    w = pb.to_w(z)
-    w, fw = pb.polish(w, sigma)
-    return (fw, k, w, sigma, searched)
+    def __init__(self, pb):
+        self.pb = pb
+        self.lo, self.hi = pb.lo, pb.hi
+
+    @property
+    def evaluations(self) -> int:
+        return self.pb.evaluations
+
+    def sample(self, rng, m):
+        return self.pb.sample(rng, m)
+
+    def objective(self, Z):
+        return self.pb.objective(Z)
+
+    def polish(self, z, rounds=None) -> tuple:
+        """``(w, objective, {"mode": sigma})`` of the search's best ``z`` (the least-squares polish has no rounds)."""
+        sigma = float(self.pb.mode_of(z[None, :])[0])
+        w, fw = self.pb.polish(self.pb.to_w(z), sigma)
+        return w, fw, {"mode": sigma}
+
+
+def _search_problem(spec: dict) -> PathSearch:
+    return PathSearch(make_problem(spec))
+
+
+def search_problem(spec: dict):
+    """A picklable factory of fresh :class:`PathSearch` problems of a spec (one per start of the driver).
+
+    >>> search_problem({"kind": "sixbar", "targets": [[0, 0], [1, 0], [2, 1]]})().lo.size
+    16
+    """
+    return functools.partial(_search_problem, dict(spec))
 
 
 def make_problem(spec: dict):
@@ -150,16 +170,6 @@ def make_problem(spec: dict):
 def _kinds() -> tuple:
     """The ``kind`` values of :func:`synthesize_path`: the registered kinds in ``auto`` order, then ``auto``."""
     return (*path_kinds.names(), "auto")
-
-
-def run_chunk(spec: dict, seed: int, ks, evals: int, method: str = "de") -> list:
-    """:func:`run_start` for each start in ``ks`` (one dask task)."""
-    return [run_start(spec, seed, k, evals, method) for k in ks]
-
-
-def population(d: int) -> int:
-    """Population of one start's search over ``d`` variables: ``max(24, 6 d)``."""
-    return max(24, 6 * int(d))
 
 
 def min_budget(d: int) -> int:
@@ -255,10 +265,12 @@ def synthesize_path(
         number of variables, never by the workers).  At least
         :func:`min_budget` (480 for a four-bar without timing), at most
         :data:`MAX_BUDGET`.
-    workers : int, optional
-        Local dask threads (default: dask's default).
+    workers : int, map-like or str, optional
+        Local dask threads (default: dask's default), anything with a
+        ``.map``, or the address of a running ``dask.distributed`` scheduler
+        (see :func:`gearlever.synthesis.driver.multistart`).
     scheduler : str, optional
-        Address of a running ``dask.distributed`` scheduler instead.
+        Address of a running ``dask.distributed`` scheduler (the same as ``workers=address``).
     method : {"de", "cma"}
         Global search (``"cma"`` only for comparison).
     progress : callable, optional
@@ -284,8 +296,6 @@ def synthesize_path(
     >>> r.grashof, r.feasible, bool(r.objective < 1e-3)
     ('crank-rocker', True, True)
     """
-    from gearlever.synthesis._dask import run_starts
-
     known = _kinds()
     if kind not in known:
         raise GearleverError(f"kind must be one of {', '.join(known)}, got {kind!r}")
@@ -312,13 +322,10 @@ def synthesize_path(
             )
         base["min_transmission"] = min_transmission
     pb = FourBarPathProblem(**base)  # checks the input before any work
-    budget = int(budget)
     least = max(min_budget(make_problem({"kind": kd, **base}).d) for kd in kinds)
-    if not least <= budget <= MAX_BUDGET:
-        raise GearleverError(
-            f"budget must be {least}..{MAX_BUDGET} for this problem (at least {STARTS} starts of one "
-            f"population each), got {budget}"
-        )
+    budget = check_budget(
+        "budget", budget, least, MAX_BUDGET, f"for this problem: at least {STARTS} starts of one population each"
+    )
     S2 = float(np.sum(np.ptp(pb.targets, axis=0) ** 2))
     # A closed path whose last target repeats the first (a full crank turn): the crank of a
     # crank-rocker is back at the same pose after 2 pi, so the last target is met exactly as
@@ -343,15 +350,22 @@ def synthesize_path(
         starts = n_starts(budget, pk.d)
         per = max(budget // starts, 1)
         # exact starts (distances below 1e-10 of the targets' size) are equal: the first one is kept
-        results = run_starts(
-            spec, seed, starts, per, method, workers=workers, scheduler=scheduler, progress=progress, tie=1e-20 * S2
+        results = multistart(
+            search_problem(spec),
+            starts,
+            seed,
+            budget=starts * per,
+            workers=workers if scheduler is None else scheduler,
+            progress=progress,
+            method=method,
+            tie=1e-20 * S2,
         )
-        evals += sum(r[4] for r in results)
+        evals += sum(s.evaluations for s in results)
         best = results[0]
-        if best[2] is None:
+        if best.x is None:
             tried[kd] = None
             continue
-        res = path_kinds.get(kd).result(pk, best[2], best[3], evals, seed, starts, 0.0)
+        res = path_kinds.get(kd).result(pk, best.x, best.info["mode"], evals, seed, starts, 0.0)
         tried[kd] = res.objective if res.feasible else None
         if res.feasible and (best_res is None or res.objective < best_res.objective):
             best_res = res

@@ -19,16 +19,20 @@ tries :func:`names` in order.  A new kind plugs in by a module that
 subclasses :class:`PathKind` and calls :func:`register` (listed in
 :data:`BUILTIN` to be loaded with the others).
 
-The registry imports no kind module at import time (:func:`names` and
-:func:`get` load :data:`BUILTIN` on first use), so a kind module may import
-it, and the four-bar module, without an import circle.
+The kinds are kept in the one registry of every synthesis family,
+:mod:`gearlever.synthesis.registry` (family ``path``, the :class:`PathKind`
+as the record's ``spec``): :func:`register` adds them there, :func:`names`
+and :func:`get` read them from there.  The registry imports no kind module
+at import time (:func:`names` and :func:`get` load :data:`BUILTIN` on first
+use), so a kind module may import it, and the four-bar module, without an
+import circle.
 
-Imports numpy, :mod:`gearlever._result` and :mod:`gearlever.errors`.
+Imports numpy, :mod:`gearlever._result`, :mod:`gearlever.errors` and
+:mod:`gearlever.synthesis.registry`.
 """
 
 from __future__ import annotations
 
-import importlib
 import math
 from dataclasses import dataclass, field
 
@@ -36,14 +40,14 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever.errors import GearleverError
+from gearlever.synthesis import registry
 
 __all__ = ["BUILTIN", "PathKind", "PathSynthesis", "get", "names", "register"]
 
 #: The modules of the kinds shipped with gearlever, loaded by :func:`names` and :func:`get`.
-BUILTIN = ("gearlever.synthesis.path_fourbar", "gearlever.synthesis.fivebar", "gearlever.synthesis.sixbar")
-
-#: name -> registered :class:`PathKind` (filled by the kind modules; read it through :func:`names`, :func:`get`).
-_KINDS: dict = {}
+BUILTIN = registry.FAMILIES["path"]
+#: Targets and ranges of the tiny problem of every path kind (:attr:`gearlever.synthesis.registry.Kind.example`).
+EXAMPLE = [[1.0, 2.0], [1.5, 2.4], [1.8, 3.0], [1.2, 3.5], [0.8, 2.8]]
 
 
 class PathKind:
@@ -57,6 +61,8 @@ class PathKind:
     ----------
     name : str
         The kind's name (``--type`` of ``gearlever synthesize path``).
+    description : str
+        One line for :func:`gearlever.synthesis.kinds` (default: the class docstring's first line).
     order : float
         Place in ``auto`` (smallest first); ties by name.
     problem : type
@@ -75,6 +81,7 @@ class PathKind:
     """
 
     name: str = ""
+    description: str = ""
     order: float = math.inf
     problem: type = None
     options: frozenset = frozenset()
@@ -93,10 +100,17 @@ class PathKind:
         raise NotImplementedError
 
 
+def _example() -> tuple:
+    """``(args, kwargs)`` of the tiny problem of every path kind (five targets, small ranges)."""
+    return (EXAMPLE,), {"length_range": (0.2, 5), "coord_range": (-5, 5)}
+
+
 def register(kind):
     """Add a :class:`PathKind` (subclass or instance) to the registry under its name; returns ``kind``.
 
     Usable as a class decorator.  Registering a name again replaces the kind.
+    The kind is a record of family ``path`` of :mod:`gearlever.synthesis.registry`,
+    run by :func:`gearlever.synthesis.path.synthesize_path`.
 
     Examples
     --------
@@ -105,20 +119,27 @@ def register(kind):
     ...     name, order = "probe", 1e9
     >>> names()[-1]
     'probe'
-    >>> _ = _KINDS.pop("probe")
+    >>> _ = registry._KINDS.pop(("path", "probe"))
     """
     inst = kind() if isinstance(kind, type) else kind
     if not isinstance(inst, PathKind) or not isinstance(inst.name, str) or not inst.name:
         raise GearleverError(f"kind must be a PathKind with a name, got {kind!r}")
     if inst.name == "auto":
         raise GearleverError("kind name 'auto' is the driver's (try every kind)")
-    _KINDS[inst.name] = inst
+    doc = (type(inst).__doc__ or "").strip().splitlines()
+    registry.register(
+        registry.Kind(
+            "path",
+            inst.name,
+            inst.description or (doc[0] if doc else inst.name),
+            "gearlever.synthesis.path:synthesize_path",
+            min_budget=480,
+            order=inst.order,
+            example=_example,
+            spec=inst,
+        )
+    )
     return kind
-
-
-def _load() -> None:
-    for mod in BUILTIN:
-        importlib.import_module(mod)
 
 
 def names() -> tuple:
@@ -129,8 +150,7 @@ def names() -> tuple:
     >>> names()
     ('fourbar', 'geared-fivebar', 'sixbar')
     """
-    _load()
-    return tuple(k.name for k in sorted(_KINDS.values(), key=lambda k: (k.order, k.name)))
+    return registry.names("path")
 
 
 def get(name: str) -> PathKind:
@@ -141,10 +161,7 @@ def get(name: str) -> PathKind:
     >>> get("sixbar").problem.__name__
     'StephensonSixBarPathProblem'
     """
-    _load()
-    if name not in _KINDS:
-        raise GearleverError(f"kind must be one of {', '.join(names())}, got {name!r}")
-    return _KINDS[name]
+    return registry.get("path", name).spec
 
 
 @dataclass(frozen=True)

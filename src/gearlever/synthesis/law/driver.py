@@ -5,6 +5,7 @@ Pure numpy and scipy (dask through :mod:`gearlever.synthesis._dask`).
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass, field
@@ -13,13 +14,15 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever.errors import GearleverError
+from gearlever.synthesis.driver import check_budget, multistart
 from gearlever.synthesis.law._core import KINDS, SAMPLES, LawProblem, LawTarget, law_target
+from gearlever.synthesis.path import n_starts
 
 __all__ = [
     "LawSynthesis",
     "synthesize_law",
     "target_of_law",
-    "run_chunk",
+    "search_problem",
     "DEFAULT_BUDGET",
     "MAX_BUDGET",
     "REPORT_SAMPLES",
@@ -31,7 +34,8 @@ DEFAULT_BUDGET = 400_000
 MIN_TRANSMISSION_DEG = 20.0
 #: Lawson rounds of the final polish of the best start (each start has 25).
 FINAL_ROUNDS = 100
-#: Largest budget accepted.
+#: Smallest and largest budget accepted.
+MIN_BUDGET = 100
 MAX_BUDGET = 10**7
 #: Law inputs at which the result is measured (a tenth of a degree apart).
 REPORT_SAMPLES = 3600
@@ -65,6 +69,56 @@ def target_of_law(law, samples: int = SAMPLES, dwell_weight: float | None = None
         net=law.net_change(),
         dwell_weight=DWELL_WEIGHT if dwell_weight is None else dwell_weight,
     )
+
+
+def _sine(power: int = 1, **kwargs):
+    """A 20 deg sine of the input (to ``power``) sampled at 72 inputs, and the keyword arguments."""
+
+    def make() -> tuple:
+        th = np.linspace(0.0, 2 * math.pi, 72, endpoint=False)
+        return (law_target(th, math.radians(20) * np.sin(th) ** power),), dict(kwargs)
+
+    return make
+
+
+def _segments(output: str, units: str, segments: list):
+    def make() -> tuple:
+        from gearlever.laws import law_from_segments
+
+        return (law_from_segments(output, units, segments),), {}
+
+    return make
+
+
+#: Dwell, cycloidal rise of 45 deg, 3-4-5 return (a law with a dwell).
+DWELL = [
+    {"to": 120, "motion": "dwell"},
+    {"to": 240, "motion": "cycloidal", "rise": 45},
+    {"to": 360, "motion": "345", "rise": -45},
+]
+
+#: The tiny problem of each kind (a law it can give): kind -> ``example()`` giving ``(args, kwargs)``.
+EXAMPLES = {
+    "fourbar": _sine(),
+    "slider-crank": _segments(
+        "displacement",
+        "mm",
+        [{"to": 180, "motion": "harmonic", "rise": 40}, {"to": 360, "motion": "harmonic", "rise": -40}],
+    ),
+    "geared-fourbar": _segments("angle", "deg", DWELL),
+    "sixbar-dwell": _segments("angle", "deg", DWELL),
+    "gear-lever": _sine(2, teeth=(20, 40)),
+}
+
+
+def example(kind: str):
+    """The tiny problem of law kind ``kind``: ``example()`` gives ``(args, kwargs)`` of :func:`synthesize_law`.
+
+    >>> args, kwargs = example("gear-lever")()
+    >>> args[0].theta.size, kwargs
+    (72, {'teeth': (20, 40)})
+    """
+    return EXAMPLES.get(kind, _sine())
 
 
 def _target_spec(t: LawTarget) -> dict:
@@ -102,30 +156,43 @@ def make_problem(spec: dict) -> LawProblem:
     return LawProblem(spec["kind"], _target_of(spec["target"]), spec["min_transmission"], tuple(spec["teeth"]))
 
 
-def run_start(spec: dict, seed: int, k: int, evals: int, method: str = "de") -> tuple:
-    """One start: DE from ``default_rng([seed, k])`` then the minimax polish; ``(f, k, z, offset, evals)``."""
-    from gearlever.synthesis import _search
+class LawSearch:
+    """A law problem as the driver's :class:`~gearlever.synthesis.driver.Problem`.
 
-    pb = make_problem(spec)
-    rng = np.random.default_rng([seed, k])
-    lo, hi = pb.kind.search_box()
-    pop = max(24, 6 * lo.size)
-    f, init = pb.search_objective, pb.kind.search_sample
-    if method == "de":
-        z, _, _ = _search.differential_evolution(f, lo, hi, rng, budget=evals, pop=pop, init=init)
-    elif method == "cma":
-        z, _, _ = _search.cma_es(f, lo, hi, rng, budget=evals, pop=pop, init=init)
-    else:
-        raise GearleverError(f"method must be 'de' or 'cma', got {method!r}")
-    if z is None:
-        return (math.inf, k, None, 0.0, pb.evaluations)
-    z, off, f = pb.polish(pb.kind.to_full(z[None, :])[0])
-    return (f, k, z.tolist(), off, pb.evaluations)
+    The search runs in the kind's reduced box (:meth:`LawKind.search_box`,
+    :meth:`LawKind.search_sample`, :meth:`LawProblem.search_objective`); the
+    polish takes the search's best to the full design vector and runs the
+    minimax polish of :class:`LawProblem`: ``polish(z, rounds) -> (z, objective, {"offset": off})``.
+    """
+
+    def __init__(self, pb: LawProblem):
+        self.pb = pb
+        self.lo, self.hi = pb.kind.search_box()
+
+    @property
+    def evaluations(self) -> int:
+        return self.pb.evaluations
+
+    def sample(self, rng, m):
+        return self.pb.kind.search_sample(rng, m)
+
+    def objective(self, Z):
+        return self.pb.search_objective(Z)
+
+    def polish(self, z, rounds=None) -> tuple:
+        """``(z, objective, {"offset": off})``: the minimax polish (its default rounds) of the full vector of ``z``."""
+        full = self.pb.kind.to_full(np.asarray(z)[None, :])[0]
+        z, off, f = self.pb.polish(full) if rounds is None else self.pb.polish(full, rounds=rounds)
+        return np.asarray(z), f, {"offset": off}
 
 
-def run_chunk(spec: dict, seed: int, ks, evals: int, method: str = "de") -> list:
-    """:func:`run_start` for each start in ``ks`` (one dask task)."""
-    return [run_start(spec, seed, k, evals, method) for k in ks]
+def _search_problem(spec: dict) -> LawSearch:
+    return LawSearch(make_problem(spec))
+
+
+def search_problem(spec: dict):
+    """A picklable factory of fresh :class:`LawSearch` problems of a spec (one per start of the driver)."""
+    return functools.partial(_search_problem, spec)
 
 
 @dataclass(frozen=True)
@@ -227,7 +294,8 @@ def synthesize_law(
     seed, budget : int
         The result is fixed by them: start ``k`` draws from ``default_rng([seed, k])``.
     workers, scheduler
-        Local dask threads or a dask.distributed scheduler address (the result does not depend on them).
+        Local dask threads (an int), a map-like, or a dask.distributed scheduler address (see
+        :func:`gearlever.synthesis.driver.multistart`; the result does not depend on them).
     min_transmission : float
         Smallest transmission angle over the turn, radians, ``0 <= . < pi/2`` (default
         :data:`MIN_TRANSMISSION_DEG` degrees).
@@ -246,7 +314,9 @@ def synthesize_law(
     :func:`~gearlever.synthesis.path.n_starts` seeded starts (set by the
     budget and the variables, never by the workers), each polished by the
     minimax polish of :class:`~gearlever.synthesis.law._core.LawProblem`;
-    starts are reduced by (objective, start index).
+    starts are reduced by (objective, start index)
+    (:func:`gearlever.synthesis.driver.multistart`).  ``evaluations`` counts
+    the global searches (at most ``budget`` per kind tried) and the polishes.
 
     Examples
     --------
@@ -257,9 +327,6 @@ def synthesize_law(
     >>> bool(np.degrees(np.abs(res.error).max()) < 1.0)
     True
     """
-    from gearlever.synthesis._dask import run_starts
-    from gearlever.synthesis.path import n_starts
-
     if not isinstance(target, LawTarget):  # a MotionLaw
         motion_law = target
         target = target_of_law(motion_law)
@@ -270,9 +337,7 @@ def synthesize_law(
         raise GearleverError(f"kind must be one of {', '.join(KINDS)}, auto; got {kind!r}")
     if not (math.isfinite(min_transmission) and 0 <= min_transmission < math.pi / 2):
         raise GearleverError(f"min_transmission must be 0 <= . < pi/2 radians, got {min_transmission!r}")
-    budget = int(budget)
-    if not 100 <= budget <= MAX_BUDGET:
-        raise GearleverError(f"budget must be 100..{MAX_BUDGET}, got {budget}")
+    budget = check_budget("budget", budget, MIN_BUDGET, MAX_BUDGET)
     kinds = list(KINDS) if kind == "auto" else [kind]
     usable = []
     reasons = {}
@@ -299,14 +364,21 @@ def synthesize_law(
         pb = make_problem(spec)
         starts = n_starts(budget, pb.kind.search_box()[0].size)
         per = max(budget // starts, 1)
-        results = run_starts(
-            spec, seed, starts, per, method, workers=workers, scheduler=scheduler, progress=progress, fn=run_chunk
+        results = multistart(
+            search_problem(spec),
+            starts,
+            seed,
+            budget=starts * per,
+            workers=workers if scheduler is None else scheduler,
+            progress=progress,
+            method=method,
         )
-        evals += sum(r[4] for r in results)
-        f, _, z, off, _ = results[0]
-        if z is None or not math.isfinite(f):
+        evals += sum(s.evaluations + s.polish_evaluations for s in results)
+        top = results[0]
+        if top.x is None or not math.isfinite(top.objective):
             tried[kd] = None
             continue
+        f, z, off = top.objective, top.x, top.info["offset"]
         # the best start polished further (after the reduction: the same for any workers)
         z2, off2, f2 = pb.polish(np.asarray(z), rounds=FINAL_ROUNDS)
         if f2 < f:
