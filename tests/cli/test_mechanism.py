@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -55,7 +56,7 @@ def test_analyze_csv_and_json(tmp_path, capsys):
     assert len(d["rows"]) == 5 and d["rows"][-1]["input_gear9_deg"] == 90.0
 
 
-def test_rows_that_do_not_close_stay_with_nulls(tmp_path, capsys):
+def test_a_rocking_input_sweeps_one_oscillation_and_a_range_past_its_limits_is_refused(tmp_path, capsys):
     model = tmp_path / "tr.toml"
     model.write_text(
         "[points]\nO2 = [0, 0]\nO4 = [10, 0]\nA = [0, 8]\nB = [3, 12]\n"
@@ -63,11 +64,24 @@ def test_rows_that_do_not_close_stay_with_nulls(tmp_path, capsys):
         '[[inputs]]\nlink = "crank"\n'
     )
     assert main(["mechanism", "analyze", str(model), "--points", "36", "--format", "json"]) == 0
-    rows = json.loads(capsys.readouterr().out)["rows"]
-    assert len(rows) == 36
-    bad = [r for r in rows if not r["closed"]]
-    assert bad and bad[0]["rocker_angle_deg"] is None and bad[0]["reason"]
-    assert bad[0]["reason"].startswith("dead point between row")
+    out, err = capsys.readouterr()
+    rows = json.loads(out)["rows"]
+    assert len(rows) == 36 and all(r["closed"] for r in rows)
+    # crank 8, ground 10, coupler 5, rocker |O4 B| = sqrt(193): dead points where coupler and rocker fold onto
+    # each other, |A O4| = c - b (law of cosines), symmetric about 180 deg (b + c > 18 never binds)
+    b, c = 5.0, math.sqrt(193.0)
+    lo = math.degrees(math.acos((64 + 100 - (c - b) ** 2) / 160))
+    hi = 360.0 - lo
+    assert err.strip() == f"crank rocks between {lo:.3f} and {hi:.3f} deg: sweeping one oscillation"
+    angles = [r["input_crank_deg"] for r in rows]
+    assert lo - 1e-9 < min(angles) and max(angles) < hi + 1e-9
+    d = [r["direction"] for r in rows]
+    assert d[0] == 1 and set(d) == {1, -1} and [r["qdot_crank_per_crank"] for r in rows] == d
+    # direction flips twice (at each limit): +1 ... -1 ... +1
+    assert sum(1 for x, y in zip(d, d[1:]) if x != y) == 2
+    assert main(["mechanism", "analyze", str(model), "--input", "30", "200"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"between {lo:.3f} and {hi:.3f} deg" in err and "--input 30 200" in err
 
 
 @pytest.mark.parametrize(

@@ -16,7 +16,12 @@ once per slider input (model length unit per s).  With one input a bare
 ``forces``: every input moves at its constant speed from its sketch
 position; the rows span one turn of the first rotary input that turns
 (end excluded, ``--points`` rows, default 360), every other input moving
-at its own speed over that time.  Without ``--rpm``/``--speed`` every
+at its own speed over that time.  When that input cannot turn fully (it
+rocks between two dead points, :func:`gearlever.mechanism.limits.input_limits`)
+the rows span one oscillation of it at that speed instead (to one limit,
+back to the other, back to the sketch), with a ``direction`` column and its
+speed signed by the motion (the reversals are instantaneous: the rows hold
+no impulse), and one line on stderr says so.  Without ``--rpm``/``--speed`` every
 input moves at 1 rad/s (slider inputs at 1 length unit/s): the torques are
 then those at unit input speeds (the speed columns say so: ``NAME_rad_s``
 is 1 on every row).  Masses, loads, gravity, pressure angle and mesh
@@ -46,6 +51,7 @@ evaluations of the equations of motion (several inputs).
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
@@ -207,13 +213,31 @@ def _forces(args) -> int:
     turning = [i for i, (_, rot) in enumerate(names) if rot and w[i] != 0]
     if not turning:
         raise GearleverError("--rpm: no rotary input turns (give one a non-zero speed): the rows span one turn of it")
-    period = 2 * math.pi / abs(w[turning[0]])
-    t = np.linspace(0.0, period, args.points, endpoint=False)
-    q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+    i0 = turning[0]
+    period = 2 * math.pi / abs(w[i0])
+    from gearlever.mechanism.limits import input_limits
+    from gearlever.mechanism.sweep import oscillation, sweep_rows
+
+    lim = input_limits(mech, i0)
+    direction = None
+    if lim.full_turn:
+        t = np.linspace(0.0, period, args.points, endpoint=False)
+        q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+        qdot = np.broadcast_to(w, q.shape)
+    else:  # one oscillation of the rocking input at its speed, the others at theirs
+        if i0 == 0:
+            sweep_rows(mech, 2, first=1)  # refuses a locked input, naming the links
+        t = 2.0 * (lim.upper - lim.lower) / abs(w[i0]) * np.arange(args.points) / args.points
+        q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+        v, direction = oscillation(lim.start, lim.lower, lim.upper, args.points, 1 if w[i0] > 0 else -1)
+        q[:, i0] = v
+        qdot = np.broadcast_to(w, q.shape).copy()
+        qdot[:, i0] = abs(w[i0]) * direction
+        print(f"{lim.input} rocks between {lim.text()}: sweeping one oscillation", file=sys.stderr)
     eff = _efficiency(args)
     with progress("mechanism forces"):
         try:
-            d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q), efficiency=eff)
+            d = mech.inverse_dynamics(q, qdot, np.zeros_like(q), efficiency=eff)
         except GearleverError as exc:
             raise _model_element(exc, args.model) from None
     L, F, T, P, _ = _units(mech)
@@ -229,7 +253,11 @@ def _forces(args) -> int:
         "turn_of": names[turning[0]][0],
         "indeterminate": list(d.indeterminate),
     }
-    _write(table_text(force_columns(d, mech, t), args.format, meta, digits=DIGITS_FORCES), args.out)
+    cols = force_columns(d, mech, t)
+    if direction is not None:
+        cols = {"t_s": cols.pop("t_s"), "direction": direction, **cols}
+        meta["oscillation"] = {"input": lim.input, "lower": lim.lower, "upper": lim.upper, "unit": "rad"}
+    _write(table_text(cols, args.format, meta, digits=DIGITS_FORCES), args.out)
     return 0
 
 

@@ -10,6 +10,9 @@
   constraints from the Jacobian's rank.
 - :mod:`~gearlever.mechanism.solve`: positions, velocities, accelerations,
   batched over the inputs; :mod:`~gearlever.mechanism.core`: :class:`Mechanism`.
+- :func:`sweep` / :func:`sweep_rows`: the one sweep rule of the commands
+  (:mod:`gearlever.mechanism.sweep`); :func:`input_limits`: the dead points
+  of an input that cannot turn fully (:mod:`gearlever.mechanism.limits`).
 - :func:`assemble`: a rough sketch closed to the exact lengths of its
   ``[lengths]`` table (:mod:`gearlever.mechanism.assemble`).
 
@@ -21,13 +24,20 @@ Numeric core: may import numpy, :mod:`gearlever.loops`, :mod:`gearlever.gears`,
 
 from gearlever.mechanism.assemble import assemble
 from gearlever.mechanism.core import Mechanism
+from gearlever.mechanism.limits import InputLimits, input_limits
 from gearlever.mechanism.mobility import mobility, redundant_constraints
 from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict
 from gearlever.mechanism.solve import MechanismResult
 from gearlever.mechanism.structural import MechanismStructure
+from gearlever.mechanism.sweep import Sweep, sweep, sweep_rows
 
 __all__ = [
     "assemble",
+    "input_limits",
+    "InputLimits",
+    "sweep",
+    "sweep_rows",
+    "Sweep",
     "mobility",
     "redundant_constraints",
     "Mechanism",

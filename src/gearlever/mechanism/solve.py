@@ -913,6 +913,8 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
     plan = system.dyad_plan
     fast = plan.solve(qa.T, qd.T, qdd.T) if plan is not None else None
+    if fast is not None and not np.all(np.isfinite(fast[0])):
+        fast = None  # a row where a dyad does not assemble: the continuation answers (closed = False there)
     if fast is not None:
         x, xd, xdd, CS, points = fast
         closed = np.ones(N, dtype=bool)
