@@ -263,3 +263,51 @@ def test_slider_input_model_needs_a_range_and_says_so(tmp_path, capsys):
     rows = _rows(capsys)
     assert [r["input_piston_mm"] for r in rows] == [0.0, -5.0, -10.0]
     assert all(r["qdot_piston_mm_per_piston"] == 1.0 for r in rows) and "omega_rod_per_piston" in rows[0]
+
+
+ROCKS = "AB rocks between 67.284 and 78.254 deg: sweeping one oscillation\n"
+
+
+def test_watt_i_oscillates_in_analyze_with_a_direction_column_and_the_rpm_as_a_speed(capsys):
+    model = str(EXAMPLES / "watt_i.toml")
+    assert main(["mechanism", "analyze", model, "--points", "24", "--rpm", "10", "--format", "json"]) == 0
+    out, err = capsys.readouterr()
+    assert err == ROCKS
+    rows = json.loads(out)["rows"]
+    assert all(r["closed"] for r in rows) and len(rows) == 24
+    w = 10 * math.pi / 30
+    assert [r["qdot_AB_rad_s"] for r in rows] == [pytest.approx(w * r["direction"], rel=1e-11) for r in rows]
+    assert {r["direction"] for r in rows} == {1, -1}
+    assert min(r["input_AB_deg"] for r in rows) > 67.2836 and max(r["input_AB_deg"] for r in rows) < 78.2542
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [["--input", "AB=67.2815", "67.2815", "--points", "1"], ["--input", "60", "75"], ["--input", "AB=70", "80"]],
+)
+def test_a_range_past_the_limits_is_refused_in_one_line_naming_them(extra, capsys):
+    assert main(["mechanism", "analyze", str(EXAMPLES / "watt_i.toml"), *extra]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "moves only between 67.284 and 78.254 deg" in err
+    assert "NaN" not in err and "nan" not in err
+
+
+def test_a_model_locked_at_its_sketch_is_refused_naming_the_binding_links(tmp_path, capsys):
+    model = tmp_path / "locked.toml"
+    model.write_text(
+        '[points]\nO2 = [0, 0]\nO4 = [4, 0]\nA = [-1, 0]\nB = [5, 0]\n[links]\nground = ["O2", "O4"]\n'
+        'crank = ["O2", "A"]\ncoupler = ["A", "B"]\nrocker = ["O4", "B"]\n[[inputs]]\nlink = "crank"\n'
+    )
+    for cmd in (["analyze"], ["draw", "--out", str(tmp_path / "x.png")], ["forces"]):
+        assert main(["mechanism", cmd[0], str(model), *cmd[1:]]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "dead point of the links coupler, rocker" in err
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_watt_i_draws_and_animates_one_oscillation(tmp_path, capsys):
+    png, gif = tmp_path / "w.png", tmp_path / "w.gif"
+    assert main(["mechanism", "draw", str(EXAMPLES / "watt_i.toml"), "--out", str(png), "--points", "60"]) == 0
+    assert main(["mechanism", "animate", str(EXAMPLES / "watt_i.toml"), "--out", str(gif), "--frames", "6"]) == 0
+    assert capsys.readouterr().err == ROCKS * 2
+    assert png.stat().st_size > 0 and gif.stat().st_size > 0
