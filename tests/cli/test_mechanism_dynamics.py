@@ -311,3 +311,10 @@ def test_forces_of_a_rocking_input_span_one_oscillation_at_its_speed(capsys):
     # time: the path of the oscillation (twice the range) at the speed
     lim = d["oscillation"]
     assert rows[-1]["t_s"] == pytest.approx(2 * (lim["upper"] - lim["lower"]) / w * 39 / 40, rel=1e-9)
+
+
+def test_simulate_of_a_rocking_input_stops_in_one_line_at_its_limit_never_hangs(capsys):
+    model = str(Path(__file__).resolve().parents[2] / "examples" / "watt_i.toml")
+    assert main(["mechanism", "simulate", model, "--rpm", "10", "--time", "1", "--points", "3"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "of the limit 78.254 deg of AB" in err and "--time 1" in err

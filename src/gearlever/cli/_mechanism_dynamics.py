@@ -30,6 +30,9 @@ efficiency come from the model file (``[masses]``, ``[[loads]]``,
 efficiency``); ``--efficiency`` overrides the meshes' efficiency.
 
 ``simulate``: starts at the sketch with the speeds of ``--rpm``/``--speed``
+(one rotary input that rocks between two dead points: the run is refused, in one line naming the limit and
+the time, where the motion comes within :data:`LIMIT_MARGIN` of its range of a limit, since the reduced
+inertia grows without bound there; a run that stays away from them says so on stderr)
 (every input given) and integrates the equations of motion for ``--time``
 seconds under constant driving torques ``--torque NAME=VALUE`` (force for
 a slider input; inputs not named are free, torque 0), with the model's
@@ -294,6 +297,44 @@ def _model_element(exc, model: str) -> GearleverError:
     return GearleverError(f"{model}: {text}") if text.startswith(_ELEMENTS) else exc
 
 
+#: How near (a fraction of its range) a rocking input may come to a limit before ``simulate`` stops: at a dead
+#: point of the input its reduced inertia grows without bound and the integration would crawl.
+LIMIT_MARGIN = 0.01
+
+
+def _limit_guard(mech, torque: dict, args):
+    """``torque`` as a function that stops the run where a rocking input nears a limit (one rotary input), else as is.
+
+    The input's reduced inertia grows without bound at its dead point, so the integration would crawl
+    towards it (a hang); the run is refused in one line naming the limit and the time instead.
+    """
+    m = mech.model
+    if len(m.inputs) != 1 or m.inputs[0].kind != "link":
+        return torque
+    from gearlever.mechanism.dynamics import _capped_torque
+    from gearlever.mechanism.limits import input_limits
+
+    lim = input_limits(mech)
+    if not lim.rocks:
+        return torque
+    label = m.inputs[0].label
+    value = _capped_torque(f"torque[{label!r}]", torque.get(label, 0.0))
+    margin = LIMIT_MARGIN * (lim.upper - lim.lower)
+
+    def f(t, q, qd):
+        if not lim.lower + margin < q < lim.upper - margin:
+            edge = lim.upper if q >= lim.upper - margin else lim.lower
+            raise GearleverError(
+                f"--time {args.time:g}: at t = {t:.4g} s the motion comes within {LIMIT_MARGIN:.0%} of its range "
+                f"of the limit {math.degrees(edge):.3f} deg of {lim.input} (a dead point of the input: it rocks "
+                f"between {lim.text()}), where it cannot go on; simulate a shorter --time (or other --rpm/--torque)"
+            )
+        return value
+
+    f.note = f"{lim.input} rocks between {lim.text()}: the run stops short of them ({LIMIT_MARGIN:.0%} of the range)"
+    return {label: f}
+
+
 def _simulate(args) -> int:
     from gearlever.cli.mechanism import _load
 
@@ -310,6 +351,7 @@ def _simulate(args) -> int:
     eff = _efficiency(args)
     from gearlever.mechanism.dynamics import WorkCapError
 
+    torque = _limit_guard(mech, torque, args)
     with progress("mechanism simulate"):
         try:
             s = mech.simulate(t, mech.sketch_inputs, w, torque=torque, efficiency=eff)
@@ -317,6 +359,9 @@ def _simulate(args) -> int:
             raise GearleverError(_work_message(exc, args)) from None
         except GearleverError as exc:
             raise _model_element(exc, args.model) from None
+    notes = [getattr(v, "note", None) for v in torque.values()] if isinstance(torque, dict) else []
+    for note in filter(None, notes):
+        print(note, file=sys.stderr)
     L, F, T, P, E = _units(mech)
     cols = {"t_s": s.t}
     for i, (name, rot) in enumerate(names):
