@@ -69,13 +69,18 @@ class InputLimits(Result):
 
     Examples
     --------
+    A rocker-input four-bar (ground 4, input 2, coupler 3, follower 2): it rocks
+    where coupler and follower stretch, ``cos theta = (2^2 + 4^2 - 5^2) / (2 2 4)``:
+
     >>> from gearlever.mechanism import Mechanism
-    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [0, 2], "B": [3.5, 2.5], "Q": [4, 0]},
-    ...     "links": {"ground": ["O", "Q"], "rocker": ["O", "A"], "coupler": ["A", "B"], "follower": ["Q", "B"]},
-    ...     "inputs": [{"link": "rocker"}]})
+    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [0, 2], "B": [2.987339717240448, 1.7246794344808962],
+    ...     "Q": [4, 0]}, "links": {"ground": ["O", "Q"], "rocker": ["O", "A"], "coupler": ["A", "B"],
+    ...     "follower": ["Q", "B"]}, "inputs": [{"link": "rocker"}]})
     >>> lim = input_limits(m)
-    >>> lim.full_turn, round(math.degrees(lim.lower), 3), round(math.degrees(lim.upper), 3), lim.binding_upper
-    (False, 27.897, 148.214, ('coupler', 'follower'))
+    >>> lim.rocks, round(math.degrees(lim.lower), 6), round(math.degrees(lim.upper), 6), lim.binding_upper
+    (True, -108.209957, 108.209957, ('coupler', 'follower'))
+    >>> round(math.degrees(math.acos(-5 / 16)), 6)
+    108.209957
     """
 
     input: str
@@ -170,8 +175,9 @@ def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL) -> In
     (:meth:`~gearlever.mechanism.Mechanism.solve`, one degree apart), then
     bisection to ``tol``: see the module docstring.  At a limit the closure
     Jacobian ``J_z`` (with the inputs fixed) is singular: the condition
-    ``det J_z = 0`` of a dead point (Uicker, Pennock and Shigley, *Theory of
-    Machines and Mechanisms*, 5th ed., 2017, sec. 2.17 and 3.x); the links
+    ``det J_z = 0`` of a dead point (the position problem's Jacobian singular:
+    P. E. Nikravesh, *Computer-Aided Analysis of Mechanical Systems*, 1988);
+    the links
     named as binding are those that move along its null vector.  For a
     four-bar whose input cannot turn the limits are where coupler and
     follower are collinear: ``cos theta = (a^2 + d^2 - (b +- c)^2) / (2 a d)``

@@ -159,11 +159,12 @@ def oscillation(start: float, lower: float, upper: float, points: int, first: in
 
     From ``start`` to the limit in the ``first`` direction (+1: ``upper``),
     back to the other limit, back to ``start``; the rows are evenly spaced
-    along that path (length ``2 (upper - lower)``).
+    along that path (length ``2 (upper - lower)``); a row exactly at a limit
+    starts the leg that leaves it.
 
     >>> v, d = oscillation(0.0, -1.0, 2.0, 6)
     >>> v.tolist(), d.tolist()
-    ([0.0, 1.0, 2.0, 1.0, 0.0, -1.0], [1, 1, -1, -1, -1, -1])
+    ([0.0, 1.0, 2.0, 1.0, 0.0, -1.0], [1, 1, -1, -1, -1, 1])
     """
     span = upper - lower
     u = 2.0 * span * np.arange(points) / points
