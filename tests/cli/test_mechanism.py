@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -55,7 +56,7 @@ def test_analyze_csv_and_json(tmp_path, capsys):
     assert len(d["rows"]) == 5 and d["rows"][-1]["input_gear9_deg"] == 90.0
 
 
-def test_rows_that_do_not_close_stay_with_nulls(tmp_path, capsys):
+def test_a_rocking_input_sweeps_one_oscillation_and_a_range_past_its_limits_is_refused(tmp_path, capsys):
     model = tmp_path / "tr.toml"
     model.write_text(
         "[points]\nO2 = [0, 0]\nO4 = [10, 0]\nA = [0, 8]\nB = [3, 12]\n"
@@ -63,11 +64,24 @@ def test_rows_that_do_not_close_stay_with_nulls(tmp_path, capsys):
         '[[inputs]]\nlink = "crank"\n'
     )
     assert main(["mechanism", "analyze", str(model), "--points", "36", "--format", "json"]) == 0
-    rows = json.loads(capsys.readouterr().out)["rows"]
-    assert len(rows) == 36
-    bad = [r for r in rows if not r["closed"]]
-    assert bad and bad[0]["rocker_angle_deg"] is None and bad[0]["reason"]
-    assert bad[0]["reason"].startswith("dead point between row")
+    out, err = capsys.readouterr()
+    rows = json.loads(out)["rows"]
+    assert len(rows) == 36 and all(r["closed"] for r in rows)
+    # crank 8, ground 10, coupler 5, rocker |O4 B| = sqrt(193): dead points where coupler and rocker fold onto
+    # each other, |A O4| = c - b (law of cosines), symmetric about 180 deg (b + c > 18 never binds)
+    b, c = 5.0, math.sqrt(193.0)
+    lo = math.degrees(math.acos((64 + 100 - (c - b) ** 2) / 160))
+    hi = 360.0 - lo
+    assert err.strip() == f"crank rocks between {lo:.3f} and {hi:.3f} deg: sweeping one oscillation"
+    angles = [r["input_crank_deg"] for r in rows]
+    assert lo - 1e-9 < min(angles) and max(angles) < hi + 1e-9
+    d = [r["direction"] for r in rows]
+    assert d[0] == 1 and set(d) == {1, -1} and [r["qdot_crank_per_crank"] for r in rows] == d
+    # direction flips twice (at each limit): +1 ... -1 ... +1
+    assert sum(1 for x, y in zip(d, d[1:]) if x != y) == 2
+    assert main(["mechanism", "analyze", str(model), "--input", "30", "200"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"between {lo:.3f} and {hi:.3f} deg" in err and "--input 30 200" in err
 
 
 @pytest.mark.parametrize(
@@ -249,3 +263,51 @@ def test_slider_input_model_needs_a_range_and_says_so(tmp_path, capsys):
     rows = _rows(capsys)
     assert [r["input_piston_mm"] for r in rows] == [0.0, -5.0, -10.0]
     assert all(r["qdot_piston_mm_per_piston"] == 1.0 for r in rows) and "omega_rod_per_piston" in rows[0]
+
+
+ROCKS = "AB rocks between 67.284 and 78.254 deg: sweeping one oscillation\n"
+
+
+def test_watt_i_oscillates_in_analyze_with_a_direction_column_and_the_rpm_as_a_speed(capsys):
+    model = str(EXAMPLES / "watt_i.toml")
+    assert main(["mechanism", "analyze", model, "--points", "24", "--rpm", "10", "--format", "json"]) == 0
+    out, err = capsys.readouterr()
+    assert err == ROCKS
+    rows = json.loads(out)["rows"]
+    assert all(r["closed"] for r in rows) and len(rows) == 24
+    w = 10 * math.pi / 30
+    assert [r["qdot_AB_rad_s"] for r in rows] == [pytest.approx(w * r["direction"], rel=1e-11) for r in rows]
+    assert {r["direction"] for r in rows} == {1, -1}
+    assert min(r["input_AB_deg"] for r in rows) > 67.2836 and max(r["input_AB_deg"] for r in rows) < 78.2542
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [["--input", "AB=67.2815", "67.2815", "--points", "1"], ["--input", "60", "75"], ["--input", "AB=70", "80"]],
+)
+def test_a_range_past_the_limits_is_refused_in_one_line_naming_them(extra, capsys):
+    assert main(["mechanism", "analyze", str(EXAMPLES / "watt_i.toml"), *extra]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "moves only between 67.284 and 78.254 deg" in err
+    assert "NaN" not in err and "nan" not in err
+
+
+def test_a_model_locked_at_its_sketch_is_refused_naming_the_binding_links(tmp_path, capsys):
+    model = tmp_path / "locked.toml"
+    model.write_text(
+        '[points]\nO2 = [0, 0]\nO4 = [4, 0]\nA = [-1, 0]\nB = [5, 0]\n[links]\nground = ["O2", "O4"]\n'
+        'crank = ["O2", "A"]\ncoupler = ["A", "B"]\nrocker = ["O4", "B"]\n[[inputs]]\nlink = "crank"\n'
+    )
+    for cmd in (["analyze"], ["draw", "--out", str(tmp_path / "x.png")], ["forces"]):
+        assert main(["mechanism", cmd[0], str(model), *cmd[1:]]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "dead point of the links coupler, rocker" in err
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_watt_i_draws_and_animates_one_oscillation(tmp_path, capsys):
+    png, gif = tmp_path / "w.png", tmp_path / "w.gif"
+    assert main(["mechanism", "draw", str(EXAMPLES / "watt_i.toml"), "--out", str(png), "--points", "60"]) == 0
+    assert main(["mechanism", "animate", str(EXAMPLES / "watt_i.toml"), "--out", str(gif), "--frames", "6"]) == 0
+    assert capsys.readouterr().err == ROCKS * 2
+    assert png.stat().st_size > 0 and gif.stat().st_size > 0

@@ -287,3 +287,34 @@ def test_simulate_beyond_the_work_cap_is_refused_naming_time(capsys, monkeypatch
     )
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and "--time" in err[0] and "50 evaluations" in err[0]
+
+
+def test_forces_of_a_rocking_input_span_one_oscillation_at_its_speed(capsys):
+    model = str(Path(__file__).resolve().parents[2] / "examples" / "watt_i.toml")
+    assert main(["mechanism", "forces", model, "--rpm", "10", "--points", "40", "--format", "json"]) == 0
+    out, err = capsys.readouterr()
+    assert err == "AB rocks between 67.284 and 78.254 deg: sweeping one oscillation\n"
+    d = json.loads(out)
+    rows = d["rows"]
+    w = 10 * math.pi / 30
+    assert [r["direction"] for r in rows][:2] == [1, 1] and {r["direction"] for r in rows} == {1, -1}
+    assert all(r["AB_rad_s"] == pytest.approx(w * r["direction"], abs=1e-9) for r in rows)
+    from gearlever.mechanism import input_limits
+    from gearlever.mechanism.sweep import oscillation
+
+    m = Mechanism.load(model)
+    lim = input_limits(m)
+    v, dirs = oscillation(lim.start, lim.lower, lim.upper, 40)
+    f = m.inverse_dynamics(v[:, None], w * dirs[:, None], np.zeros((40, 1)))
+    tq = f.input_force[:, 0]  # printed to the digits rule: relative to the column's largest value
+    assert np.allclose([r["AB_torque_N_m"] for r in rows], tq, rtol=0, atol=1e-8 * np.abs(tq).max())
+    # time: the path of the oscillation (twice the range) at the speed
+    lim = d["oscillation"]
+    assert rows[-1]["t_s"] == pytest.approx(2 * (lim["upper"] - lim["lower"]) / w * 39 / 40, rel=1e-9)
+
+
+def test_simulate_of_a_rocking_input_stops_in_one_line_at_its_limit_never_hangs(capsys):
+    model = str(Path(__file__).resolve().parents[2] / "examples" / "watt_i.toml")
+    assert main(["mechanism", "simulate", model, "--rpm", "10", "--time", "1", "--points", "3"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "of the limit 78.254 deg of AB" in err and "--time 1" in err

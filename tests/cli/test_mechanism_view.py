@@ -135,3 +135,17 @@ def test_view_work_caps_refuse_before_solving_in_one_line(tmp_path, capsys, monk
     assert "Traceback" not in err and not out.exists()
     if model == "chain999":
         assert str(path) in err
+
+
+def test_view_of_a_rocking_input_sweeps_one_oscillation(tmp_path, capsys):
+    out = tmp_path / "w.html"
+    model = str(Path(__file__).resolve().parents[2] / "examples" / "watt_i.toml")
+    assert main(["mechanism", "view", model, "--out", str(out), "--frames", "40", "--rpm", "10"]) == 0
+    assert capsys.readouterr().err == "AB rocks between 67.284 and 78.254 deg: sweeping one oscillation\n"
+    from gearlever.plotting.viewer import viewer_data
+
+    d = viewer_data(Mechanism.load(model), frames=40, rpm=10)
+    assert d["closed"] == "1" * 40 and set(d["osc"]["dir"]) == {1, -1}
+    assert np.degrees(min(d["osc"]["q"])) > 67.2836 and np.degrees(max(d["osc"]["q"])) < 78.2542
+    assert d["period"] == pytest.approx(2 * (d["osc"]["upper"] - d["osc"]["lower"]) / (10 * np.pi / 30))
+    assert '"osc"' in out.read_text()

@@ -23,11 +23,20 @@ def wrap(x):
 
 
 def sweep(mech, points: int = 721):
-    """A sweep of every input from its sketch value: a full turn (or +-1.2 rad for the parallel levers)."""
+    """A sweep of every input from its sketch value: a full turn (or +-1.2 rad for the parallel levers).
+
+    A one-input model whose input rocks (the Watt I six-bar) sweeps the middle fifth of its range instead, at rate 1
+    (nearer its dead points its rates vary too fast for the tests' finite differences and the closed-form dyads).
+    """
+    from gearlever.mechanism.limits import input_limits
+
     q0 = mech.sketch_inputs
     W = q0.size
     if "parallel" in mech.name:
         t = np.linspace(-1.2, 1.2, points)
+    elif W == 1 and (lim := input_limits(mech)).rocks:
+        pad = 0.4 * (lim.upper - lim.lower)
+        return np.linspace(lim.lower + pad, lim.upper - pad, points)[:, None], np.ones((points, 1))
     else:
         t = np.linspace(0.0, 2 * np.pi, points)
     rates = np.array([1.0, 0.37, -0.21][:W])

@@ -120,7 +120,8 @@ def _fd_check(m, q, qd, h=1e-4):
 def test_every_example_rates_match_finite_differences(path):
     m = gearlever.Mechanism.load(path)
     q, qd = sweep(m, 37)
-    _fd_check(m, q, qd)
+    # the PMKS+ Watt I rocks over 11 deg: third derivatives of its rates are ~1e3, so a step of 1e-5 (error h^2 / 6)
+    _fd_check(m, q, qd, h=1e-5 if path.stem == "watt_i" else 1e-4)
 
 
 @pytest.mark.parametrize("path", all_examples(), ids=lambda p: p.stem)

@@ -16,7 +16,12 @@ once per slider input (model length unit per s).  With one input a bare
 ``forces``: every input moves at its constant speed from its sketch
 position; the rows span one turn of the first rotary input that turns
 (end excluded, ``--points`` rows, default 360), every other input moving
-at its own speed over that time.  Without ``--rpm``/``--speed`` every
+at its own speed over that time.  When that input cannot turn fully (it
+rocks between two dead points, :func:`gearlever.mechanism.limits.input_limits`)
+the rows span one oscillation of it at that speed instead (to one limit,
+back to the other, back to the sketch), with a ``direction`` column and its
+speed signed by the motion (the reversals are instantaneous: the rows hold
+no impulse), and one line on stderr says so.  Without ``--rpm``/``--speed`` every
 input moves at 1 rad/s (slider inputs at 1 length unit/s): the torques are
 then those at unit input speeds (the speed columns say so: ``NAME_rad_s``
 is 1 on every row).  Masses, loads, gravity, pressure angle and mesh
@@ -25,6 +30,9 @@ efficiency come from the model file (``[masses]``, ``[[loads]]``,
 efficiency``); ``--efficiency`` overrides the meshes' efficiency.
 
 ``simulate``: starts at the sketch with the speeds of ``--rpm``/``--speed``
+(one rotary input that rocks between two dead points: the run is refused, in one line naming the limit and
+the time, where the motion comes within :data:`LIMIT_MARGIN` of its range of a limit, since the reduced
+inertia grows without bound there; a run that stays away from them says so on stderr)
 (every input given) and integrates the equations of motion for ``--time``
 seconds under constant driving torques ``--torque NAME=VALUE`` (force for
 a slider input; inputs not named are free, torque 0), with the model's
@@ -53,6 +61,7 @@ evaluations of the equations of motion (several inputs).
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
@@ -217,13 +226,31 @@ def _forces(args) -> int:
     turning = [i for i, (_, rot) in enumerate(names) if rot and w[i] != 0]
     if not turning:
         raise GearleverError("--rpm: no rotary input turns (give one a non-zero speed): the rows span one turn of it")
-    period = 2 * math.pi / abs(w[turning[0]])
-    t = np.linspace(0.0, period, args.points, endpoint=False)
-    q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+    i0 = turning[0]
+    period = 2 * math.pi / abs(w[i0])
+    from gearlever.mechanism.limits import input_limits
+    from gearlever.mechanism.sweep import oscillation, sweep_rows
+
+    lim = input_limits(mech, i0)
+    direction = None
+    if lim.full_turn:
+        t = np.linspace(0.0, period, args.points, endpoint=False)
+        q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+        qdot = np.broadcast_to(w, q.shape)
+    else:  # one oscillation of the rocking input at its speed, the others at theirs
+        if i0 == 0:
+            sweep_rows(mech, 2, first=1)  # refuses a locked input, naming the links
+        t = 2.0 * (lim.upper - lim.lower) / abs(w[i0]) * np.arange(args.points) / args.points
+        q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+        v, direction = oscillation(lim.start, lim.lower, lim.upper, args.points, 1 if w[i0] > 0 else -1)
+        q[:, i0] = v
+        qdot = np.broadcast_to(w, q.shape).copy()
+        qdot[:, i0] = abs(w[i0]) * direction
+        print(f"{lim.input} rocks between {lim.text()}: sweeping one oscillation", file=sys.stderr)
     eff = _efficiency(args)
     with progress("mechanism forces"):
         try:
-            d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q), efficiency=eff)
+            d = mech.inverse_dynamics(q, qdot, np.zeros_like(q), efficiency=eff)
         except GearleverError as exc:
             raise _model_element(exc, args.model) from None
     L, F, T, P, _ = _units(mech)
@@ -239,7 +266,11 @@ def _forces(args) -> int:
         "turn_of": names[turning[0]][0],
         "indeterminate": list(d.indeterminate),
     }
-    _write(table_text(force_columns(d, mech, t), args.format, meta, digits=DIGITS_FORCES), args.out)
+    cols = force_columns(d, mech, t)
+    if direction is not None:
+        cols = {"t_s": cols.pop("t_s"), "direction": direction, **cols}
+        meta["oscillation"] = {"input": lim.input, "lower": lim.lower, "upper": lim.upper, "unit": "rad"}
+    _write(table_text(cols, args.format, meta, digits=DIGITS_FORCES), args.out)
     return 0
 
 
@@ -276,6 +307,44 @@ def _model_element(exc, model: str) -> GearleverError:
     return GearleverError(f"{model}: {text}") if text.startswith(_ELEMENTS) else exc
 
 
+#: How near (a fraction of its range) a rocking input may come to a limit before ``simulate`` stops: at a dead
+#: point of the input its reduced inertia grows without bound and the integration would crawl.
+LIMIT_MARGIN = 0.01
+
+
+def _limit_guard(mech, torque: dict, args):
+    """``torque`` as a function that stops the run where a rocking input nears a limit (one rotary input), else as is.
+
+    The input's reduced inertia grows without bound at its dead point, so the integration would crawl
+    towards it (a hang); the run is refused in one line naming the limit and the time instead.
+    """
+    m = mech.model
+    if len(m.inputs) != 1 or m.inputs[0].kind != "link":
+        return torque
+    from gearlever.mechanism.dynamics import _capped_torque
+    from gearlever.mechanism.limits import input_limits
+
+    lim = input_limits(mech)
+    if not lim.rocks:
+        return torque
+    label = m.inputs[0].label
+    value = _capped_torque(f"torque[{label!r}]", torque.get(label, 0.0))
+    margin = LIMIT_MARGIN * (lim.upper - lim.lower)
+
+    def f(t, q, qd):
+        if not lim.lower + margin < q < lim.upper - margin:
+            edge = lim.upper if q >= lim.upper - margin else lim.lower
+            raise GearleverError(
+                f"--time {args.time:g}: at t = {t:.4g} s the motion comes within {LIMIT_MARGIN:.0%} of its range "
+                f"of the limit {math.degrees(edge):.3f} deg of {lim.input} (a dead point of the input: it rocks "
+                f"between {lim.text()}), where it cannot go on; simulate a shorter --time (or other --rpm/--torque)"
+            )
+        return value
+
+    f.note = f"{lim.input} rocks between {lim.text()}: the run stops short of them ({LIMIT_MARGIN:.0%} of the range)"
+    return {label: f}
+
+
 def _simulate(args) -> int:
     mech = load_model(args.model)
     names = _names(mech)
@@ -290,6 +359,7 @@ def _simulate(args) -> int:
     eff = _efficiency(args)
     from gearlever.mechanism.dynamics import WorkCapError
 
+    torque = _limit_guard(mech, torque, args)
     with progress("mechanism simulate"):
         try:
             s = mech.simulate(t, mech.sketch_inputs, w, torque=torque, efficiency=eff)
@@ -297,6 +367,9 @@ def _simulate(args) -> int:
             raise GearleverError(_work_message(exc, args)) from None
         except GearleverError as exc:
             raise _model_element(exc, args.model) from None
+    notes = [getattr(v, "note", None) for v in torque.values()] if isinstance(torque, dict) else []
+    for note in filter(None, notes):
+        print(note, file=sys.stderr)
     L, F, T, P, E = _units(mech)
     cols = {"t_s": s.t}
     for i, (name, rot) in enumerate(names):

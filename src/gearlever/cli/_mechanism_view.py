@@ -5,7 +5,9 @@ Sub-command (added to ``gearlever mechanism`` by :func:`register_view`)::
     gearlever mechanism view MODEL --out PAGE.html [--frames N] [--rpm NAME=R ...] [--input NAME=VALUE ...]
 
 The first input turns one full turn from its sketch angle (or from
-``--input`` for it) over ``--frames`` frames (end excluded); the other inputs
+``--input`` for it) over ``--frames`` frames (end excluded), or, when it
+cannot turn fully, sweeps one oscillation between its limits (dead points)
+and says so on stderr; the other inputs
 stay at their sketch values (or ``--input``; degrees for a link, length for a
 slider); for two or more inputs the page offers
 :data:`gearlever.plotting.viewer.GRID_STEPS` values of the second.  With
@@ -77,8 +79,28 @@ def _view(args) -> int:
             if text.startswith(lib):
                 text = flag + text[len(lib) :]
         raise GearleverError(text) from None
+    _say_oscillation(mech, inputs)
     emit(page, args.out)
     return 0
+
+
+def _say_oscillation(mech, inputs) -> None:
+    """The stderr line of a page that sweeps one oscillation of a rocking first input."""
+    import sys
+
+    import numpy as np
+
+    from gearlever.mechanism.limits import input_limits
+
+    if mech.model.inputs[0].kind != "link":
+        return
+    labels = [s.label for s in mech.model.inputs]
+    start = np.array(mech.sketch_inputs, dtype=float)
+    for name, value in (inputs or {}).items():
+        start[labels.index(name)] = value
+    lim = input_limits(mech, 0, start=start)
+    if lim.rocks:
+        print(f"{lim.input} rocks between {lim.text()}: sweeping one oscillation", file=sys.stderr)
 
 
 def _is_cam_file(path: str) -> bool:

@@ -14,9 +14,8 @@ from pathlib import Path
 
 from gearlever.cli._common import capped_int
 from gearlever.errors import GearleverError
+from gearlever.mechanism.sweep import MAX_POINTS  # noqa: F401  (the cap lives with the sweep rule)
 
-#: Largest ``--points`` accepted (rows of a sweep).
-MAX_POINTS = 100_000
 #: Largest ``--frames`` (same as :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`, kept here so ``--help`` stays fast).
 MAX_VIEW_FRAMES = 3600
 

@@ -10,18 +10,24 @@ Sub-commands::
                                 [--size W H] [--dpi N]
     gearlever mechanism assemble MODEL [--out EXACT.toml] [--free-inputs]
 
-The sweep rule (:func:`sweep`; every command that sweeps uses it, and so
-will the viewer):
+The sweep rule (:mod:`gearlever.mechanism.sweep`, in the library; every
+command that sweeps uses it, and so does the viewer):
 
 - rows: ``--points`` (default :data:`DEFAULT_POINTS` = 360) for analyze and
   draw, ``--frames`` (default 36) for animate;
 - no ``--input``: the *first* input of ``[[inputs]]`` turns one full turn
   from its sketch angle, the end excluded (it would repeat the first row),
-  and any other input is held at its sketch value;
+  and any other input is held at its sketch value.  An input that cannot
+  turn fully (it rocks between two dead points on the sketch's branch)
+  sweeps one oscillation instead: sketch, upper limit, lower limit, back to
+  the sketch, with a ``direction`` column (+1/-1) and rates signed by the
+  motion; one line on stderr says so
+  (``AB rocks between 67.284 and 78.254 deg: sweeping one oscillation``);
 - ``--input START STOP`` given once per input, in ``[[inputs]]`` order
   (degrees for a link, length for a slider): all inputs move together,
   linearly, from START to STOP, the end included.  Giving it for some
-  inputs only is refused, naming the inputs.
+  inputs only is refused, naming the inputs; a range of the one moving
+  input past its limits is refused, naming them (exit 2).
 
 Rates (analyze): without ``--rpm`` the columns are *analogues*, derivatives
 with respect to the first input (``omega_coupler_per_crank``, rad per rad;
@@ -42,17 +48,22 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
 
-from gearlever.cli._common import check_input_span, emit, finite_float, named_values, positive_int, table_text, to_json
-from gearlever.cli._shared import MAX_POINTS
+from gearlever.cli._common import emit, finite_float, named_values, positive_int, table_text, to_json
 from gearlever.cli._shared import load_model as _load
 from gearlever.errors import GearleverError
-
-#: Rows of a sweep when ``--points`` is not given (analyze, draw, the viewer).
-DEFAULT_POINTS = 360
+from gearlever.mechanism.sweep import (  # noqa: F401  (the sweep rule lives in the library; names kept here)
+    DEFAULT_POINTS,
+    MAX_POINTS,
+    input_labels,
+    input_ranges,
+    sweep,
+)
+from gearlever.mechanism.sweep import sweep_rows as _sweep_rows
 
 
 def register(sub) -> None:
@@ -187,135 +198,16 @@ class _InputRange(argparse.Action):
         setattr(namespace, self.dest, items)
 
 
-def input_ranges(mech, given):
-    """The ``--input`` ranges in ``[[inputs]]`` order: ``[(start, stop), ...]``, or None when none is given.
+def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1):
+    """:func:`gearlever.mechanism.sweep.sweep_rows`, saying on stderr when the rows are one oscillation.
 
-    ``given`` holds ``(name or None, start, stop)`` (or ``(start, stop)``): all named, each input once
-    in any order, or all unnamed, in ``[[inputs]]`` order.
-
-    >>> from gearlever.mechanism import Mechanism
-    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
-    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
-    >>> input_ranges(m, [("crank", 0.0, 90.0)]), input_ranges(m, [(None, 10.0, 20.0)])
-    ([(0.0, 90.0)], [(10.0, 20.0)])
+    ``AB rocks between 67.284 and 78.254 deg: sweeping one oscillation``: one
+    line, when the first input cannot turn fully and no ``--input`` is given.
     """
-    if not given:
-        return None
-    items = [g if len(g) == 3 else (None, *g) for g in given]
-    named = [g[0] is not None for g in items]
-    if not any(named):
-        return [(g[1], g[2]) for g in items]
-    labels = input_labels(mech)
-    if not all(named):
-        raise GearleverError(
-            "--input: name every input (--input NAME=START STOP) or none (in [[inputs]] order), not some"
-        )
-    out: dict = {}
-    for name, a, b in items:
-        if name not in labels:
-            from gearlever.mechanism.solve import _unknown
-
-            raise GearleverError(f"--input: {_unknown(name, 'input', labels)}")
-        if name in out:
-            raise GearleverError(f"--input: input {name!r} given twice")
-        out[name] = (a, b)
-    missing = [n for n in labels if n not in out]
-    if missing:
-        raise GearleverError(
-            f"--input: model {mech.model.name!r} has inputs {', '.join(labels)}; give --input NAME=START STOP "
-            f"once for each (missing: {', '.join(missing)}), or none to turn the first with the others held"
-        )
-    return [out[n] for n in labels]
-
-
-def sweep(mech, points: int = DEFAULT_POINTS, ranges=None):
-    """Input rows of a sweep and their rates: the one sweep rule of the ``mechanism`` commands.
-
-    Parameters
-    ----------
-    mech : gearlever.Mechanism
-    points : int
-        Rows, at most :data:`MAX_POINTS`.
-    ranges : sequence of (start, stop) or (name, start, stop), optional
-        One per input, degrees for a link and length for a slider (the
-        ``--input`` values): in ``[[inputs]]`` order, or named
-        (:func:`input_ranges`).
-
-    Returns
-    -------
-    q : ndarray
-        ``(points, W)`` inputs for :meth:`~gearlever.mechanism.Mechanism.solve`
-        (rad for a link, length for a slider).
-    qdot : ndarray
-        ``(points, W)`` rates per unit rate of the first input (1 for it):
-        analogues; per unit fraction of the sweep when the first input does
-        not move.
-
-    Raises
-    ------
-    GearleverError
-        Too many points; ranges given for some inputs only; no ranges and
-        the first input is a slider (a slider has no full turn).
-
-    Notes
-    -----
-    Without ``ranges`` the first input turns one full turn from its sketch
-    angle, end excluded (``points`` rows ``2 pi / points`` apart; the row
-    after the last would repeat the first), and the other inputs are held
-    at their sketch values (rate 0).  With ``ranges`` every input moves
-    linearly from start to stop, both ends included.
-
-    Examples
-    --------
-    >>> from gearlever.mechanism import Mechanism
-    >>> m = Mechanism.from_dict({"points": {"O": [0, 0], "A": [1, 0]},
-    ...     "links": {"ground": ["O"], "crank": ["O", "A"]}, "inputs": [{"link": "crank"}]})
-    >>> q, qdot = sweep(m, 4)
-    >>> np.degrees(q[:, 0]).round(9).tolist(), qdot[:, 0].tolist()
-    ([0.0, 90.0, 180.0, 270.0], [1.0, 1.0, 1.0, 1.0])
-    >>> np.degrees(sweep(m, 3, [(0.0, 90.0)])[0][:, 0]).round(9).tolist()
-    [0.0, 45.0, 90.0]
-    """
-    if points > MAX_POINTS:
-        raise GearleverError(f"--points must be at most {MAX_POINTS}, got {points}")
-    m = mech.model
-    W = len(m.inputs)
-    labels = ", ".join(input_labels(mech))
-    if ranges and any(len(r) == 3 for r in ranges):
-        ranges = input_ranges(mech, ranges)
-    if not ranges:
-        if m.inputs[0].kind == "slider":
-            raise GearleverError(
-                f"--input: the first input of model {m.name!r} ({labels}) is a slider, which has no full turn; "
-                "give --input START STOP once per input"
-            )
-        q = np.broadcast_to(mech.sketch_inputs, (points, W)).copy()
-        q[:, 0] += np.linspace(0.0, 2 * np.pi, points, endpoint=False)
-        qdot = np.zeros((points, W))
-        qdot[:, 0] = 1.0
-        return q, qdot
-    if len(ranges) != W:
-        raise GearleverError(
-            f"--input: model {m.name!r} has {W} input{'s' if W != 1 else ''} ({labels}); "
-            f"give --input [NAME=]START STOP once per input (got {len(ranges)}), "
-            "or none to turn the first a full turn with the others held"
-        )
-    check_input_span(m, ranges)
-    conv = [1.0 if spec.kind == "slider" else math.pi / 180.0 for spec in m.inputs]
-    start = np.array([r[0] * c for r, c in zip(ranges, conv)])
-    stop = np.array([r[1] * c for r, c in zip(ranges, conv)])
-    t = np.linspace(0.0, 1.0, points)
-    q = start + t[:, None] * (stop - start)
-    span = stop - start
-    rates = span / span[0] if span[0] != 0 else span
-    return q, np.broadcast_to(rates, (points, W)).copy()
-
-
-def input_labels(mech) -> list:
-    """Names of the model's inputs, as in ``--rpm NAME=VALUE`` and the result columns."""
-    from gearlever.mechanism.solve import input_name
-
-    return [input_name(spec) for spec in mech.model.inputs]
+    s = _sweep_rows(mech, points, ranges, first)
+    if s.oscillates:
+        print(s.message(), file=sys.stderr)
+    return s
 
 
 def _structure(args) -> int:
@@ -332,8 +224,11 @@ def _structure(args) -> int:
     return 0
 
 
-def _rates(mech, args, q, qdot):
-    """Rates of analyze: ``(qdot, per)``, analogues per the first input, or velocities from ``--rpm``."""
+def _rates(mech, args, q, qdot, direction=None):
+    """Rates of analyze: ``(qdot, per)``, analogues per the first input, or velocities from ``--rpm``.
+
+    ``direction`` (an oscillation's +1/-1 per row): the ``--rpm`` are speeds, signed by the motion.
+    """
     names = input_labels(mech)
     if not args.rpm:
         ranges = input_ranges(mech, args.input)
@@ -344,15 +239,27 @@ def _rates(mech, args, q, qdot):
         raise GearleverError(f"--rpm: model {mech.model.name!r} has no rotary input ({', '.join(names)} are sliders)")
     rpm = named_values(args.rpm, "--rpm", rotary)
     rates = np.array([rpm.get(n, 0.0) * math.pi / 30.0 for n in names])
-    return np.broadcast_to(rates, q.shape).copy(), None
+    out = np.broadcast_to(rates, q.shape).copy()
+    if direction is not None:
+        out[:, 0] = abs(rates[0]) * direction
+    return out, None
+
+
+def with_direction(cols: dict, s, width: int) -> dict:
+    """``cols`` with the sweep's ``direction`` column after the first ``width`` (input) columns, when it oscillates."""
+    if not s.oscillates:
+        return cols
+    items = list(cols.items())
+    return dict(items[:width] + [("direction", s.direction)] + items[width:])
 
 
 def _analyze(args) -> int:
     mech = _load(args.model)
-    q, qdot = sweep(mech, args.points, args.input)
-    qdot, per = _rates(mech, args, q, qdot)
+    s = sweep_rows(mech, args.points, args.input)
+    q, qdot = s.q, s.qdot
+    qdot, per = _rates(mech, args, q, qdot, s.direction if s.oscillates else None)
     r = mech.solve(q, qdot)
-    cols = r.columns(degrees=True, per=per)
+    cols = with_direction(r.columns(degrees=True, per=per), s, 3 * len(mech.model.inputs))
     if args.centres:
         from gearlever.mechanism.centres import centre_columns
 
@@ -400,18 +307,21 @@ def _draw(args) -> int:
 
     size, dpi = figure_args(args)
     mech = _load(args.model)
-    q, qdot = sweep(mech, args.points, args.input)
-    r = mech.solve(q, qdot)
+    s = sweep_rows(mech, args.points, args.input)
+    r = mech.solve(s.q, s.qdot)
     from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import draw_mechanism
 
-    ax = draw_mechanism(mech, r, figsize=size, note=None if args.input else held_note(mech))
+    ax = draw_mechanism(mech, r, figsize=size, note=None if args.input else held_note(mech, s))
     save(ax.figure, args.out, dpi=dpi)
     return 0
 
 
-def held_note(mech) -> str | None:
+def held_note(mech, s=None) -> str | None:
     """What the default sweep of a model with several inputs does, for the drawing: ``None`` with one input.
+
+    With ``s`` (the :class:`~gearlever.mechanism.sweep.Sweep`) one oscillation
+    of a rocking first input is named (``paths: AB rocks between ...``).
 
     The first input turns a full turn and the others stay at their sketch
     values (:func:`sweep`); a drawing says so, since the paths then show the
@@ -423,8 +333,9 @@ def held_note(mech) -> str | None:
     'paths: left turns, right held at 90 deg (sketch)'
     """
     m = mech.model
+    rocks = s is not None and s.oscillates
     if len(m.inputs) < 2:
-        return None
+        return f"paths: {s.message().split(':')[0]}, one oscillation" if rocks else None
     names = input_labels(mech)
     held = []
     for name, spec, v in zip(names[1:], m.inputs[1:], mech.sketch_inputs[1:]):
@@ -433,7 +344,8 @@ def held_note(mech) -> str | None:
         else:
             value = f"{math.degrees(float(v)):.6g} deg"
         held.append(f"{name} held at {value}")
-    return f"paths: {names[0]} turns, {', '.join(held)} (sketch)"
+    moves = s.message().split(":")[0] if rocks else f"{names[0]} turns"
+    return f"paths: {moves}, {', '.join(held)} (sketch)"
 
 
 def _animate(args) -> int:
@@ -442,8 +354,8 @@ def _animate(args) -> int:
 
     size, dpi = figure_args(args, args.frames)
     mech = _load(args.model)
-    q, qdot = sweep(mech, args.frames, args.input)
-    r = mech.solve(q, qdot)
+    s = sweep_rows(mech, args.frames, args.input)
+    r = mech.solve(s.q, s.qdot)
     paths = mech.solve(*sweep(mech, DEFAULT_POINTS, args.input))
     from gearlever.cli._common import progress
     from gearlever.plotting.mechanism import animate_mechanism

@@ -14,6 +14,9 @@
   constraints from the Jacobian's rank.
 - :mod:`~gearlever.mechanism.solve`: positions, velocities, accelerations,
   batched over the inputs; :mod:`~gearlever.mechanism.core`: :class:`Mechanism`.
+- :func:`sweep` / :func:`sweep_rows`: the one sweep rule of the commands
+  (:mod:`gearlever.mechanism.sweep`); :func:`input_limits`: the dead points
+  of an input that cannot turn fully (:mod:`gearlever.mechanism.limits`).
 - :func:`assemble`: a rough sketch closed to the exact lengths of its
   ``[lengths]`` table (:mod:`gearlever.mechanism.assemble`).
 
@@ -28,13 +31,20 @@ Nothing of :mod:`gearlever.curves` or :mod:`gearlever.synthesis` (they import it
 
 from gearlever.mechanism.assemble import assemble
 from gearlever.mechanism.core import Mechanism
+from gearlever.mechanism.limits import InputLimits, input_limits
 from gearlever.mechanism.mobility import mobility, redundant_constraints
 from gearlever.mechanism.model import MechanismModel, load_model, model_from_dict
 from gearlever.mechanism.solve import MechanismResult
 from gearlever.mechanism.structural import MechanismStructure
+from gearlever.mechanism.sweep import Sweep, sweep, sweep_rows
 
 __all__ = [
     "assemble",
+    "input_limits",
+    "InputLimits",
+    "sweep",
+    "sweep_rows",
+    "Sweep",
     "mobility",
     "redundant_constraints",
     "Mechanism",

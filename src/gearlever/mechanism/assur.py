@@ -154,7 +154,7 @@ class DyadPlan:
                 m = self._rrr(step, st, pts, phi, rates)
             else:
                 m = self._rrp(step, st, pts, phi, slider, rates)
-            margin = m if margin is None else np.fmin(margin, m)
+            margin = m if margin is None else np.minimum(margin, m)  # NaN (no assembly) propagates
         return phi, st, slider, pts, margin
 
     def _rrr(self, s: _RRR, st, pts, phi, rates):

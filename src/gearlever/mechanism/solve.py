@@ -60,6 +60,29 @@ def _null_space(A: np.ndarray, ncols: int) -> np.ndarray:
     return vt[r:].T.copy()
 
 
+def _singular_links(model) -> list:
+    """Links that can move at the sketch with every link input held: the binding links of a dead-point sketch."""
+    from gearlever.mechanism.structural import scaled_jacobian
+
+    J = scaled_jacobian(model)
+    moving = list(model.moving)
+    rows = []
+    for spec in model.inputs:
+        if spec.kind != "link":
+            continue
+        r = np.zeros(3 * len(moving))
+        r[3 * moving.index(spec.name) + 2] = 1.0
+        if spec.relative_to is not None and spec.relative_to != GROUND:
+            r[3 * moving.index(spec.relative_to) + 2] = -1.0
+        rows.append(r)
+    A = np.vstack([J] + ([np.array(rows)] if rows else []))
+    ns = _null_space(A, A.shape[1])
+    if ns.shape[1] == 0:
+        return moving
+    move = np.abs(ns).reshape(len(moving), 3, -1).max(axis=(1, 2))
+    return [k for k, v in zip(moving, move) if v > 0.05 * move.max()] or moving
+
+
 class _Forms:
     """Stacked point expressions ``c + sum_k R(phi_k) v_k + sum_j w_j s_j R(phi_o(j)) u_j``."""
 
@@ -102,6 +125,13 @@ class KinematicSystem:
         st = analyze_structure(model)
         self.structure = st
         W = len(model.inputs)
+        if W != st.dof and W == st.W_formula and st.dof > W:
+            raise GearleverError(
+                f"inputs: the sketch is a dead point of the links {', '.join(_singular_links(model))}: the "
+                f"constraints lose rank there ({st.dof} degrees of freedom at the sketch for {W} [[inputs]], "
+                f"{st.W_formula} by the formula), so an input is locked there or moves one way only; sketch the "
+                "mechanism off the dead point"
+            )
         if W != st.dof:
             raise GearleverError(
                 f"inputs: the mechanism has {st.dof} degree(s) of freedom (rank analysis at the sketch) "
@@ -258,11 +288,22 @@ class KinematicSystem:
         Jz = self.jz(x0, *self.trig(x0))[:, :, 0]
         if numeric_rank(Jz / self.L) < self.dz:
             raise GearleverError(
-                "inputs: the inputs do not fix the mechanism at the sketch (the sketch is a dead point, "
-                "or an input is locked)"
+                "inputs: the inputs do not fix the mechanism at the sketch: the sketch is a dead point of the "
+                f"links {', '.join(self._binding(Jz))} (they can move with the inputs held), so an input is "
+                "locked there or moves one way only; sketch the mechanism off the dead point"
             )
         self.sel = np.array(independent_rows(Jz / self.L), dtype=int) if self.dz else np.zeros(0, dtype=int)
         self.sgn0 = float(np.sign(np.linalg.det(Jz[self.sel][:, :]))) if self.dz else 1.0
+
+    def _binding(self, Jz) -> list:
+        """Links that move along the null vector of the closure Jacobian ``Jz`` (2K, dz) at a dead point."""
+        v = np.linalg.svd(Jz / self.L)[2][-1]
+        move = self.N @ v
+        rot = np.abs(move[: self.n])
+        big = float(rot.max()) if rot.size else 0.0
+        names = [k for k in self.model.moving if big > 0 and rot[self.idx[k]] > 0.05 * big]
+        names += [s.name for j, s in enumerate(self.model.sliders) if abs(move[self.n + j]) > 0.05 * max(big, 1e-300)]
+        return names or list(self.model.moving)
 
     def _jz_tables(self):
         f, n, N = self.closure, self.n, self.N
@@ -912,6 +953,8 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
     plan = system.dyad_plan
     fast = plan.solve(qa.T, qd.T, qdd.T) if plan is not None else None
+    if fast is not None and not np.all(np.isfinite(fast[0])):
+        fast = None  # a row where a dyad does not assemble: the continuation answers (closed = False there)
     if fast is not None:
         x, xd, xdd, CS, points = fast
         closed = np.ones(N, dtype=bool)

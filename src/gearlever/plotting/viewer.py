@@ -123,6 +123,28 @@ def _frames_inputs(mech, frames: int, inputs) -> tuple:
     return start, values, default
 
 
+def _first_input_rows(mech, start, frames: int):
+    """Values of the first input over the frames, their directions and its limits (None when it turns fully).
+
+    A first input that turns fully turns one turn from ``start`` (end
+    excluded); one that rocks (:func:`~gearlever.mechanism.limits.input_limits`,
+    the others held at ``start``) sweeps one oscillation
+    (:func:`~gearlever.mechanism.sweep.oscillation`): up to its upper limit,
+    down to its lower one, back to ``start``.
+    """
+    from gearlever.mechanism.limits import input_limits
+    from gearlever.mechanism.sweep import oscillation
+
+    lim = input_limits(mech, 0, start=start)
+    if lim.full_turn:
+        return start[0] + 2 * np.pi * np.arange(frames) / frames, np.ones(frames, dtype=int), None
+    if lim.locked:
+        links = ", ".join(dict.fromkeys(lim.binding_lower + lim.binding_upper))
+        raise GearleverError(f"inputs: {lim.input} cannot move from its start: it is locked by the links {links}")
+    v, d = oscillation(lim.start, lim.lower, lim.upper, frames)
+    return v, d, lim
+
+
 def page_estimate(model, frames: int) -> dict:
     """The work and the estimated size of a page, before anything is solved.
 
@@ -257,7 +279,12 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     with_centres = _check_size(m, frames)
     start, grid, grid_default = _frames_inputs(mech, frames, inputs)
     rates, period = _rates(mech, rpm)
-    turn = start[0] + 2 * np.pi * np.arange(frames) / frames
+    turn, direction, lim = _first_input_rows(mech, start, frames)
+    frame_rates = np.tile(rates, (frames, 1))
+    if lim is not None:  # one oscillation: the speed signed by the motion, the period that of the oscillation
+        frame_rates[:, 0] = abs(rates[0]) * direction
+        if period is not None:
+            period = 2.0 * (lim.upper - lim.lower) / abs(rates[0])
     slices = [start.copy()] if grid is None else []
     if grid is not None:
         for v in grid:
@@ -269,7 +296,7 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     for s in slices:
         q = np.tile(s, (frames, 1))
         q[:, 0] = turn
-        results.append(mech.solve(q, np.tile(rates, (frames, 1))))
+        results.append(mech.solve(q, frame_rates))
 
     def cat(attr, key=None):
         """``result.attr[key]`` (or ``result.attr``) of every grid slice, concatenated."""
@@ -384,6 +411,13 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
         "ascale": 0.5 * L / amax if amax > 0 else 0.0,
         "ic": None,
     }
+    if lim is not None:  # only then: the pages of inputs that turn fully stay as they were
+        data["osc"] = {
+            "q": [float(v) for v in turn],
+            "dir": [int(v) for v in direction],
+            "lower": lim.lower,
+            "upper": lim.upper,
+        }
     data["centres_capped"] = W == 1 and not with_centres
     data["centres_max"] = MAX_CENTRE_BODIES
     if W == 1 and with_centres:

@@ -13,9 +13,9 @@ POINTS = 181
 
 
 def run(tables_dir: Path, figures_dir: Path) -> list[str]:
-    from gearlever.cli.mechanism import sweep
     from gearlever.data import example_path, list_examples
     from gearlever.mechanism import Mechanism
+    from gearlever.mechanism.sweep import sweep
     from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import draw_mechanism
 

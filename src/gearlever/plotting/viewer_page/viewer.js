@@ -25,7 +25,8 @@
   const S = D.S;
   const closedAt = (k) => D.closed.charAt(st.grid * N + k) === "1";
   const P = (name, k) => [at(S.x[name], k), at(S.y[name], k)];
-  const inputAngle = (k) => D.inputs[0].start + 2 * Math.PI * k / N;
+  // one oscillation of a rocking first input (D.osc: its value and direction per frame), else one turn
+  const inputAngle = (k) => (D.osc ? D.osc.q[k] : D.inputs[0].start + 2 * Math.PI * k / N);
   function rotOf(link, k) { return link === "ground" ? 0 : at(S.phi[link], k); }
 
   // units
@@ -482,6 +483,7 @@
     const th = inputAngle(k) * DEG;
     const inp = D.inputs[0];
     let html = `${esc(inp.label)}: θ = ${th.toFixed(2)}°`;
+    if (D.osc) html += ` (${D.osc.dir[k] > 0 ? "up" : "down"}, rocks ${(D.osc.lower * DEG).toFixed(3)}° to ${(D.osc.upper * DEG).toFixed(3)}°)`;
     if (D.period) html += ` · t = ${(D.period * k / N).toFixed(4)} s`;
     html += ` · frame ${k}/${N}`;
     D.inputs.slice(1).forEach((p, i) => {
