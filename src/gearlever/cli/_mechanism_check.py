@@ -216,7 +216,7 @@ def check_text(report: dict) -> str:
 
 
 def _check(args) -> int:
-    from gearlever.cli.mechanism import _load
+    from gearlever.cli._shared import load_model as _load
     from gearlever.mechanism.mesh_check import check_mechanism
 
     mech = _load(args.model)

@@ -50,8 +50,9 @@ def register_export(ms) -> None:
 
 
 def _export(args) -> int:
-    from gearlever.cli.mechanism import _load, input_labels
+    from gearlever.cli._shared import load_model as _load
     from gearlever.export import FORMATS, export_parts, mechanism_drawing
+    from gearlever.mechanism.sweep import input_labels
 
     if args.out is None and args.parts is None:
         raise GearleverError("give --out M.dxf|M.svg, --parts DIR, or both")

@@ -27,7 +27,7 @@ of Machines and Mechanisms*, 4th ed., Oxford University Press, 2011,
 section 13.8 ("Friction-force models", the friction circle of a pin
 joint, ``r_f = r sin phi``, ``tan phi = mu``).
 
-Imports numpy and the model only.
+Imports the model schema only.
 """
 
 from __future__ import annotations
@@ -106,7 +106,7 @@ def parse_friction(model, friction=None) -> FrictionSpec:
     >>> round(spec.pins["O"][2], 9)  # r sin(atan(mu))
     0.009805807
     """
-    from gearlever.mechanism.model import MAX_COORDINATE
+    from gearlever.mechanism.schema import MAX_COORDINATE
 
     raw = model.extra.get("friction") if friction is None else friction
     if raw is None:

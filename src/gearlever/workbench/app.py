@@ -55,6 +55,8 @@ from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response, StreamingResponse
 from starlette.routing import Route
 
+from gearlever.workbench.errors import ApiError
+
 __all__ = [
     "create_app",
     "new_token",
@@ -86,16 +88,6 @@ CSP = (
 def new_token() -> str:
     """A fresh token: 128 random bits (:func:`secrets.token_urlsafe` of 16 bytes, 22 characters)."""
     return secrets.token_urlsafe(16)
-
-
-class ApiError(Exception):
-    """An answer ``{"error": message}`` with a 4xx status (and optional extra fields)."""
-
-    def __init__(self, status: int, message: str, **extra):
-        super().__init__(message)
-        self.status = status
-        self.message = message
-        self.extra = extra
 
 
 def _json(body: bytes) -> Response:

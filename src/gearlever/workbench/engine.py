@@ -28,7 +28,7 @@ model text, :data:`MAX_LINKS` moving links, :data:`MAX_POINTS` points,
 target points; the seconds per solve are the app's
 (:data:`gearlever.workbench.app.SOLVE_SECONDS`).
 
-The CSV export uses :func:`gearlever.cli._common.table_text`, the writer of
+The CSV export uses :func:`gearlever._io.table_text`, the writer of
 ``gearlever mechanism analyze``: it lives in the command-line package, and
 the workbench, an application like the command line, imports it from there.
 """
@@ -716,7 +716,7 @@ def export(text, fmt: str, frames: int = 360) -> tuple:
         return page.encode("utf-8"), "text/html; charset=utf-8", f"{stem}.html"
     r = _sweep_result(mech, frames)
     if fmt == "csv":
-        from gearlever.cli._common import table_text
+        from gearlever._io import table_text
 
         cols = r.columns(degrees=True, per=_inputs(mech)[0])
         cols["closed"] = r.closed

@@ -34,7 +34,7 @@ _NAME = re.compile(r"[^\W][\w.\- ]{0,199}", re.UNICODE)
 
 
 def _api_error(status: int, message: str, **extra):
-    from gearlever.workbench.app import ApiError
+    from gearlever.workbench.errors import ApiError
 
     return ApiError(status, message, **extra)
 
