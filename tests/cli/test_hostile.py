@@ -315,11 +315,22 @@ def test_network_torques_without_inputs_answer(box):
     assert status == 0 and "torque on carrier: -350.0" in out
 
 
-def test_analyze_csv_quotes_the_reason_column():
-    """Every CSV row of the parallel levers (with unreached rows) has as many fields as the header."""
+def test_analyze_csv_quotes_the_reason_column(tmp_path):
+    """Every CSV row of a sweep with unreached rows has as many fields as the header.
+
+    A five-bar whose couplers (25 + 25) close only while the crank tips stay within 50 of each other, both
+    cranks moved (a rocking single input's range past its limits is refused instead, naming them).
+    """
+    model = tmp_path / "five.toml"
+    model.write_text(
+        "[points]\nO1 = [0, 0]\nO2 = [50, 0]\nA = [10, 0]\nB = [50, 10]\nC = [26.570028297149825, 18.719886811400706]\n"
+        '[links]\nground = ["O1", "O2"]\nleft = ["O1", "A"]\nright = ["O2", "B"]\nl4 = ["A", "C"]\nl5 = ["B", "C"]\n'
+        '[[inputs]]\nlink = "left"\n[[inputs]]\nlink = "right"\n'
+    )
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        assert main(["mechanism", "analyze", str(EXAMPLES / "parallel_levers.toml"), "--points", "12"]) == 0
+        argv = ["mechanism", "analyze", str(model), "--points", "12", "--input", "0", "180", "--input", "90", "-90"]
+        assert main(argv) == 0
     rows = list(csv.reader(io.StringIO(buf.getvalue())))
     assert len(rows) == 13 and {len(r) for r in rows} == {len(rows[0])}
     reasons = [r[-1] for r in rows[1:]]

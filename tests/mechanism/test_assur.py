@@ -63,7 +63,7 @@ def assert_same(fast, slow, model):
             close(getattr(fast, d)[k], getattr(slow, d)[k], f"{d}[{k}]", order)
 
 
-PLANNED = {"engine", "fivebar_two_inputs", "fourbar", "slider_crank", "watt_i", "watt_sixbar"}
+PLANNED = {"engine", "fivebar_two_inputs", "fourbar", "slider_crank", "stephenson_iii", "watt_i", "watt_sixbar"}
 
 
 @pytest.mark.parametrize("path", all_examples(), ids=lambda p: p.stem)
