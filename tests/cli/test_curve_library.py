@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from gearlever.cli import main
-from gearlever.curves import search as S
+from gearlever.curves import library as L
 from tests.curves import _designs
 
 cache, small = _designs.cache, _designs.small  # fixtures
@@ -19,7 +19,7 @@ def test_build_then_info(cache, capsys):
     assert main(["curve", "library", "build", "--size", "900", "--seed", "2"]) == 0
     out, err = capsys.readouterr()
     path = cache / "curves-library-v1-size900-seed2.npz"
-    entries = S.build_library(2, size=900).rms.size
+    entries = L.build_library(2, size=900).rms.size
     assert out == f"{path}: 900 mechanisms, seed 2, {entries} entries, {path.stat().st_size} bytes\n"
     assert err == ""  # no progress when stderr is not a terminal
     assert main(["curve", "library", "info"]) == 0
@@ -83,7 +83,7 @@ def test_ctrl_c_during_the_build_leaves_no_file_and_no_folder(cache, capsys, mon
         progress("library", 1, 2)
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(S, "build_library", interrupted)
+    monkeypatch.setattr(L, "build_library", interrupted)
     assert main(["curve", "library", "build", "--size", "600"]) == 130
     assert "\n" not in capsys.readouterr().err.strip()
     assert not cache.exists()
