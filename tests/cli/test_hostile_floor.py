@@ -6,8 +6,7 @@ sizes the arithmetic cannot carry (refused, never a silent 0), input files
 nested too deeply for the parser (one line, no RecursionError), a law read off
 a crank that turns fully (no KeyError), messages that name internals or read
 badly (overflow, a huge JSON integer, an open interval, articles, both ways of
-giving a law, a CAM or LAW file given as a model), and a follower that cannot
-be built.  Every test runs :func:`gearlever.cli.main` in-process and checks the
+giving a law, a CAM or LAW file given as a model).  Every test runs :func:`gearlever.cli.main` in-process and checks the
 exit status and the one line on stderr.
 """
 
@@ -234,26 +233,6 @@ def test_a_cam_or_law_file_given_as_a_model_points_to_its_command(files, capsys,
     (files / "x.toml").write_text(f"[{table}]\nx = 1\n")
     code, _, err = run(capsys, ["mechanism", "analyze", files / "x.toml"])
     assert code == 2 and f"unknown table [{table}]" in one_line(err) and command in err
-
-
-def test_an_oscillating_roller_whose_pivot_lies_inside_the_cam_is_refused(files, capsys):
-    (files / "rock.toml").write_text(ROCK)
-    argv = [
-        "cam",
-        "design",
-        files / "rock.toml",
-        "--follower",
-        "oscillating-roller",
-        "--roller-radius",
-        "5",
-        "--arm",
-        "40",
-    ]
-    code, _, err = run(capsys, [*argv, "--base-radius", "30", "--pivot-distance", "30", "--out", files / "c.toml"])
-    assert code == 2 and "pivot lies inside the cam" in one_line(err) and "--pivot-distance" in err
-    assert not (files / "c.toml").exists()
-    code, _, err = run(capsys, [*argv, "--base-radius", "30", "--pivot-distance", "60", "--out", files / "c.toml"])
-    assert code == 0, err
 
 
 def test_a_stroke_of_a_degree_law_is_said_in_degrees(files, capsys):

@@ -52,6 +52,7 @@ def _element(name: str) -> dict:
         "inputs": {"link": "crank"},
         "masses": {"mass": 1.0, "centre": "A", "inertia": 0.1},
         "loads": {"link": "rocker", "torque": 1.0},
+        "friction": {"coefficient": 0.1, "pin_radius": 0.05},
     }[name]
 
 
@@ -77,6 +78,8 @@ def _with(name: str, element: dict) -> dict:
         d["masses"] = {"crank": element}
     elif name == "loads":
         d["loads"] = [element]
+    elif name == "friction":
+        d["friction"] = element
     return d
 
 
@@ -112,6 +115,7 @@ def test_reader_refuses_an_unknown_table_with_the_schemas_list():
 def test_reader_keeps_the_schemas_kept_tables_in_extra():
     d = dict(FOURBAR, lengths={"crank": 1.5}, masses={"crank": {"mass": 1.0, "centre": "A"}})
     d["loads"] = [{"link": "rocker", "torque": 2.0}]
+    d["friction"] = {"coefficient": 0.1, "pin_radius": 0.05}
     m = model_from_dict(d)
     assert set(m.extra) == set(schema.kept_tables())
 

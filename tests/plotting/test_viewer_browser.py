@@ -17,6 +17,7 @@ import pytest
 
 from gearlever.mechanism import Mechanism
 from gearlever.mechanism.centres import instant_centres
+from gearlever.mechanism.limits import input_limits
 from gearlever.plotting.viewer import GRID_STEPS, viewer_html
 from tests.plotting import _browser
 
@@ -226,18 +227,16 @@ def test_two_input_page_second_slider_selects_the_second_input(driver, pages):
     _assert_points(_read(driver, "[data-point]", "data-point"), r, 0, mech.model.length_scale)
 
 
-def test_frames_that_do_not_assemble_hide_the_points_and_keep_the_angle(driver, pages):
+def test_a_rocking_input_page_sweeps_one_oscillation_and_every_frame_assembles(driver, pages):
+    """The double rocker's input cannot turn fully: the page sweeps one oscillation between its limits
+    (issue 34), so every frame assembles and shows its points (no frame of NaN)."""
     mech, _ = pages["double_rocker"]
-    r = mech.solve(mech.sketch_inputs[0] + 2 * np.pi * np.arange(72) / 72)
-    bad = int(np.flatnonzero(~r.closed)[0])
-    good = int(np.flatnonzero(r.closed)[0])
-    _open(driver, pages, "double_rocker", f"?frame={bad}")
-    dom = _read(driver, "[data-point]", "data-point")
-    assert all(e["hidden"] for e in dom.values())
-    text = driver.find_element("id", "readout").text
-    assert f"θ = {math.degrees(2 * np.pi * bad / 72):.2f}°" in text and "not assembled" in text
-    _open(driver, pages, "double_rocker", f"?frame={good}")
-    assert not any(e["hidden"] for e in _read(driver, "[data-point]", "data-point").values())
+    lim = input_limits(mech)
+    assert not lim.full_turn
+    for frame in (0, 17, 36, 53):
+        _open(driver, pages, "double_rocker", f"?frame={frame}")
+        assert not any(e["hidden"] for e in _read(driver, "[data-point]", "data-point").values())
+        assert "not assembled" not in driver.find_element("id", "readout").text
 
 
 def test_play_advances_the_frame_and_pause_stops_it(driver, pages):
@@ -394,14 +393,16 @@ def test_csv_export_holds_the_whole_cycle_with_empty_cells_at_infinity(driver, p
     assert svg.startswith("<svg") and 'data-point="B"' in svg
 
 
-def test_csv_export_leaves_frames_that_do_not_assemble_empty(driver, pages):
+def test_csv_export_of_a_rocking_input_has_every_frame_closed(driver, pages):
+    """One oscillation of the double rocker: every exported row is closed, with its points and its input."""
     mech = _open(driver, pages, "double_rocker")
     head, rows = _csv(driver)
-    closed = mech.solve(mech.sketch_inputs[0] + 2 * np.pi * np.arange(72) / 72).closed
     col = {name: i for i, name in enumerate(head)}
-    assert [int(r[col["closed"]]) for r in rows] == [int(c) for c in closed]
-    bad = int(np.flatnonzero(~closed)[0])
-    assert rows[bad][col["B_x_mm"]] == "" and rows[bad][col["input_crank_deg"]] != ""
+    assert rows and all(int(r[col["closed"]]) == 1 for r in rows)
+    assert all(r[col["B_x_mm"]] != "" and r[col["input_crank_deg"]] != "" for r in rows)
+    lim = input_limits(mech)
+    angles = [float(r[col["input_crank_deg"]]) for r in rows]
+    assert math.degrees(lim.lower) - 1e-6 <= min(angles) and max(angles) <= math.degrees(lim.upper) + 1e-6
 
 
 def test_number_formatter_keeps_the_zeros_of_whole_numbers(driver, pages):

@@ -37,12 +37,13 @@ import numbers
 from dataclasses import dataclass
 
 from gearlever.errors import GearleverError
+from gearlever.mechanism import schema
 
 __all__ = ["FrictionSpec", "parse_friction", "MAX_COEFFICIENT"]
 
 #: Largest Coulomb coefficient accepted: dry metal pairs lie below 1; a larger value is a typing error.
 MAX_COEFFICIENT = 1.0
-_KEYS = ("coefficient", "pin_radius", "pins", "sliders")
+_KEYS = schema.allowed_keys("friction")
 
 
 @dataclass(frozen=True)
@@ -116,7 +117,9 @@ def parse_friction(model, friction=None) -> FrictionSpec:
         if key not in _KEYS:
             from gearlever._io import did_you_mean
 
-            raise GearleverError(f"friction: unknown key {key!r}{did_you_mean(key, _KEYS)} (keys: {', '.join(_KEYS)})")
+            raise GearleverError(
+                f"friction: unknown key {key!r}{did_you_mean(key, _KEYS)} (allowed: {', '.join(_KEYS)})"
+            )
     mu0 = _coefficient("friction.coefficient", raw["coefficient"]) if "coefficient" in raw else None
     r0 = _radius("friction.pin_radius", raw["pin_radius"], MAX_COORDINATE) if "pin_radius" in raw else None
     joints = sorted({p for p, _a, _b in model.joints})

@@ -182,6 +182,17 @@ def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL) -> In
     four-bar whose input cannot turn the limits are where coupler and
     follower are collinear: ``cos theta = (a^2 + d^2 - (b +- c)^2) / (2 a d)``
     (law of cosines), which the tests check to 1e-9 rad.
+
+    Examples
+    --------
+    The Watt I six-bar of PMKS+'s verification cases rocks its input AB:
+
+    >>> import numpy as np
+    >>> from gearlever.data import example_path
+    >>> from gearlever.mechanism import Mechanism
+    >>> lim = input_limits(Mechanism.load(example_path("watt_i.toml")))
+    >>> lim.full_turn, np.round(np.degrees([lim.lower, lim.upper]), 3).tolist(), lim.binding_lower
+    (False, [67.284, 78.254], ('DE', 'EF'))
     """
     ks = mech.system
     W = ks.W

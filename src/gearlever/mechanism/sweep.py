@@ -68,6 +68,17 @@ class Sweep(Result):
         back (an oscillation), 0 where it does not move.
     limits : InputLimits or None
         The first input's limits when the rows are one oscillation, else None.
+
+    Examples
+    --------
+    One oscillation of the Watt I six-bar's rocking input in 8 rows:
+
+    >>> import numpy as np
+    >>> from gearlever.data import example_path
+    >>> from gearlever.mechanism import Mechanism
+    >>> s = sweep_rows(Mechanism.load(example_path("watt_i.toml")), points=8)
+    >>> np.round(np.degrees(s.q[:, 0]), 3).tolist(), s.direction.tolist()
+    ([72.922, 75.664, 78.102, 75.359, 72.616, 69.874, 67.436, 70.179], [1, 1, -1, -1, -1, -1, 1, 1])
     """
 
     q: np.ndarray

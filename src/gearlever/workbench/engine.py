@@ -226,10 +226,10 @@ def parse(text) -> dict:
 def dump(obj) -> str:
     """The TOML text (model-file schema) of a model given as a JSON object; :func:`parse` reads it back.
 
-    The model is validated first (:func:`gearlever.mechanism.model.model_from_dict`);
-    tables are written by :func:`gearlever.synthesis.model.model_toml`, except
-    the points, written exactly as given (the shortest text of each float:
-    the model the page holds is the model saved), and ``[lengths]``.
+    The model is validated first (:func:`gearlever.mechanism.model.model_from_dict`),
+    then written by the one model writer, :func:`gearlever.mechanism.modelfile.model_toml`,
+    with every float in its shortest exact form (the model the page holds is
+    the model saved), ``[lengths]`` included.
 
     Examples
     --------
@@ -238,32 +238,18 @@ def dump(obj) -> str:
     >>> parse(dump(d))["model"] == {**d, "points": {"O": [0.0, 0.0], "A": [1.5, 0.0]}}
     True
     """
-    from gearlever.synthesis.model import _key, _value, model_toml
+    from gearlever.mechanism.modelfile import model_toml
 
     if not isinstance(obj, dict):
         raise WorkbenchError(f"model must be a JSON object of the model file's tables, got {type(obj).__name__}")
     _mechanism(obj)
-    body = {k: v for k, v in obj.items() if k not in ("lengths", "points")}
     try:
-        text = model_toml(body)
-        points = "[points]\n" + "".join(
-            f"{_key(k)} = [{_exact(v[0])}, {_exact(v[1])}]\n" for k, v in obj.get("points", {}).items()
-        )
-        # the points as given (shortest exact text), after [mechanism] as the schema orders them
-        at = text.find("\n\n[", text.find("[mechanism]")) if text.startswith("[mechanism]") else -1
-        text = text[: at + 2] + points + "\n" + text[at + 2 :] if at >= 0 else points + "\n" + text
-        if "lengths" in obj:
-            text += "\n[lengths]\n" + "".join(f"{_value(str(k))} = {_value(v)}\n" for k, v in obj["lengths"].items())
+        text = model_toml(obj, exact=True)
     except GearleverError as exc:
         raise WorkbenchError(f"model: {exc}") from None
     # the written text must read back as the same model
     _mechanism(_toml(text))
     return text
-
-
-def _exact(v) -> str:
-    """A coordinate as the shortest text that reads back as the same float."""
-    return repr(float(v) + 0.0)
 
 
 # --------------------------------------------------------------------------- cycle

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from gearlever.cams.followers._base import FollowerParams, RollerFollower, Unbuildable, need
+from gearlever.cams.followers._base import FollowerParams, RollerFollower, need
 from gearlever.errors import GearleverError
 
 
@@ -56,14 +56,6 @@ class OscillatingRoller(RollerFollower):
             raise GearleverError(
                 f"the law's stroke {math.degrees(stroke):g} deg swings the arm past the line through the cam "
                 f"centre (start at {math.degrees(gamma0(p, base_radius)):g} deg from it): use a larger --pivot-distance"
-            )
-        # the cam's largest radius is where the arm swings farthest out (|q| grows with gamma on (0, pi))
-        g_max = gamma0(p, base_radius) + stroke
-        r_cam = math.sqrt(max(D * D + L * L - 2 * D * L * math.cos(g_max), 0.0)) - p.roller_radius
-        if D <= r_cam:
-            raise Unbuildable(
-                f"--pivot-distance {D:g}: the arm's pivot lies inside the cam (its largest radius is {r_cam:.6g}): "
-                "it cannot be built; use a larger --pivot-distance or a shorter --arm"
             )
 
     def base_radius_bounds(self, p, stroke):
