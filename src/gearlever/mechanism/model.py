@@ -698,20 +698,6 @@ def _link_input(where: str, t: dict, links: dict) -> InputSpec:
     return InputSpec("link", lname, rel)
 
 
-def _inv_involute(value: float) -> float:
-    """The angle ``a`` in [0, pi/2) with ``tan a - a = value`` (Newton from Cheng's start), ``value >= 0``."""
-    if value <= 0.0:
-        return 0.0
-    a = min(1.441 * value ** (1.0 / 3.0) - 0.366 * value, 1.5)
-    for _ in range(60):
-        step = (math.tan(a) - a - value) / math.tan(a) ** 2
-        a -= step
-        a = min(max(a, 1e-12), math.pi / 2 - 1e-12)
-        if abs(step) < 1e-15:
-            break
-    return a
-
-
 def tight_centre_distance(module: float, ga: Gear, gb: Gear, alpha: float = math.radians(20.0)) -> float:
     """The zero-backlash working centre distance of gears ``ga``, ``gb`` (shifts, helix) at normal module ``module``.
 
@@ -742,7 +728,9 @@ def tight_centre_distance(module: float, ga: Gear, gb: Gear, alpha: float = math
     inv_w = math.tan(at) - at + 2.0 * math.tan(alpha) * xsum / zsum
     if inv_w < 0:
         raise GearleverError(f"the shifts {ga.shift:g}, {gb.shift:g} leave no working pressure angle (inv < 0)")
-    aw = _inv_involute(inv_w)
+    from gearlever.gears.geometry import inverse_involute
+
+    aw = inverse_involute(max(inv_w, 0.0))
     return module * zsum * math.cos(at) / (2.0 * cb * math.cos(aw))
 
 
