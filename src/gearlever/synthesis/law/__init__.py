@@ -14,11 +14,11 @@
 - :mod:`~gearlever.synthesis.law.driver`: seeded starts
   (:func:`gearlever.synthesis.driver.multistart`) for each kind,
   :class:`LawSynthesis`.
+- :mod:`~gearlever.synthesis.law.measure`: the law a mechanism model
+  produces, segments fitted (the inverse use), and the report of a synthesis.
 
 The kinds are also records of family ``law`` in the one registry of
 synthesis kinds (:func:`gearlever.synthesis.kinds`), added here.
-- :mod:`~gearlever.synthesis.law.measure`: the law a mechanism model
-  produces, segments fitted (the inverse use), and the report of a synthesis.
 
 Numeric core: may import numpy, scipy, :mod:`gearlever.synthesis`,
 :mod:`gearlever.mechanism`, :mod:`gearlever.laws`, :mod:`gearlever.errors`;
