@@ -46,6 +46,14 @@ def register(sub) -> None:
 def _run(args) -> int:
     from pathlib import Path
 
+    try:
+        import starlette  # noqa: F401
+        import uvicorn  # noqa: F401
+    except ImportError as exc:  # a broken install: say what is missing, never "internal error"
+        raise GearleverError(
+            f"workbench: the package {exc.name!r} is not installed (gearlever depends on starlette and uvicorn): "
+            "reinstall gearlever, e.g. make reproduce or pip install -e ."
+        ) from None
     from gearlever.workbench.files import SUFFIXES
     from gearlever.workbench.serve import serve
 
