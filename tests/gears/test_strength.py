@@ -17,11 +17,12 @@ def _entry(section, name):
     return next(e for e in tomllib.loads(read_text("gear_published.toml"))[section] if e["name"] == name)
 
 
-def test_shigley_example_14_1_lewis_rating_to_printed_digits():
-    """Shigley 9th ed., Example 14-1 (P 8, F 1.5 in, 16 teeth, 1200 rev/min, S_y 30 kpsi, n_d 3): V 628.3 ft/min
-    (0.05), K_v 1.52 (0.005), Y 0.296 (table), W_t 364 lbf (0.5), H 6.93 hp (0.005, from the printed W_t as the
-    book does). Entered from the book, not read in a retrieved copy (verified = false in the data file)."""
+def test_shigley_example_14_1_lewis_rating_unverified():
+    """UNVERIFIED. Shigley 9th ed., Example 14-1 (P 8, F 1.5 in, 16 teeth, 1200 rev/min, S_y 30 kpsi, n_d 3):
+    V 628.3 ft/min (0.05), K_v 1.52 (0.005), Y 0.296 (table), W_t 364 lbf (0.5), H 6.93 hp (0.005, from the
+    printed W_t as the book does). Entered from the book, not read in a retrieved copy (verified = false)."""
     e = _entry("lewis", "shigley-example-14-1")
+    assert not e["verified"]
     d = e["teeth"] / e["diametral_pitch"]
     v = math.pi * d * e["speed_rpm"] / 12
     assert v == pytest.approx(e["pitch_line_velocity"], abs=0.05)
@@ -37,6 +38,72 @@ def test_shigley_example_14_1_lewis_rating_to_printed_digits():
     assert e["tangential_force"] * v / 33000 == pytest.approx(e["horsepower"], abs=0.005)
     # and back: the stress of that force is the allowable
     assert float(s.lewis_bending_stress(wt, e["face_width"], 1 / 8, y, kv)) == pytest.approx(allowable, rel=1e-12)
+
+
+def test_shigley_example_14_4_agma_unverified():
+    """UNVERIFIED (entered from Shigley 9th ed. without a readable copy). Example 14-4, AGMA 2001-D04 as in
+    Shigley ch. 14 (17/52 teeth, P 10, F 1.5 in, 1800 rev/min, 4 hp, Q_v 6, steel on steel).
+
+    Taken from the example (inputs, not computed here): J_P 0.30, J_G 0.40 (Fig. 14-6), K_o 1, K_B 1, C_f 1, and
+    the size and load-distribution factors K_s 1.043/1.052 and K_m 1.22 (gearlever takes them as inputs; they are
+    checked here against Shigley's formulas, sec. 14-10 (a) and eq. 14-30, written out in the test).  Computed by
+    gearlever: V 801.1 ft/min and W_t 164.8 lbf (to the printed digit), K_v 1.377 (eq. 14-27, 5e-4), Y_P from
+    Table 14-2, C_p 2291 (eq. 14-13; the book's Table 14-8 rounds to 2300, which the stresses below use as it does),
+    I 0.121 (eq. 14-23, 5e-4), the pinion's bending stress 6417 psi (eq. 14-15) and contact stress 70 360 psi
+    (eq. 14-16).  The book rounds each factor before multiplying: gearlever's unrounded chain gives 6416.9 and
+    70 331 psi; with the printed factors it gives 6417 and 70 360 (half a unit, and 0.05 % for the contact
+    stress's printed 4 digits)."""
+    e = _entry("agma", "shigley-example-14-4")
+    assert not e["verified"]
+    zp, zg = e["teeth"]
+    p, f = e["diametral_pitch"], e["face_width"]
+    dp = zp / p
+    v = math.pi * dp * e["speed_rpm"] / 12
+    wt = 33000 * e["horsepower"] / v
+    assert v == pytest.approx(e["pitch_line_velocity"], abs=0.05)
+    assert wt == pytest.approx(e["tangential_force"], abs=0.05)
+    kv = float(s.agma_velocity_factor(v, e["quality"]))
+    assert kv == pytest.approx(e["dynamic_factor"], abs=0.5e-3)
+    # the factors the example computes by formulas gearlever leaves to the caller
+    ks = [1.192 * (f * math.sqrt(s.lewis_form_factor(z)) / p) ** 0.0535 for z in (zp, zg)]
+    np.testing.assert_allclose(ks, e["size_factor"], atol=0.5e-3)
+    cpf = f / (10 * dp) - 0.0375 + 0.0125 * f
+    cma = 0.127 + 0.0158 * f - 0.930e-4 * f * f
+    assert 1 + cpf + cma == pytest.approx(e["load_distribution"], abs=0.5e-2)
+    cp = s.elastic_coefficient(e["young_modulus"], e["poisson"])
+    assert cp == pytest.approx(e["elastic_coefficient"], rel=0.005)  # Table 14-8 rounds 2291 to 2300
+    i = s.agma_pitting_geometry_factor(math.radians(e["pressure_angle_deg"]), zg / zp)
+    assert i == pytest.approx(e["pitting_geometry_factor"], abs=0.5e-3)
+    common = {"overload": e["overload"], "size": e["size_factor"][0], "load_distribution": e["load_distribution"]}
+    jp = e["geometry_factor_bending"][0]
+    sigma = float(
+        s.agma_bending_stress(
+            e["tangential_force"], f, 1 / p, jp, dynamic=e["dynamic_factor"], rim_thickness=e["rim_thickness"], **common
+        )
+    )
+    assert sigma == pytest.approx(e["bending_stress_pinion"], abs=0.5)
+    sigma_c = float(
+        s.agma_contact_stress(
+            e["tangential_force"],
+            f,
+            dp,
+            e["pitting_geometry_factor"],
+            e["elastic_coefficient"],
+            dynamic=e["dynamic_factor"],
+            surface_condition=e["surface_condition"],
+            **common,
+        )
+    )
+    assert sigma_c == pytest.approx(e["contact_stress_pinion"], rel=0.5e-3)
+    # gearlever's own chain, unrounded, within the book's rounding of its factors
+    own = float(s.agma_bending_stress(wt, f, 1 / p, jp, dynamic=kv, size=ks[0], load_distribution=1 + cpf + cma))
+    assert own == pytest.approx(e["bending_stress_pinion"], rel=2e-3)
+    own_c = float(
+        s.agma_contact_stress(
+            wt, f, dp, i, e["elastic_coefficient"], dynamic=kv, size=ks[0], load_distribution=1 + cpf + cma
+        )
+    )
+    assert own_c == pytest.approx(e["contact_stress_pinion"], rel=2e-3)
 
 
 def test_lewis_form_factor_from_the_generated_tooth_near_shigleys_table():
