@@ -397,12 +397,19 @@ def test_mesh_refusals_name_the_parameter():
         g.mesh(1.0, 12, 20, helix=math.radians(50))
     with pytest.raises(GearleverError, match=r"shift 1.2 points the tooth of gear 1.*largest shift"):
         g.mesh(3.0, 12, 24, 1.2, 0.0)
-    with pytest.raises(GearleverError, match=r"contact ratio 0\.\d+ < 1: not a mesh"):
+    with pytest.raises(
+        GearleverError, match=r"teeth 12 and 12 with shift 0 and 0 and addendum 0.6: contact ratio 0\.\d+ < 1"
+    ):
         g.mesh(1.0, 12, 12, 0.0, 0.0, addendum=0.6, dedendum=0.85)
     with pytest.raises(GearleverError, match="internal pair's tips interfere"):
         g.mesh(1.0, 20, 26, kind="internal")
     with pytest.raises(GearleverError, match="center_distance 10 cannot be reached"):
         g.mesh(1.0, 12, 24, center_distance=10.0)
+    # a centre distance whose shifts point a tooth or part the teeth is refused as the centre distance
+    with pytest.raises(GearleverError, match=r"^center_distance 100 is not a sound mesh .* no tip left"):
+        g.mesh(1.0, 12, 24, center_distance=100.0)
+    with pytest.raises(GearleverError, match=r"^center_distance 19.5 is not a sound mesh .* contact ratio 0\.9"):
+        g.mesh(1.0, 12, 24, center_distance=19.5)
 
 
 def test_tip_thickness_agrees_with_the_drawn_tooth():
