@@ -141,3 +141,17 @@ def test_bad_input_exits_2_with_one_line(args, words, capsys, tmp_path, monkeypa
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and words in err, err
     assert not list(tmp_path.iterdir())
+
+
+def test_mesh_reproduces_khks_helical_normal_system_table(capsys):
+    """KHK's helical pair in the normal system as printed on bolsover.com (Profile Shifted External Helical Gear -
+    Normal): --center-distance 125 with the shift on the pinion gives x 0.09809, alpha_wt 23.1126 deg, tips 48.154
+    and 213.842 mm and contact ratios 1.294, 1.061 (half a unit of the printed digit)."""
+    args = ["gear", "mesh", "--module", "3", "--teeth", "12", "60", "--helix", "30", "--center-distance", "125"]
+    assert main([*args, "--split", "pinion", "--face-width", "20", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["shift"] == pytest.approx([0.09809, 0.0], abs=0.5e-5)
+    assert d["working_pressure_angle_deg"] == pytest.approx(23.1126, abs=0.5e-4)
+    assert d["tip_diameter"] == pytest.approx([48.154, 213.842], abs=0.5e-3)
+    assert d["contact_ratio_transverse"] == pytest.approx(1.294, abs=0.5e-3)
+    assert d["contact_ratio_overlap"] == pytest.approx(1.061, abs=0.5e-3)
