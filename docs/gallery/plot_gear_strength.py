@@ -53,7 +53,7 @@ ax.set_ylabel("stress (MPa)")
 ax.set_title(
     f"mesh {ms.mesh}: least safety {np.min(ms.bending_safety):.1f} (bending), {np.min(ms.contact_safety):.2f} (contact)"
 )
-ax.legend()
+ax.legend(loc="lower right", bbox_to_anchor=(1.0, 0.12), fontsize=8)  # clear of the curves
 fig.tight_layout()
 print(f"worst angle {deg[w]:.1f} deg, tooth force {ms.tangential_force[w]:.2f} N")
 print(

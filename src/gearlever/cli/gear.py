@@ -61,6 +61,11 @@ def _flagged(exc):
     text = str(flagged(exc, _FLAGS))
     text = re.sub(r"(?<![-\w])(shift|teeth)[12]\b", lambda m: "--" + m.group(1), text)
     text = re.sub(r"--(shift|teeth)[12]\b", lambda m: "--" + m.group(1), text)
+    # the contact-ratio refusal names every flag that sets it
+    text = re.sub(r"^(--teeth [^:]*) with shift (.*) and addendum ", r"\1 with --shift \2 and --addendum ", text)
+    text = text.replace(
+        "--teeth (the ring) must exceed --teeth,", "--teeth: the ring's (the second) must exceed the pinion's,"
+    )
     return GearleverError(text)
 
 

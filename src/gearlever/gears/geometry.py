@@ -1176,21 +1176,36 @@ def mesh(
         root_radius=rack.root_radius,
     )
     if check:
-        _check_mesh(result)
+        if center_distance is None:
+            _check_mesh(result)
+        else:
+            try:
+                _check_mesh(result, largest=False)
+            except GearleverError as exc:
+                raise GearleverError(
+                    f"center_distance {float(center_distance):.6g} is not a sound mesh with the shifts "
+                    f"{x1:.4g}, {x2:.4g} that reach it ({split} split): {exc}"
+                ) from None
     return result
 
 
-def _check_mesh(g: GearMesh) -> None:
+def _tip_text(st: float, m: float) -> str:
+    """The tip thickness in modules, or why there is none (the tip circle inside the base circle)."""
+    if math.isfinite(st):
+        return f"tip thickness {st / m:.4g} module < {MIN_TIP_THICKNESS}"
+    return "no tip left (the tip circle lies inside the base circle)"
+
+
+def _check_mesh(g: GearMesh, largest: bool = True) -> None:
     m = g.module
     for i in range(1 if g.kind == "rack" else 2):
         st = float(g.tip_thickness[i])
         if not st >= MIN_TIP_THICKNESS * m - 1e-12:
             internal = g.kind == "internal" and i == 1
             if internal:
-                raise GearleverError(
-                    f"shift {g.shift[i]:.6g} points the ring's teeth: tip thickness {st / m:.4g} module "
-                    f"< {MIN_TIP_THICKNESS}"
-                )
+                raise GearleverError(f"shift {g.shift[i]:.6g} points the ring's teeth: {_tip_text(st, m)}")
+            if not largest:
+                raise GearleverError(f"shift {g.shift[i]:.6g} points the tooth of gear {i + 1}: {_tip_text(st, m)}")
             largest = max_shift_for_tip(
                 m,
                 int(g.teeth[i]),
@@ -1200,13 +1215,15 @@ def _check_mesh(g: GearMesh) -> None:
                 tip_shortening=g.tip_shortening,
             )
             raise GearleverError(
-                f"shift {g.shift[i]:.6g} points the tooth of gear {i + 1}: tip thickness {st / m:.4g} module < "
-                f"{MIN_TIP_THICKNESS}; largest shift {largest:.4g}"
+                f"shift {g.shift[i]:.6g} points the tooth of gear {i + 1}: {_tip_text(st, m)}; "
+                f"largest shift {largest:.4g}"
             )
     if not g.contact_ratio_transverse >= MIN_CONTACT_RATIO:
+        teeth = f"{int(g.teeth[0])}" if g.kind == "rack" else f"{int(g.teeth[0])} and {int(g.teeth[1])}"
+        shifts = f"{g.shift[0]:.4g}" if g.kind == "rack" else f"{g.shift[0]:.4g} and {g.shift[1]:.4g}"
         raise GearleverError(
-            f"contact ratio {g.contact_ratio_transverse:.4g} < 1: not a mesh (teeth {g.teeth[0]}, {g.teeth[1]}, "
-            f"shifts {g.shift[0]:.4g}, {g.shift[1]:.4g})"
+            f"teeth {teeth} with shift {shifts} and addendum {g.addendum:.4g}: contact ratio "
+            f"{g.contact_ratio_transverse:.4g} < 1, not a mesh"
         )
     if g.kind == "internal":
         tip = internal_interference(g)

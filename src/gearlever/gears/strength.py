@@ -13,7 +13,8 @@ stresses ``(N,)``):
   the factors ``K_o, K_v, K_s, K_m (K_H), K_B`` and the bending geometry factor
   ``J`` are inputs (``J`` from Shigley's Fig. 14-6 / AGMA 908-B89); the pitting
   geometry factor ``I`` is computed (eq. 14-23), ``K_v`` can be computed from
-  the quality number (eq. 14-27).
+  the quality number (eq. 14-27), ``K_s`` from Shigley's fit (sec. 14-10) and
+  ``K_m`` by AGMA's empirical method (eq. 14-30), in inch units.
 
 :func:`mesh_stresses` turns the tooth forces that
 :meth:`~gearlever.mechanism.Mechanism.inverse_dynamics` gives for every mesh
@@ -50,6 +51,9 @@ __all__ = [
     "elastic_coefficient",
     "hertz_contact_stress",
     "agma_pitting_geometry_factor",
+    "agma_size_factor",
+    "AGMA_MESH_ALIGNMENT",
+    "agma_load_distribution_factor",
     "agma_bending_stress",
     "agma_contact_stress",
     "safety_factor",
@@ -332,6 +336,101 @@ def agma_pitting_geometry_factor(
     if internal and mg <= 1:
         raise GearleverError(f"ratio must exceed 1 for an internal pair, got {mg!r}")
     return math.cos(phi) * math.sin(phi) / (2 * mn) * mg / (mg - 1 if internal else mg + 1)
+
+
+def agma_size_factor(face_width: float, form_factor: float, diametral_pitch: float) -> float:
+    """AGMA size factor ``K_s = 1.192 (F sqrt(Y) / P)^0.0535``, inch units.
+
+    Parameters
+    ----------
+    face_width : ``F`` (in).
+    form_factor : the Lewis form factor ``Y`` (:func:`lewis_form_factor`).
+    diametral_pitch : ``P`` (teeth/in).
+
+    Notes
+    -----
+    Budynas and Nisbett, *Shigley's*, 9th ed., sec. 14-10, eq. (a) (AGMA
+    2001-D04 leaves ``K_s`` to the designer; this is Shigley's fit of it to
+    the tooth's size through the Lewis form factor).
+
+    Examples
+    --------
+    >>> round(agma_size_factor(1.5, 0.303, 10.0), 3)
+    1.043
+    """
+    f = positive("face_width", face_width)
+    y = positive("form_factor", form_factor)
+    p = positive("diametral_pitch", diametral_pitch)
+    return 1.192 * (f * math.sqrt(y) / p) ** 0.0535
+
+
+#: Mesh alignment constants ``(A, B, C)`` of ``C_ma = A + B F + C F^2`` (F in inches), by gearing condition.
+AGMA_MESH_ALIGNMENT = {
+    "open": (0.247, 0.0167, -0.765e-4),
+    "commercial": (0.127, 0.0158, -0.930e-4),
+    "precision": (0.0675, 0.0128, -0.926e-4),
+    "extra-precision": (0.00360, 0.0102, -0.822e-4),
+}
+
+
+def agma_load_distribution_factor(
+    face_width: float,
+    pinion_diameter: float,
+    *,
+    condition: str = "commercial",
+    crowned: bool = False,
+    straddle_offset: float = 0.0,
+    adjusted: bool = False,
+) -> float:
+    """AGMA load-distribution factor ``K_m = 1 + C_mc (C_pf C_pm + C_ma C_e)``, inch units.
+
+    Parameters
+    ----------
+    face_width : ``F`` (in, at most 40).
+    pinion_diameter : ``d_P`` (in).
+    condition : the gearing's ``C_ma`` row, one of :data:`AGMA_MESH_ALIGNMENT` (open gearing, commercial
+        enclosed, precision enclosed, extra-precision enclosed).
+    crowned : crowned teeth, ``C_mc = 0.8`` (else 1).
+    straddle_offset : ``S_1 / S``, the pinion's offset from the middle of its bearing span over the span;
+        ``C_pm = 1.1`` from 0.175 on (else 1).
+    adjusted : the mesh adjusted at assembly or lapped, ``C_e = 0.8`` (else 1).
+
+    Notes
+    -----
+    Budynas and Nisbett, *Shigley's*, 9th ed., eq. 14-30 to 14-35 and Table
+    14-9 (AGMA 2001-D04's empirical method, uncrowned or crowned spur gears
+    with ``F/d_P <= 2``): ``C_pf = F/(10 d) - 0.025`` (F <= 1 in), ``F/(10 d) -
+    0.0375 + 0.0125 F`` (1 < F <= 17), ``F/(10 d) - 0.1109 + 0.0207 F -
+    0.000228 F^2`` (17 < F <= 40), with ``F/(10 d)`` at least 0.05; ``C_ma = A
+    + B F + C F^2``.
+
+    Examples
+    --------
+    >>> round(agma_load_distribution_factor(1.5, 1.7), 2)
+    1.22
+    """
+    f = positive("face_width", face_width)
+    d = positive("pinion_diameter", pinion_diameter)
+    if f > 40.0:
+        raise GearleverError(f"face_width must be at most 40 in for the empirical method, got {f!r}")
+    if condition not in AGMA_MESH_ALIGNMENT:
+        raise GearleverError(f"condition must be one of {', '.join(AGMA_MESH_ALIGNMENT)}, got {condition!r}")
+    s = finite("straddle_offset", straddle_offset)
+    if not 0.0 <= s < 0.5:
+        raise GearleverError(f"straddle_offset must be in [0, 0.5), got {s!r}")
+    ratio = max(f / (10.0 * d), 0.05)
+    if f <= 1.0:
+        cpf = ratio - 0.025
+    elif f <= 17.0:
+        cpf = ratio - 0.0375 + 0.0125 * f
+    else:
+        cpf = ratio - 0.1109 + 0.0207 * f - 0.000228 * f * f
+    a, b, c = AGMA_MESH_ALIGNMENT[condition]
+    cma = a + b * f + c * f * f
+    cmc = 0.8 if crowned else 1.0
+    cpm = 1.1 if s >= 0.175 else 1.0
+    ce = 0.8 if adjusted else 1.0
+    return 1.0 + cmc * (cpf * cpm + cma * ce)
 
 
 def agma_bending_stress(
