@@ -860,6 +860,75 @@ class CsvTable:
         index = {n: self.header.index(n) for n in names}
         return {n: [self.number(k, j, n, finite) for k in range(len(self.rows))] for n, j in index.items()}
 
+    def only(self, accepted, least: int) -> CsvTable:
+        """This table held to the package's one rule for the columns of a user's CSV file.
+
+        The rule, the same for every CSV a user gives (path targets, curve
+        targets, a law's samples): a header row is optional; with one, it
+        names only ``accepted`` columns (any order, case ignored) and at least
+        the first ``least`` of them; without one, the values are the
+        ``accepted`` columns in order, at least ``least`` of them.  A row with
+        more values than the columns is refused with its line (a silently
+        dropped column is a silently wrong result); trailing empty cells (a
+        spreadsheet's extra commas) are not values.
+
+        Returns the table with its header set (positional names when the file
+        had none) and the trailing empty cells removed.
+
+        >>> t = CsvTable("T", [], [["1", "2", ""], ["3", "4"]], [1, 2]).only(("x", "y", "input_deg"), 2)
+        >>> t.header, t.rows
+        (['x', 'y'], [['1', '2'], ['3', '4']])
+        >>> CsvTable("T", ["x", "y", "z"], [["1", "2", "3"]], [2]).only(("x", "y"), 2)
+        Traceback (most recent call last):
+        ...
+        gearlever.errors.GearleverError: T: unknown column 'z' in the header (the columns are x, y)
+        >>> CsvTable("T", ["x", "y"], [["1", "2", "3"]], [2]).only(("x", "y"), 2)
+        Traceback (most recent call last):
+        ...
+        gearlever.errors.GearleverError: T line 2: 3 values, but the columns are x, y
+        """
+        from gearlever.errors import GearleverError
+
+        accepted = list(accepted)
+        described = ", ".join(accepted[:least])
+        if len(accepted) > least:
+            described += " and optionally " + ", ".join(accepted[least:])
+        rows = []
+        for r in self.rows:
+            r = list(r)
+            while r and not r[-1].strip():
+                r.pop()
+            rows.append(r)
+        if self.header:
+            header = [c.strip().lower() for c in self.header]
+            for name in header:
+                if name not in accepted:
+                    raise GearleverError(
+                        f"{self.where}: unknown column {name!r} in the header (the columns are {described})"
+                    )
+            seen = set()
+            for name in header:
+                if name in seen:
+                    raise GearleverError(f"{self.where}: column {name!r} appears twice in the header")
+                seen.add(name)
+            missing = [n for n in accepted[:least] if n not in header]
+            if missing:
+                raise GearleverError(
+                    f"{self.where}: the header must name columns {described}, got {','.join(self.header)}"
+                )
+        else:
+            width = min(len(rows[0]), len(accepted)) if rows else least
+            if width < least:
+                raise GearleverError(
+                    f"{self.where} line {self.lines[0]}: {len(rows[0])} value(s), but the columns are {described}"
+                )
+            header = accepted[:width]
+        for r, line in zip(rows, self.lines):
+            if len(r) > len(header):
+                columns = ", ".join(header)
+                raise GearleverError(f"{self.where} line {line}: {len(r)} values, but the columns are {columns}")
+        return CsvTable(self.where, header, rows, self.lines)
+
 
 def read_csv_table(
     path,

@@ -242,3 +242,109 @@ def test_a_stroke_of_a_degree_law_is_said_in_degrees(files, capsys):
         capsys, [*argv, "--arm", "40", "--pivot-distance", "60", "--base-radius", "3", "--out", files / "c.toml"]
     )
     assert code == 2 and "stroke 30 deg" in one_line(err)
+
+
+# -- Say what you accept: one rule for the columns of every CSV a user gives ------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("kind", "good_header", "extra_header", "extra_row"),
+    [
+        ("curve target", "x,y", "x,y,z", "5,0,7"),
+        ("law samples", "input_deg,output", "input_deg,output,speed", "350,0.1,3"),
+        ("path targets", "x,y", "x,y,weight", "5,0,7"),
+    ],
+)
+def test_every_user_csv_refuses_an_extra_column_by_header_or_by_row(
+    files, capsys, kind, good_header, extra_header, extra_row
+):
+    """Before: path CSVs refused extra columns while law samples and curve targets dropped them silently."""
+    t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    if kind == "law samples":
+        body = "".join(f"{a},{5 - 5 * np.cos(np.radians(a))}\n" for a in np.arange(0, 360, 10))
+    else:
+        body = "".join(f"{np.cos(a) + 4},{np.sin(a)}\n" for a in t)
+
+    def argv(name):
+        if kind == "curve target":
+            return ["curve", "score", files / "d.links.json", "--target", files / name]
+        if kind == "law samples":
+            (files / "l.toml").write_text(f'[law]\noutput = "displacement"\nunits = "mm"\nsamples = "{name}"\n')
+            return ["cam", "design", files / "l.toml", *ROLLER, "--out", files / "c.toml"]
+        return ["synthesize", "path", files / name, "--budget", "2000", "--out", files / "p.toml"]
+
+    (files / "h.csv").write_text(f"{extra_header}\n" + body.replace("\n", ",1\n"))
+    code, _, err = run(capsys, argv("h.csv"))
+    line = one_line(err)
+    assert code == 2 and "unknown column" in line and extra_header.split(",")[-1] in line and "h.csv" in line
+    (files / "r.csv").write_text(f"{good_header}\n" + body + extra_row + "\n")
+    code, _, err = run(capsys, argv("r.csv"))
+    line = one_line(err)
+    assert code == 2 and "3 values" in line and "r.csv" in line
+
+
+def test_law_samples_like_targets_need_no_header(files, capsys):
+    """Before: law samples needed a header while curve and path targets did not; now each may have one or not."""
+    from gearlever.laws import load_law
+
+    body = "".join(f"{a},{5 - 5 * np.cos(np.radians(a))}\n" for a in np.arange(0, 360, 10))
+    (files / "n.csv").write_text("# a comment line\n" + body)
+    (files / "h.csv").write_text("input_deg,output\n" + body)
+    for name in ("n", "h"):
+        (files / f"{name}.toml").write_text(f'[law]\noutput = "displacement"\nunits = "mm"\nsamples = "{name}.csv"\n')
+    a, b = load_law(files / "n.toml"), load_law(files / "h.toml")
+    th = np.linspace(0, 2 * np.pi, 7)
+    np.testing.assert_array_equal(a.evaluate(th).s, b.evaluate(th).s)
+
+
+def test_a_cam_file_carries_only_its_followers_dimensions_in_its_laws_units(files, capsys):
+    code, _, _ = run(capsys, ["cam", "design", files / "lift.toml", *ROLLER, "--out", files / "c.toml"])
+    assert code == 0
+    text = (files / "c.toml").read_text()
+    (files / "arm.toml").write_text(text.replace("[cam]\n", "[cam]\narm = 40.0\n", 1))
+    code, _, err = run(capsys, ["cam", "view", files / "arm.toml", "--out", files / "v.html"])
+    line = one_line(err)
+    assert code == 2 and "arm" in line and "translating-roller" in line and "arm.toml" in line
+    assert 'units = "mm"' in text
+    (files / "in.toml").write_text(text.replace('units = "mm"', 'units = "in"', 1))
+    code, _, err = run(capsys, ["cam", "view", files / "in.toml", "--out", files / "v.html"])
+    line = one_line(err)
+    assert code == 2 and "units" in line and "'in'" in line and "'mm'" in line
+
+
+def test_an_oscillating_cam_file_names_the_units_of_its_lengths(files, capsys):
+    from gearlever.cams.camfile import load_cam
+
+    (files / "rock.toml").write_text(ROCK)
+    argv = ["cam", "design", files / "rock.toml", "--follower", "oscillating-roller", "--roller-radius", "5"]
+    argv += ["--arm", "40", "--pivot-distance", "60", "--base-radius", "30", "--out", files / "o.toml"]
+    code, _, err = run(capsys, argv)
+    assert code == 0, err
+    text = (files / "o.toml").read_text()
+    (files / "o_mm.toml").write_text(
+        text.replace("[cam]\n", '[cam]\nunits = "mm"\n', 1)
+        if "units" not in text
+        else text.replace('units = "length"', 'units = "mm"')
+    )
+    assert load_cam(files / "o_mm.toml").units == "mm"
+    (files / "o_bad.toml").write_text((files / "o_mm.toml").read_text().replace('units = "mm"', 'units = "parsec"'))
+    code, _, err = run(capsys, ["cam", "view", files / "o_bad.toml", "--out", files / "v.html"])
+    line = one_line(err)
+    assert code == 2 and "parsec" in line and "mm" in line
+
+
+def test_an_oscillating_sizing_failure_names_its_flag_and_says_undercut(files, capsys):
+    """Before: 'no base radius up to 50 meets ...': no flag, no reason; the translating-flat one says both."""
+    (files / "rock.toml").write_text(
+        ROCK.replace("to = 180", "to = 60").replace("to = 360", "to = 120")
+        + '[[law.segment]]\nto = 360\nmotion = "dwell"\n'
+    )
+    argv = ["cam", "design", files / "rock.toml", "--follower", "oscillating-flat", "--pivot-distance", "50"]
+    code, _, err = run(capsys, [*argv, "--min-curvature-radius", "0", "--out", files / "o.toml"])
+    line = one_line(err)
+    assert code == 2 and "--pivot-distance 50" in line and "undercut" in line
+    argv = ["cam", "design", files / "rock.toml", "--follower", "oscillating-roller", "--roller-radius", "5"]
+    argv += ["--arm", "40", "--pivot-distance", "50", "--max-pressure-angle", "10", "--out", files / "o.toml"]
+    code, _, err = run(capsys, argv)
+    line = one_line(err)
+    assert code == 2 and "--pivot-distance 50" in line and "pressure angle reached" in line

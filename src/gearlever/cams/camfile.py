@@ -8,7 +8,7 @@ gearlever.errors and gearlever.cams.design.
 from __future__ import annotations
 
 from gearlever.cams.design import MAX_POINTS, CamDesign, design_cam
-from gearlever.errors import GearleverError
+from gearlever.errors import GearleverError, a
 
 __all__ = ["CAM_DIGITS", "cam_toml", "load_cam"]
 
@@ -135,8 +135,16 @@ def load_cam(path, points: int | None = None) -> CamDesign:
             raise GearleverError(f"{source}: [cam] {key} is missing")
     if not isinstance(cam["follower"], str):
         raise GearleverError(f"{source}: [cam] follower must be a string, got {cam['follower']!r}")
+    from gearlever.cams.followers import FOLLOWERS
+
+    kind = FOLLOWERS.get(cam["follower"])
     dims = {}
     for key in ("base_radius", "roller_radius", "offset", "arm", "pivot_distance"):
+        if key in cam and kind is not None and key != "base_radius" and key not in kind.needs:
+            raise GearleverError(
+                f"{source}: [cam] {key} is not a dimension of {a(kind.name)} follower "
+                f"(its dimensions: base_radius, {', '.join(kind.needs)})"
+            )
         if key in cam:
             v = cam[key]
             if isinstance(v, bool) or not isinstance(v, int | float):
@@ -147,7 +155,24 @@ def load_cam(path, points: int | None = None) -> CamDesign:
         raise GearleverError(f"{source}: [cam] points must be an integer in 8 .. {MAX_POINTS:,}, got {n!r}")
     law = load_law(path)
     try:
-        return design_cam(law, cam["follower"], **dims, points=n, allow_undercut=True)
+        design = design_cam(law, cam["follower"], **dims, points=n, allow_undercut=True)
     except GearleverError as exc:
         text = str(exc)
         raise GearleverError(text if text.startswith(source) else f"{source}: {text}") from None
+    if "units" not in cam or cam["units"] == design.units:
+        return design
+    if kind is not None and kind.law_output == "displacement":
+        raise GearleverError(
+            f"{source}: [cam] units = {cam['units']!r}, but a {kind.name} follower's lengths are in the "
+            f"units of its [law] ({design.units!r}); give the law's units or leave units out"
+        )
+    from dataclasses import replace
+
+    from gearlever.laws.law import LENGTH_UNITS
+
+    if cam["units"] not in LENGTH_UNITS:  # an oscillating follower: the law is an angle, the file names the lengths'
+        raise GearleverError(
+            f"{source}: [cam] units must be one of {', '.join(LENGTH_UNITS)} (the units of the cam's lengths), "
+            f"got {cam['units']!r}"
+        )
+    return replace(design, units=cam["units"])

@@ -451,7 +451,48 @@ def size_base_radius(
         what.append(f"a maximum pressure angle of {math.degrees(max_pressure_angle):g} deg")
     if min_curvature_radius is not None:
         what.append(f"a minimum radius of curvature of {min_curvature_radius:g}")
-    return _search(ok, lo, hi, " and ".join(what) + f" with the {kind.name} follower")
+    wanted = " and ".join(what) + f" with the {kind.name} follower"
+    try:
+        return _search(ok, lo, hi, wanted)
+    except GearleverError:
+        raise GearleverError(
+            _no_radius(kind, p, lo, hi, wanted, (max_pressure_angle, min_curvature_radius), (theta, s, v, a, stroke))
+        ) from None
+
+
+def _no_radius(kind, p, lo: float, hi: float, wanted: str, bounds, arrays) -> str:
+    """Why sizing found no radius in ``(lo, hi)``: what the radii that assemble reach, and the flags bounding them."""
+    theta, s, v, a, stroke = arrays
+    max_phi, min_rho = bounds
+    built, undercut, phi, rho = [], [], [], []
+    first_why = None
+    for rb in lo + (hi - lo) * np.geomspace(1e-6, 1 - 1e-6, 61):
+        why, r = _assess(kind, p, float(rb), theta, s, v, a, stroke)
+        if why is not None:
+            first_why = first_why or why
+            continue
+        built.append(float(rb))
+        undercut.append(bool(np.any(r["undercut"])))
+        phi.append(float(np.max(np.abs(r["phi"]))))
+        convex = r["rho"][r["rho"] > 0]
+        rho.append(float(np.min(convex)) if convex.size else 0.0)
+    text = f"no base radius up to {hi:.6g} meets {wanted}: "
+    if not built:
+        text += first_why or "no base radius assembles"
+        text += " (an undercut profile)" if "folds back" in text else ""
+    elif all(undercut):
+        text += f"every base radius it assembles with ({built[0]:.4g} to {built[-1]:.4g}) undercuts the profile"
+    elif max_phi is not None and min(phi) > max_phi:
+        k = int(np.argmin(phi))
+        text += f"the smallest pressure angle reached is {math.degrees(phi[k]):.4g} deg (base radius {built[k]:.4g})"
+    else:
+        k = int(np.argmax(rho))
+        text += f"the largest radius of curvature reached is {rho[k]:.4g} (base radius {built[k]:.4g}), or it undercuts"
+    if kind.bounded_by and "--" not in text:
+        flags = " and ".join(f"--{n.replace('_', '-')} {getattr(p, n):g}" for n in kind.bounded_by)
+        larger = kind.bounded_by[0].replace("_", "-")
+        text += f"; the base radius must stay below {hi:.6g}, set by {flags}: give a larger --{larger}"
+    return text
 
 
 def design_cam(

@@ -129,30 +129,14 @@ def read_targets(path: str):
     if not table.rows and not table.header:
         raise GearleverError(f"{where}: no target rows")
     names = ["x", "y", "input_deg"]
-    rows, lines = table.rows, table.lines
-    if table.header:
-        header = table.header
-        for need in ("x", "y"):
-            if need not in header:
-                raise GearleverError(f"{where}: the header must name columns x and y, got {header}")
-        cols = [header.index(n) if n in header else None for n in names]
-        width = len(header)
-    else:
-        width = min(len(rows[0]), 3)
-        cols = [0, 1, 2 if width >= 3 else None]
-        header = names[:width]
+    table = table.only(names, 2)  # the package's one rule for a user's CSV
+    header, rows, lines = table.header, table.rows, table.lines
+    cols = [header.index(n) if n in header else None for n in names]
     if len(rows) > MAX_TARGETS:
         raise GearleverError(f"{where}: at most {MAX_TARGETS} target rows, got {len(rows)}")
     xy, ang = [], []
     for r, line in zip(rows, lines):
         at = f"{where} line {line}"
-        while len(r) > width and not r[-1].strip():  # trailing empty cells (a spreadsheet's extra commas)
-            r = r[:-1]
-        if len(r) > width:
-            raise GearleverError(
-                f"{at}: {len(r)} values, but the columns are {', '.join(header)} ({width}); "
-                "give one value per column (x,y or x,y,input_deg)"
-            )
         vals = []
         for name, c in zip(names, cols):
             if c is None:

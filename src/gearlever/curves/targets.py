@@ -8,9 +8,6 @@
 
 from __future__ import annotations
 
-import csv
-import io
-
 import numpy as np
 
 from gearlever.curves.links import MAX_COORDINATE
@@ -60,29 +57,17 @@ def check_target(xy, what: str = "target") -> np.ndarray:
 
 def read_target(path, what: str = "TARGET") -> np.ndarray:
     """Rows ``x,y`` of a CSV file (optional header naming x and y; ``#`` lines skipped), checked."""
-    from gearlever._io import read_text_capped
+    from gearlever._io import read_csv_table
 
-    text = read_text_capped(path, what)
-    where = f"{what} {str(path)!r}"
-    rows = [r for r in csv.reader(io.StringIO(text)) if any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
-    if not rows:
+    table = read_csv_table(path, what, header=None, comments=True)
+    where = table.where
+    if not table.rows:
         raise GearleverError(f"{where}: no x,y rows")
-    cols, start = (0, 1), 1
-    try:
-        float(rows[0][0])
-    except ValueError:
-        header = [c.strip().lower() for c in rows[0]]
-        if "x" not in header or "y" not in header:
-            raise GearleverError(f"{where}: the header must name columns x and y, got {rows[0]}") from None
-        cols, start, rows = (header.index("x"), header.index("y")), 2, rows[1:]
-    if len(rows) > MAX_TARGET_ROWS:
+    if len(table.rows) > MAX_TARGET_ROWS:
         raise GearleverError(f"{where}: more than {MAX_TARGET_ROWS} rows (the cap)")
-    xy = np.empty((len(rows), 2))
-    for n, r in enumerate(rows):
-        try:
-            xy[n] = [float(r[cols[0]]), float(r[cols[1]])]
-        except (ValueError, IndexError):
-            raise GearleverError(f"{where}: line {n + start}: x and y must be numbers, got {r}") from None
+    table = table.only(("x", "y"), 2)  # the package's one rule for a user's CSV: no column dropped silently
+    cols = (table.header.index("x"), table.header.index("y"))
+    xy = np.array([[table.number(k, cols[0], "x"), table.number(k, cols[1], "y")] for k in range(len(table))])
     return check_target(xy, where)
 
 

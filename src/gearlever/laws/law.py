@@ -538,9 +538,12 @@ def _sample_column(values, source: str, column: str) -> np.ndarray:
 
 def _read_samples(path: Path, source: str) -> tuple[np.ndarray, np.ndarray]:
     where = f"{source}: samples {str(path)!r}"
-    cols = read_csv_table(
-        path, f"{source}: samples", columns=("input_deg", "output"), max_rows=MAX_SAMPLES, where=where
-    ).columns(("input_deg", "output"), finite=False)  # nan and inf refused with their sample row
+    table = read_csv_table(path, f"{source}: samples", header=None, comments=True, max_rows=MAX_SAMPLES, where=where)
+    if not table.rows:
+        raise GearleverError(f"{where}: no samples (rows input_deg,output)")
+    # the package's one rule for a user's CSV (header optional, no column dropped silently);
+    # nan and inf are refused with their sample row
+    cols = table.only(("input_deg", "output"), 2).columns(("input_deg", "output"), finite=False)
     return np.array(cols["input_deg"]), np.array(cols["output"])
 
 

@@ -70,6 +70,9 @@ class FollowerKind:
     needs: tuple = ()
     #: One line for listings.
     description: str = ""
+    #: The dimensions that set the largest base radius it can assemble with (``base_radius_bounds``'s
+    #: upper end), named when sizing finds no radius below that bound.
+    bounded_by: tuple = ()
 
     def check(self, p: FollowerParams, base_radius: float, stroke: float) -> None:
         """Raise :class:`GearleverError` if the dimensions cannot assemble over the stroke."""

@@ -39,6 +39,7 @@ class OscillatingFlat(FlatFollower):
     name = "oscillating-flat"
     law_output = "angle"
     needs = ("pivot_distance", "offset")
+    bounded_by = ("pivot_distance", "offset")
     description = "flat face on a rocker pivoted at distance D (face offset e from the pivot)"
 
     def check(self, p, base_radius, stroke):

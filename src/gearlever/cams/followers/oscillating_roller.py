@@ -40,6 +40,7 @@ class OscillatingRoller(RollerFollower):
     name = "oscillating-roller"
     law_output = "angle"
     needs = ("roller_radius", "arm", "pivot_distance")
+    bounded_by = ("pivot_distance", "arm")
     description = "roller on a rocker arm L pivoted at distance D"
 
     def check(self, p, base_radius, stroke):
