@@ -65,7 +65,7 @@ def test_score_refuses_a_malformed_design_in_one_line(tmp_path, capsys, edit, ne
     [
         ("x,y\n" + "1,2\n" * 30, "distinct"),
         ("x,y\n" + "".join(f"{i},{2 * i}\n" for i in range(30)), "line"),
-        ("x,y\n" + "".join(f"{i},{i * i}\n" for i in range(30)) + "nan,1\n", "not finite"),
+        ("x,y\n" + "".join(f"{i},{i * i}\n" for i in range(30)) + "nan,1\n", "must be finite, got 'nan'"),
         ("a,b\n1,2\n", "header"),
     ],
 )
