@@ -119,6 +119,7 @@ def _worker_main(conn) -> None:
         "structure": engine.structure,
         "forces": engine.forces,
         "export": engine.export,
+        "branch": engine.flip_branch,
     }
     with contextlib.suppress(Exception):  # warm up: the first request is then as fast as the others
         from gearlever.data import example_path
@@ -131,7 +132,7 @@ def _worker_main(conn) -> None:
             return
         try:
             result = calls[name](**kwargs)
-            if name == "dump":
+            if name in ("dump", "branch"):
                 result = {"model": result}
             if isinstance(result, dict):  # encoded here, in parallel workers, not in the server's event loop
                 result = json.dumps(
@@ -539,6 +540,13 @@ def create_app(
         return _json(await pool.call("structure", solve_seconds, text=_model_text(body)))
 
     @_endpoint
+    async def branch(request: Request):
+        body = await _body(request)
+        _only(body, ("model", "joint"))
+        joint = _field(body, "joint", str)
+        return _json(await pool.call("branch", solve_seconds, text=_model_text(body), joint=joint))
+
+    @_endpoint
     async def forces(request: Request):
         body = await _body(request)
         _only(body, ("model", "frames", "rpm"))
@@ -552,9 +560,10 @@ def create_app(
         if fmt not in engine.EXPORT_FORMATS:
             raise ApiError(404, f"format: {fmt[:40]!r} is not one of {', '.join(engine.EXPORT_FORMATS)}")
         body = await _body(request)
-        _only(body, ("model", "frames"))
+        _only(body, ("model", "frames", "inputs"))
+        inputs = _field(body, "inputs", dict, required=False)
         data, ctype, filename = await pool.call(
-            "export", export_seconds, text=_model_text(body), fmt=fmt, frames=_frames(body)
+            "export", export_seconds, text=_model_text(body), fmt=fmt, frames=_frames(body), inputs=inputs
         )
         return Response(
             data,
@@ -666,6 +675,7 @@ def create_app(
         Route("/api/solve", solve, methods=["POST"]),
         Route("/api/structure", structure, methods=["POST"]),
         Route("/api/forces", forces, methods=["POST"]),
+        Route("/api/branch", branch, methods=["POST"]),
         Route("/api/export/{format}", export, methods=["POST"]),
         Route("/api/jobs", job_start, methods=["POST"]),
         Route("/api/jobs/{id}", job_get, methods=["GET"]),
@@ -742,6 +752,13 @@ OPENAPI = {
         "/api/structure": {
             "post": _op("mobility and redundant constraints", _obj({"model": _MODEL}), extra_codes=("413",))
         },
+        "/api/branch": {
+            "post": _op(
+                "the model with one dyad's joint on its other assembly branch (the sketch moved)",
+                _obj({"model": _MODEL, "joint": {"type": "string", "maxLength": 200}}, required=("model", "joint")),
+                extra_codes=("413",),
+            )
+        },
         "/api/forces": {
             "post": _op(
                 "input torques and pin forces over one turn",
@@ -751,11 +768,16 @@ OPENAPI = {
         },
         "/api/export/{format}": {
             "post": _op(
-                "the model as a file (svg, png, gif, csv, html, toml)",
-                _obj({"model": _MODEL, "frames": _FRAMES}),
+                "the model as a file (svg, png, gif, csv, html, toml; dxf and svg-outline at the pose of inputs)",
+                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS}),
                 answer="the file",
                 extra_codes=("404", "413"),
-                params=[("format", {"type": "string", "enum": ["svg", "png", "gif", "csv", "html", "toml"]})],
+                params=[
+                    (
+                        "format",
+                        {"type": "string", "enum": ["svg", "png", "gif", "csv", "html", "toml", "dxf", "svg-outline"]},
+                    )
+                ],
             )
         },
         "/api/jobs": {
