@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import functools
 import hmac
 import ipaddress
 import json
@@ -115,7 +116,7 @@ def _worker_main(conn) -> None:
     calls = {
         "parse": engine.parse,
         "dump": engine.dump,
-        "solve": engine.solve_frames,
+        "solve": functools.partial(engine.solve_frames, plain=not _HAS_ORJSON),
         "structure": engine.structure,
         "forces": engine.forces,
         "export": engine.export,
@@ -153,6 +154,13 @@ def _worker_main(conn) -> None:
             return
 
 
+try:
+    import orjson
+except ImportError:  # pragma: no cover - a declared dependency; the standard encoder writes the same JSON
+    orjson = None
+_HAS_ORJSON = orjson is not None
+
+
 def _encode(result: dict) -> bytes:
     """Strict JSON of an engine answer (the engine has put None for NaN).
 
@@ -160,12 +168,10 @@ def _encode(result: dict) -> bytes:
     and the standard library's encoder spends 7 ms on the four-bar's and
     50 ms on a 20-joint linkage's where orjson spends 0.6 and 2 ms
     (``benchmarks/bench_workbench.py``); both write the shortest text that
-    reads back as the same float.
+    reads back as the same float.  With orjson the worker answers a cycle's
+    all-finite series as numpy arrays (``solve_frames(plain=False)``), which
+    orjson writes without making a Python float of each value.
     """
-    try:
-        import orjson
-    except ImportError:
-        orjson = None
     if orjson is not None:
         try:
             return orjson.dumps(result, option=orjson.OPT_SERIALIZE_NUMPY)

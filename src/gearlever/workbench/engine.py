@@ -249,8 +249,9 @@ def dump(obj) -> str:
         text = model_toml(obj, exact=True)
     except GearleverError as exc:
         raise WorkbenchError(f"model: {exc}") from None
-    # the written text must read back as the same model
-    _mechanism(_toml(text))
+    # the written text must read back as the same model; read through the cache, so that the page's solve
+    # of this text, which follows its dump, finds it compiled (when it reaches the same worker)
+    load(text)
     return text
 
 
@@ -331,23 +332,43 @@ def _rounded(a, scale=None) -> tuple:
     return np.round(z, decimals) + 0.0, fin
 
 
-def _num(a, scale=None) -> list:
-    """Floats at :data:`DIGITS` significant digits of ``scale`` (default: the largest), NaN as None."""
+def _num(a, scale=None, plain: bool = True) -> list:
+    """Floats at :data:`DIGITS` significant digits of ``scale`` (default: the largest), NaN as None.
+
+    ``plain=False``: the rounded array itself when every value is finite (for an encoder that writes numpy
+    arrays, as orjson does: the same JSON text without a Python float per value).
+    """
     out, fin = _rounded(a, scale)
-    vals = out.tolist()
     if fin.all():
-        return vals
+        return out.tolist() if plain else out
+    vals = out.tolist()
     return [v if f else None for v, f in zip(vals, fin.tolist())]
 
 
-def _xy(a, scale=None) -> list:
-    """(N, 2) -> [[x, y] or None, ...]."""
+def _xy(a, scale=None, plain: bool = True) -> list:
+    """(N, 2) -> [[x, y] or None, ...] (``plain=False``: the rounded array when every row is finite)."""
     out, fin = _rounded(a, scale)
-    vals = out.tolist()
     ok = fin.all(axis=1)
     if ok.all():
-        return vals
+        return out.tolist() if plain else out
+    vals = out.tolist()
     return [v if k else None for v, k in zip(vals, ok.tolist())]
+
+
+def _xy_all(series: dict, scale: float, plain: bool = True) -> dict:
+    """:func:`_xy` of every (N, 2) array of ``series`` at one ``scale``, rounded in one pass."""
+    names = list(series)
+    if not names:
+        return {}
+    out, fin = _rounded(np.stack([series[n] for n in names]), scale)
+    ok = fin.all(axis=2)
+    answer = {}
+    for k, name in enumerate(names):
+        if ok[k].all():
+            answer[name] = out[k].tolist() if plain else out[k]
+        else:
+            answer[name] = [v if f else None for v, f in zip(out[k].tolist(), ok[k].tolist())]
+    return answer
 
 
 def _transmission(mech, r):
@@ -584,7 +605,7 @@ def _tidy(v: float, scale: float) -> float:
     return float(round(v, 11 - math.floor(math.log10(scale)))) + 0.0
 
 
-def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
+def solve_frames(text, frames: int = 360, inputs=None, centres=None, plain: bool = True) -> dict:
     """One cycle of the model: every point, link, slider over a full turn of the first input.
 
     Parameters
@@ -603,6 +624,11 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
         for models of at most :data:`AUTO_CENTRE_BODIES` bodies, True for up
         to :data:`gearlever.plotting.viewer.MAX_CENTRE_BODIES` (``n (n - 1) / 2``
         centres a frame: 55 for 11 bodies, most of the answer), False never.
+    plain : bool
+        True (default): lists of floats.  False: a series whose values are
+        all finite is answered as its rounded numpy array, for an encoder
+        that writes arrays (the server's, orjson: the same JSON text, without
+        a Python float per value).
 
     Returns
     -------
@@ -630,10 +656,13 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
     >>> d["point"]["A"], d["input_deg"], d["message"]
     ([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]], [0.0, 90.0, 180.0, 270.0], '')
     """
+    from functools import partial
+
     from gearlever.mechanism.model import GROUND
     from gearlever.plotting.viewer import MAX_CENTRE_BODIES
 
     frames = _frames(frames)
+    num = partial(_num, plain=plain)
     mech = load(text)
     _work(mech, frames)
     m = mech.model
@@ -645,7 +674,7 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
     s = mech.structure()
     kinds = {lab: ("angle" if sp.kind == "link" else "slider") for lab, sp in zip(labels, m.inputs)}
     inputs_deg = {
-        lab: _num(np.degrees(q[:, i]) if sp.kind == "link" else q[:, i])
+        lab: num(np.degrees(q[:, i]) if sp.kind == "link" else q[:, i])
         for i, (lab, sp) in enumerate(zip(labels, m.inputs))
     }
     points = list(r.point)
@@ -659,17 +688,17 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
         "inputs_deg": inputs_deg,
         "direction": direction.tolist(),
         "closed": r.closed.tolist(),
-        "point": {p: _xy(r.point[p], L) for p in points},
-        "velocity": {p: _xy(r.velocity[p], L) for p in points},
-        "acceleration": {p: _xy(r.acceleration[p], L) for p in points},
-        "angle_deg": {k: _num(np.degrees(r.angle[k])) for k in m.moving},
-        "omega": {k: _num(r.omega[k]) for k in m.moving},
-        "alpha": {k: _num(r.alpha[k]) for k in m.moving},
+        "point": _xy_all({p: r.point[p] for p in points}, L, plain),
+        "velocity": _xy_all({p: r.velocity[p] for p in points}, L, plain),
+        "acceleration": _xy_all({p: r.acceleration[p] for p in points}, L, plain),
+        "angle_deg": {k: num(np.degrees(r.angle[k])) for k in m.moving},
+        "omega": {k: num(r.omega[k]) for k in m.moving},
+        "alpha": {k: num(r.alpha[k]) for k in m.moving},
         "slider": {
             sl.name: {
-                "s": _num(r.displacement[sl.name]),
-                "v": _num(r.slider_velocity[sl.name]),
-                "a": _num(r.slider_acceleration[sl.name]),
+                "s": num(r.displacement[sl.name]),
+                "v": num(r.slider_velocity[sl.name]),
+                "a": num(r.slider_acceleration[sl.name]),
             }
             for sl in m.sliders
         },
@@ -694,7 +723,7 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
         from gearlever.mechanism.centres import instant_centres
 
         ic = instant_centres(r)
-        out["centres"] = {str(k): _xy(ic.xy[:, p], L) for p, k in enumerate(ic.pairs)}
+        out["centres"] = _xy_all({str(k): ic.xy[:, p] for p, k in enumerate(ic.pairs)}, L, plain)
         out["centre_direction"] = _directions(ic)
         out["kennedy"] = _kennedy_triples(ic)
     xy = np.concatenate([r.point[p] for p in points]) if points else np.zeros((0, 2))
