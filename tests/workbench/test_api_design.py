@@ -167,3 +167,14 @@ def test_input_torque_of_a_load_alone_is_its_virtual_work_per_crank_turn(client)
     T = np.array(f["torque"]["crank"])
     assert np.allclose(T, expected, atol=1e-4 * np.abs(expected).max())
     assert f["units"] == {"force": "N", "torque": "N_mm"} and set(f["pin"]) >= {"A", "B", "O2", "O4"}
+
+
+# --------------------------------------------------------------------------- the page's edit in one round trip
+def test_solve_of_a_model_object_answers_its_toml_and_the_same_cycle_as_dump_then_solve(client):
+    obj = _ok(client.post("/api/parse", json={"model": FOURBAR}))["model"]
+    obj["points"]["P"] = [31.0, 44.0]
+    one = _ok(client.post("/api/solve", json={"model": obj, "frames": 36}))
+    text = _ok(client.post("/api/dump", json={"model": obj}))["model"]
+    two = _ok(client.post("/api/solve", json={"model": text, "frames": 36}))
+    assert one.pop("toml") == text and one == two
+    assert "points" in _err(client.post("/api/solve", json={"model": {"links": {}}, "frames": 36}), 400)

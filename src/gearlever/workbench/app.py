@@ -121,6 +121,7 @@ def _worker_main(conn) -> None:
         "forces": engine.forces,
         "export": engine.export,
         "branch": engine.flip_branch,
+        "dump_solve": functools.partial(engine.dump_solve, plain=not _HAS_ORJSON),
     }
     with contextlib.suppress(Exception):  # warm up: the first request is then as fast as the others
         from gearlever.data import example_path
@@ -555,6 +556,9 @@ def create_app(
         _only(body, ("model", "frames", "inputs", "centres"))
         inputs = _field(body, "inputs", dict, required=False)
         centres = _field(body, "centres", bool, required=False)
+        if isinstance(body.get("model"), dict):  # the page's edit: dump and solve in one round trip
+            kw = {"obj": body["model"], "frames": _frames(body), "inputs": inputs, "centres": centres}
+            return _json(await pool.call("dump_solve", solve_seconds, **kw))
         kw = {"text": _model_text(body), "frames": _frames(body), "inputs": inputs, "centres": centres}
         return _json(await pool.call("solve", solve_seconds, **kw))
 
@@ -770,7 +774,18 @@ OPENAPI = {
         "/api/solve": {
             "post": _op(
                 "one cycle of frames: points, velocities, accelerations, angles, centres, message",
-                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS, "centres": {"type": "boolean"}}),
+                _obj(
+                    {
+                        "model": {
+                            "oneOf": [_MODEL, {"type": "object"}],
+                            "description": "the model's TOML text, or the model as a JSON object (as /api/dump "
+                            "takes it: the answer then holds its TOML text as toml)",
+                        },
+                        "frames": _FRAMES,
+                        "inputs": _NUMS,
+                        "centres": {"type": "boolean"},
+                    }
+                ),
                 extra_codes=("413",),
             )
         },

@@ -48,6 +48,7 @@ __all__ = [
     "parse",
     "dump",
     "solve_frames",
+    "dump_solve",
     "structure",
     "forces",
     "branches",
@@ -771,6 +772,26 @@ def _kennedy_triples(ic) -> list:
         [ic.pairs[key(name(i, j))], ic.pairs[key(name(i, k))], ic.pairs[key(name(j, k))]]
         for i, j, k in combinations(range(n), 3)
     ]
+
+
+def dump_solve(obj, frames: int = 360, inputs=None, centres=None, plain: bool = True) -> dict:
+    """:func:`dump` then :func:`solve_frames` in one call: the page's edit in one round trip.
+
+    The answer of :func:`solve_frames` with ``toml``, the model's TOML text,
+    added (the text pane shows it, saving writes it).
+
+    Examples
+    --------
+    >>> d = {"points": {"O": [0, 0], "A": [1, 0]}, "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...      "inputs": [{"link": "crank"}]}
+    >>> r = dump_solve(d, frames=4)
+    >>> r["toml"] == dump(d), r["point"]["A"][1]
+    (True, [0.0, 1.0])
+    """
+    text = dump(obj)
+    out = solve_frames(text, frames, inputs, centres, plain=plain)
+    out["toml"] = text
+    return out
 
 
 def structure(text) -> dict:

@@ -623,6 +623,24 @@ function requestSync(opts = {}) {
 async function doSync({ fromText = false, text = null } = {}) {
   const revision = S.revision;
   let toml = text;
+  if (toml === null && M.solvable(S.model)) {
+    // an edit: the server writes the model's TOML and solves it in one round trip
+    try {
+      const f = await api.post("/api/solve", { model: S.model, frames: FRAMES });
+      if (revision !== S.revision) return; // a newer edit is on its way
+      S.toml = f.toml;
+      setTomlText(f.toml);
+      takeFrames(f);
+    } catch (e) {
+      if (revision !== S.revision) return;
+      S.error = e.message;
+      S.stale = true;
+      S.toml = M.toToml(S.model); // the page's own writing of the model: what is drawn is what is saved
+      setTomlText(S.toml);
+    }
+    finishSync();
+    return;
+  }
   if (toml === null) {
     // an incomplete drawing (no ground, link or input yet) is not a model the server writes: written here
     toml = M.toToml(S.model);
@@ -650,18 +668,22 @@ async function doSync({ fromText = false, text = null } = {}) {
   try {
     const f = await api.post("/api/solve", { model: toml, frames: FRAMES });
     if (revision !== S.revision) return; // a newer edit is on its way
-    S.frames = f;
-    S.stale = false;
-    S.dof = f.dof; S.redundant = f.redundant; S.inputs = f.inputs || []; S.message = f.message || ""; S.error = "";
-    if (S.frame >= f.frames) S.frame = 0;
-    scaleCache.clear();
-    dirCache.clear();
+    takeFrames(f);
   } catch (e) {
     if (revision !== S.revision) return;
     S.error = e.message;
     S.stale = true;
   }
   finishSync();
+}
+
+function takeFrames(f) {
+  S.frames = f;
+  S.stale = false;
+  S.dof = f.dof; S.redundant = f.redundant; S.inputs = f.inputs || []; S.message = f.message || ""; S.error = "";
+  if (S.frame >= f.frames) S.frame = 0;
+  scaleCache.clear();
+  dirCache.clear();
 }
 
 function finishSync() {
