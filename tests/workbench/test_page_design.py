@@ -80,13 +80,13 @@ def test_kennedy_lines_pass_through_the_served_centres(browser, bench, tmp_path)
                 assert dist < 1.0, (keys, key, dist)
                 near += 1
         assert near >= 10
+        shot(d, tmp_path, "kennedy")
         # one triple chosen in the menu: one line
         Select(d.find_element(By.ID, "kennedy-triple")).select_by_visible_text("ground, crank, coupler")
         assert js(d, "return document.querySelectorAll('[data-kennedy]').length") == 1
-        shot(d, tmp_path, "kennedy")
 
 
-def test_force_arrows_and_input_torque_from_a_load_entered_in_the_panel_match_virtual_work(browser, bench):
+def test_force_arrows_and_input_torque_from_a_load_entered_in_the_panel_match_virtual_work(browser, bench, tmp_path):
     d = browser
     with guarded(d, bench):
         loaded(d, bench)
@@ -101,6 +101,7 @@ def test_force_arrows_and_input_torque_from_a_load_entered_in_the_panel_match_vi
         js(d, "workbench.setFrame(90)")
         keys = js(d, "return [...document.querySelectorAll('[data-force]')].map((a) => a.dataset.force)")
         assert {"A", "B", "O2", "O4"} <= set(keys)
+        shot(d, tmp_path, "forces")
         text = d.find_element(By.ID, "torque").text
         assert text.startswith("T crank ") and text.endswith("N_mm")
         # virtual work: no mass, so the torque times the crank rate balances the load's power, T = -F . dP/dtheta
