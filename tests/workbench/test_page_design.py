@@ -236,3 +236,19 @@ def test_motion_poses_placed_and_turned_on_the_canvas_give_a_fourbar_through_the
         path = {n: np.concatenate([r.point[n] for r in rs]) for n in m.model.points}
         best = min(max(np.nanmin(np.hypot(*(path[n] - np.array(p[:2])).T)) for p in poses) for n in path)
         assert best < 0.05, best
+
+
+def test_forces_of_two_inputs_hold_the_second_as_the_cycle_drawn_does(browser, bench):
+    from tests.workbench._client import example_text
+
+    d = browser
+    with guarded(d, bench):
+        loaded(d, bench, example_text("fivebar_two_inputs"))
+        d.find_element(By.ID, "show-forces").click()
+        wait_for(d, "return workbench.state().forces === 'ready'")
+        text = d.find_element(By.ID, "torque").text
+        assert "T left " in text and "T right " in text
+        # the forces' frames are the drawn frames: the first input turns (60 rpm), the second is held
+        f = js(d, "return workbench.forces()")
+        assert math.isclose(f["speeds"]["left"], 2 * math.pi) and f["speeds"]["right"] == 0
+        assert np.allclose(f["input_deg"], js(d, "return workbench.frames().input_deg"))

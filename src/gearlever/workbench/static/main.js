@@ -428,7 +428,9 @@ async function syncForces() {
   if (forcing === revision) return;
   forcing = revision;
   try {
-    const F = await api.post("/api/forces", { model: S.toml, frames: S.frames.frames, rpm: { [input]: S.rpm } });
+    // the first input turns at S.rpm, the others are held (rpm 0), as in the cycle drawn
+    const rpm = Object.fromEntries(S.frames.inputs.map((n) => [n, n === input ? S.rpm : 0]));
+    const F = await api.post("/api/forces", { model: S.toml, frames: S.frames.frames, rpm });
     if (revision !== S.revision) return;
     S.forces = F;
   } catch (e) {
@@ -1739,6 +1741,7 @@ window.workbench = {
     forces: S.forcesRevision === S.revision && S.forces ? (S.forces.error || "ready") : null,
   }),
   frames: () => (S.frames && !S.stale ? S.frames : null),
+  forces: () => (S.forcesRevision === S.revision ? S.forces : null),
   toScreen: (x, y) => { const r = svg().getBoundingClientRect(); const [px, py] = toPx(x, y); return [r.left + px, r.top + py]; },
   synthesize,
   undo: () => undo(),
