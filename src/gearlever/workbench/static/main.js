@@ -1619,6 +1619,7 @@ function newBench() {
   stop();
   edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); });
   S.curve = [];
+  S.poses = [];
   S.selected = null;
   S.file = { name: null, etag: null };
   fit();
