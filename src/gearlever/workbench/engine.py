@@ -16,8 +16,13 @@ line naming the field, and for a TOML syntax error the line.
 - :func:`solve_frames`: one cycle of every point, link and slider
   (:meth:`gearlever.mechanism.Mechanism.solve`, all frames in one batched
   call), the instant centres (:func:`gearlever.mechanism.centres.instant_centres`)
-  and where and why the model does not assemble.
-- :func:`structure`, :func:`forces`, :func:`export`.
+  with the triples of Kennedy's lines, the dyads' assembly branches
+  (:func:`branches`) and where and why the model does not assemble;
+  :func:`dump_solve`, the page's edit (a model object written and solved in
+  one call).
+- :func:`flip_branch`: the sketch moved onto another assembly branch of a dyad.
+- :func:`structure`, :func:`forces`, :func:`export` (DXF and outline SVG by
+  :mod:`gearlever.export`).
 - :func:`check_job` and :func:`run_job`: the synthesis kinds path, curve,
   function, motion and law, with a ``progress(stage, done, total)`` callback
   and a cancel flag, answering ranked designs as model TOML texts.
