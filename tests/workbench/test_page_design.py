@@ -252,3 +252,29 @@ def test_forces_of_two_inputs_hold_the_second_as_the_cycle_drawn_does(browser, b
         f = js(d, "return workbench.forces()")
         assert math.isclose(f["speeds"]["left"], 2 * math.pi) and f["speeds"]["right"] == 0
         assert np.allclose(f["input_deg"], js(d, "return workbench.frames().input_deg"))
+
+
+def chain(stages: int) -> str:
+    """A crank and ``stages`` ternary rockers in series, each driven by a coupler from the previous one."""
+    lines = ['[mechanism]\nname = "chain"\nunits = "mm"\n\n[points]', "O2 = [0.0, 0.0]", "A = [10.0, 0.0]"]
+    links, ground, prev = ['crank = ["O2", "A"]'], ['"O2"'], "A"
+    for k in range(1, stages + 1):
+        x = 40.0 * k
+        lines += [f"O{2 * k + 2} = [{x}, 0.0]", f"P{k} = [{x + 5.1}, 28.3]", f"Q{k} = [{x + 8.0}, 20.0]"]
+        ground.append(f'"O{2 * k + 2}"')
+        links += [f'coupler{k} = ["{prev}", "P{k}"]', f'rocker{k} = ["O{2 * k + 2}", "P{k}", "Q{k}"]']
+        prev = f"Q{k}"
+    lines += ["", "[links]", f"ground = [{', '.join(ground)}]", *links, "", "[[inputs]]", 'link = "crank"', ""]
+    return "\n".join(lines)
+
+
+def test_kennedy_box_asks_the_server_for_the_centres_of_a_model_past_the_default_size(browser, bench):
+    d = browser
+    with guarded(d, bench):
+        loaded(d, bench, chain(4))  # 10 bodies: centres are answered by default up to 8
+        assert js(d, "return workbench.frames().centres") is None
+        d.find_element(By.ID, "show-kennedy").click()
+        wait_for(d, "const f = workbench.frames(); return f && f.centres && !workbench.state().pending", 60)
+        f = js(d, "return workbench.frames()")
+        assert len(f["centres"]) == 45 and len(f["kennedy"]) == 120
+        assert js(d, "return document.querySelectorAll('[data-kennedy]').length") > 50

@@ -628,7 +628,7 @@ async function doSync({ fromText = false, text = null } = {}) {
   if (toml === null && M.solvable(S.model)) {
     // an edit: the server writes the model's TOML and solves it in one round trip
     try {
-      const f = await api.post("/api/solve", { model: S.model, frames: FRAMES });
+      const f = await api.post("/api/solve", solveBody(S.model));
       if (revision !== S.revision) return; // a newer edit is on its way
       S.toml = f.toml;
       setTomlText(f.toml);
@@ -668,7 +668,7 @@ async function doSync({ fromText = false, text = null } = {}) {
     return;
   }
   try {
-    const f = await api.post("/api/solve", { model: toml, frames: FRAMES });
+    const f = await api.post("/api/solve", solveBody(toml));
     if (revision !== S.revision) return; // a newer edit is on its way
     takeFrames(f);
   } catch (e) {
@@ -677,6 +677,23 @@ async function doSync({ fromText = false, text = null } = {}) {
     S.stale = true;
   }
   finishSync();
+}
+
+/** The body of a solve: instant centres are asked for (up to the server's cap of bodies) while they or
+ * Kennedy's lines are shown; otherwise the server answers them for small models only. */
+function solveBody(model) {
+  const body = { model, frames: FRAMES };
+  if ($("#show-centres").checked || $("#show-kennedy").checked) body.centres = true;
+  return body;
+}
+
+/** A check box of centres or Kennedy's lines turned on for a model whose centres were not answered: solve again. */
+function needCentres() {
+  render();
+  if (($("#show-centres").checked || $("#show-kennedy").checked) && S.frames && !S.stale && !S.frames.centres
+    && (S.frames.inputs || []).length === 1) {
+    changed({ text: S.toml, fromText: true });
+  }
 }
 
 function takeFrames(f) {
@@ -1700,7 +1717,8 @@ function wire() {
   $("#scrub").addEventListener("input", () => { stop(); S.frame = Number($("#scrub").value); render(); });
   $("#speed").addEventListener("change", () => { S.speed = Number($("#speed").value); });
   $("#fit").addEventListener("click", () => { fit(); render(); });
-  for (const id of ["#show-velocity", "#show-acceleration", "#show-paths", "#show-centres", "#show-kennedy", "#kennedy-triple"]) $(id).addEventListener("change", render);
+  for (const id of ["#show-velocity", "#show-acceleration", "#show-paths", "#kennedy-triple"]) $(id).addEventListener("change", render);
+  for (const id of ["#show-centres", "#show-kennedy"]) $(id).addEventListener("change", needCentres);
   $("#show-forces").addEventListener("change", () => { render(); syncForces(); });
   $("#plot-link").addEventListener("change", drawPlots);
   $("#plot-point").addEventListener("change", drawPlots);
