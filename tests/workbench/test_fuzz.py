@@ -124,9 +124,17 @@ def test_model_routes_never_answer_5xx(client, path, body):
 
 
 @FUZZ
-@given(fmt=st.sampled_from(["svg", "csv", "html", "toml", "x", "..", "png"]), body=model_bodies)
+@given(obj=json_values, joint=st.one_of(st.sampled_from(["B", "A", "P"]), json_values), text=model_texts())
+def test_model_objects_and_branch_flips_never_answer_5xx(client, obj, joint, text):
+    # the page's edit (the model as a JSON object) and the assembly-branch flip of a dyad's joint
+    check(client.post("/api/solve", json={"model": obj, "frames": 8}))
+    check(client.post("/api/branch", json={"model": text, "joint": joint}))
+
+
+@FUZZ
+@given(fmt=st.sampled_from(["svg", "csv", "html", "toml", "x", "..", "png", "dxf", "svg-outline"]), body=model_bodies)
 def test_export_never_answers_5xx(client, fmt, body):
-    if isinstance(body, dict) and fmt in ("svg", "png", "html", "csv"):
+    if isinstance(body, dict) and fmt in ("svg", "png", "html", "csv", "dxf", "svg-outline"):
         body["frames"] = 8  # drawing is slow: a short cycle
     check(client.post(f"/api/export/{fmt}", json=body))
 

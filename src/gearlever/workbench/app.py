@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import functools
 import hmac
 import ipaddress
 import json
@@ -115,10 +116,12 @@ def _worker_main(conn) -> None:
     calls = {
         "parse": engine.parse,
         "dump": engine.dump,
-        "solve": engine.solve_frames,
+        "solve": functools.partial(engine.solve_frames, plain=not _HAS_ORJSON),
         "structure": engine.structure,
         "forces": engine.forces,
         "export": engine.export,
+        "branch": engine.flip_branch,
+        "dump_solve": functools.partial(engine.dump_solve, plain=not _HAS_ORJSON),
     }
     with contextlib.suppress(Exception):  # warm up: the first request is then as fast as the others
         from gearlever.data import example_path
@@ -131,12 +134,10 @@ def _worker_main(conn) -> None:
             return
         try:
             result = calls[name](**kwargs)
-            if name == "dump":
+            if name in ("dump", "branch"):
                 result = {"model": result}
             if isinstance(result, dict):  # encoded here, in parallel workers, not in the server's event loop
-                result = json.dumps(
-                    result, allow_nan=False, separators=(",", ":"), ensure_ascii=False, check_circular=False
-                ).encode()
+                result = _encode(result)
             reply = ("ok", result)
         except engine.WorkbenchError as exc:
             reply = ("error", str(exc), exc.line)
@@ -152,6 +153,32 @@ def _worker_main(conn) -> None:
             conn.send((seq, *reply))
         except (OSError, ValueError, KeyboardInterrupt):
             return
+
+
+try:
+    import orjson
+except ImportError:  # pragma: no cover - a declared dependency; the standard encoder writes the same JSON
+    orjson = None
+_HAS_ORJSON = orjson is not None
+
+
+def _encode(result: dict) -> bytes:
+    """Strict JSON of an engine answer (the engine has put None for NaN).
+
+    orjson when installed: a cycle of 360 frames is 0.1 to 0.5 MB of numbers,
+    and the standard library's encoder spends 7 ms on the four-bar's and
+    50 ms on a 20-joint linkage's where orjson spends 0.6 and 2 ms
+    (``benchmarks/bench_workbench.py``); both write the shortest text that
+    reads back as the same float.  With orjson the worker answers a cycle's
+    all-finite series as numpy arrays (``solve_frames(plain=False)``), which
+    orjson writes without making a Python float of each value.
+    """
+    if orjson is not None:
+        try:
+            return orjson.dumps(result, option=orjson.OPT_SERIALIZE_NUMPY)
+        except TypeError:  # orjson.JSONEncodeError: an int past 64 bits, say; the standard encoder says what
+            pass
+    return json.dumps(result, allow_nan=False, separators=(",", ":"), ensure_ascii=False, check_circular=False).encode()
 
 
 class _Worker:
@@ -529,6 +556,9 @@ def create_app(
         _only(body, ("model", "frames", "inputs", "centres"))
         inputs = _field(body, "inputs", dict, required=False)
         centres = _field(body, "centres", bool, required=False)
+        if isinstance(body.get("model"), dict):  # the page's edit: dump and solve in one round trip
+            kw = {"obj": body["model"], "frames": _frames(body), "inputs": inputs, "centres": centres}
+            return _json(await pool.call("dump_solve", solve_seconds, **kw))
         kw = {"text": _model_text(body), "frames": _frames(body), "inputs": inputs, "centres": centres}
         return _json(await pool.call("solve", solve_seconds, **kw))
 
@@ -537,6 +567,13 @@ def create_app(
         body = await _body(request)
         _only(body, ("model",))
         return _json(await pool.call("structure", solve_seconds, text=_model_text(body)))
+
+    @_endpoint
+    async def branch(request: Request):
+        body = await _body(request)
+        _only(body, ("model", "joint"))
+        joint = _field(body, "joint", str)
+        return _json(await pool.call("branch", solve_seconds, text=_model_text(body), joint=joint))
 
     @_endpoint
     async def forces(request: Request):
@@ -552,9 +589,10 @@ def create_app(
         if fmt not in engine.EXPORT_FORMATS:
             raise ApiError(404, f"format: {fmt[:40]!r} is not one of {', '.join(engine.EXPORT_FORMATS)}")
         body = await _body(request)
-        _only(body, ("model", "frames"))
+        _only(body, ("model", "frames", "inputs"))
+        inputs = _field(body, "inputs", dict, required=False)
         data, ctype, filename = await pool.call(
-            "export", export_seconds, text=_model_text(body), fmt=fmt, frames=_frames(body)
+            "export", export_seconds, text=_model_text(body), fmt=fmt, frames=_frames(body), inputs=inputs
         )
         return Response(
             data,
@@ -666,6 +704,7 @@ def create_app(
         Route("/api/solve", solve, methods=["POST"]),
         Route("/api/structure", structure, methods=["POST"]),
         Route("/api/forces", forces, methods=["POST"]),
+        Route("/api/branch", branch, methods=["POST"]),
         Route("/api/export/{format}", export, methods=["POST"]),
         Route("/api/jobs", job_start, methods=["POST"]),
         Route("/api/jobs/{id}", job_get, methods=["GET"]),
@@ -735,12 +774,30 @@ OPENAPI = {
         "/api/solve": {
             "post": _op(
                 "one cycle of frames: points, velocities, accelerations, angles, centres, message",
-                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS, "centres": {"type": "boolean"}}),
+                _obj(
+                    {
+                        "model": {
+                            "oneOf": [_MODEL, {"type": "object"}],
+                            "description": "the model's TOML text, or the model as a JSON object (as /api/dump "
+                            "takes it: the answer then holds its TOML text as toml)",
+                        },
+                        "frames": _FRAMES,
+                        "inputs": _NUMS,
+                        "centres": {"type": "boolean"},
+                    }
+                ),
                 extra_codes=("413",),
             )
         },
         "/api/structure": {
             "post": _op("mobility and redundant constraints", _obj({"model": _MODEL}), extra_codes=("413",))
+        },
+        "/api/branch": {
+            "post": _op(
+                "the model with one dyad's joint on its other assembly branch (the sketch moved)",
+                _obj({"model": _MODEL, "joint": {"type": "string", "maxLength": 200}}, required=("model", "joint")),
+                extra_codes=("413",),
+            )
         },
         "/api/forces": {
             "post": _op(
@@ -751,11 +808,16 @@ OPENAPI = {
         },
         "/api/export/{format}": {
             "post": _op(
-                "the model as a file (svg, png, gif, csv, html, toml)",
-                _obj({"model": _MODEL, "frames": _FRAMES}),
+                "the model as a file (svg, png, gif, csv, html, toml; dxf and svg-outline at the pose of inputs)",
+                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS}),
                 answer="the file",
                 extra_codes=("404", "413"),
-                params=[("format", {"type": "string", "enum": ["svg", "png", "gif", "csv", "html", "toml"]})],
+                params=[
+                    (
+                        "format",
+                        {"type": "string", "enum": ["svg", "png", "gif", "csv", "html", "toml", "dxf", "svg-outline"]},
+                    )
+                ],
             )
         },
         "/api/jobs": {

@@ -16,8 +16,13 @@ line naming the field, and for a TOML syntax error the line.
 - :func:`solve_frames`: one cycle of every point, link and slider
   (:meth:`gearlever.mechanism.Mechanism.solve`, all frames in one batched
   call), the instant centres (:func:`gearlever.mechanism.centres.instant_centres`)
-  and where and why the model does not assemble.
-- :func:`structure`, :func:`forces`, :func:`export`.
+  with the triples of Kennedy's lines, the dyads' assembly branches
+  (:func:`branches`) and where and why the model does not assemble;
+  :func:`dump_solve`, the page's edit (a model object written and solved in
+  one call).
+- :func:`flip_branch`: the sketch moved onto another assembly branch of a dyad.
+- :func:`structure`, :func:`forces`, :func:`export` (DXF and outline SVG by
+  :mod:`gearlever.export`).
 - :func:`check_job` and :func:`run_job`: the synthesis kinds path, curve,
   function, motion and law, with a ``progress(stage, done, total)`` callback
   and a cancel flag, answering ranked designs as model TOML texts.
@@ -48,8 +53,11 @@ __all__ = [
     "parse",
     "dump",
     "solve_frames",
+    "dump_solve",
     "structure",
     "forces",
+    "branches",
+    "flip_branch",
     "export",
     "check_job",
     "run_job",
@@ -84,7 +92,7 @@ DIGITS = 6
 #: Instant centres are answered by default for models of at most this many bodies (ground included).
 AUTO_CENTRE_BODIES = 8
 #: Formats of :func:`export`.
-EXPORT_FORMATS = ("svg", "png", "gif", "csv", "html", "toml")
+EXPORT_FORMATS = ("svg", "png", "gif", "csv", "html", "toml", "dxf", "svg-outline")
 #: Synthesis kinds of :func:`run_job`.
 JOB_KINDS = ("path", "curve", "function", "motion", "law")
 #: Frames of a GIF export (a GIF of 360 frames is megabytes and seconds to draw).
@@ -247,8 +255,9 @@ def dump(obj) -> str:
         text = model_toml(obj, exact=True)
     except GearleverError as exc:
         raise WorkbenchError(f"model: {exc}") from None
-    # the written text must read back as the same model
-    _mechanism(_toml(text))
+    # the written text must read back as the same model; read through the cache, so that the page's solve
+    # of this text, which follows its dump, finds it compiled (when it reaches the same worker)
+    load(text)
     return text
 
 
@@ -329,23 +338,43 @@ def _rounded(a, scale=None) -> tuple:
     return np.round(z, decimals) + 0.0, fin
 
 
-def _num(a, scale=None) -> list:
-    """Floats at :data:`DIGITS` significant digits of ``scale`` (default: the largest), NaN as None."""
+def _num(a, scale=None, plain: bool = True) -> list:
+    """Floats at :data:`DIGITS` significant digits of ``scale`` (default: the largest), NaN as None.
+
+    ``plain=False``: the rounded array itself when every value is finite (for an encoder that writes numpy
+    arrays, as orjson does: the same JSON text without a Python float per value).
+    """
     out, fin = _rounded(a, scale)
-    vals = out.tolist()
     if fin.all():
-        return vals
+        return out.tolist() if plain else out
+    vals = out.tolist()
     return [v if f else None for v, f in zip(vals, fin.tolist())]
 
 
-def _xy(a, scale=None) -> list:
-    """(N, 2) -> [[x, y] or None, ...]."""
+def _xy(a, scale=None, plain: bool = True) -> list:
+    """(N, 2) -> [[x, y] or None, ...] (``plain=False``: the rounded array when every row is finite)."""
     out, fin = _rounded(a, scale)
-    vals = out.tolist()
     ok = fin.all(axis=1)
     if ok.all():
-        return vals
+        return out.tolist() if plain else out
+    vals = out.tolist()
     return [v if k else None for v, k in zip(vals, ok.tolist())]
+
+
+def _xy_all(series: dict, scale: float, plain: bool = True) -> dict:
+    """:func:`_xy` of every (N, 2) array of ``series`` at one ``scale``, rounded in one pass."""
+    names = list(series)
+    if not names:
+        return {}
+    out, fin = _rounded(np.stack([series[n] for n in names]), scale)
+    ok = fin.all(axis=2)
+    answer = {}
+    for k, name in enumerate(names):
+        if ok[k].all():
+            answer[name] = out[k].tolist() if plain else out[k]
+        else:
+            answer[name] = [v if f else None for v, f in zip(out[k].tolist(), ok[k].tolist())]
+    return answer
 
 
 def _transmission(mech, r):
@@ -435,7 +464,154 @@ def _why(mech, q) -> str:
     return ""
 
 
-def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
+def _solve(mech, q, qd):
+    """The one call of the library's solver for every cycle the bench answers (solve, export).
+
+    The assembly branch is the sketch's (:func:`flip_branch` moves the sketch
+    onto another one); a branch policy of the solver, once the library has
+    one, is passed here and nowhere else.
+    """
+    try:
+        return mech.solve(q, qd)
+    except GearleverError as exc:
+        raise WorkbenchError(f"model: {exc}") from None
+
+
+# --------------------------------------------------------------------------- assembly branches
+def branches(mech) -> list:
+    """The assembly branches of the model's sketch: one entry per dyad of its plan of drivers and dyads.
+
+    ``[{"joint", "links": [l1, l2], "kind": "RRR"|"RRP", "about": [p1, p2 or None], "sigma": +1|-1}]``:
+    the joint the dyad places, its two links, and the side of the joint the
+    sketch shows: for an RRR dyad the sign of ``cross(P2 - P1, P - P1)``
+    (+1: the joint left of the line from ``p1`` to ``p2``), for an RRP dyad
+    the sign of the joint's travel along the guide from ``p1``'s foot.  Empty
+    for a model without such a plan (gears, slider inputs, other groups).
+
+    Examples
+    --------
+    >>> b = branches(load(example("fourbar")))
+    >>> [(x["joint"], x["links"], x["sigma"]) for x in b]
+    [('B', ['coupler', 'rocker'], 1.0)]
+    """
+    from gearlever.mechanism.assur import _RRP, _RRR
+
+    plan = mech.system.dyad_plan
+    if plan is None:
+        return []
+    out = []
+    for step in plan.steps:
+        if isinstance(step, _RRR):
+            out.append(
+                {
+                    "joint": step.p,
+                    "links": [step.l1, step.l2],
+                    "kind": "RRR",
+                    "about": [step.p1, step.p2],
+                    "sigma": step.sigma,
+                }
+            )
+        elif isinstance(step, _RRP):
+            out.append(
+                {
+                    "joint": step.p,
+                    "links": [step.l1, step.l2],
+                    "kind": "RRP",
+                    "about": [step.p1, None],
+                    "sigma": step.sigma,
+                }
+            )
+    return out
+
+
+def flip_branch(text, joint) -> str:
+    """The model with the dyad that places ``joint`` on its other assembly branch, as TOML text.
+
+    Parameters
+    ----------
+    text : str
+        The model's TOML text.
+    joint : str
+        A joint of :func:`branches`.
+
+    Returns
+    -------
+    str
+        The model file with every point moved to where the mechanism stands
+        at the sketch's inputs on the other branch of that dyad (every other
+        dyad keeps its side); lengths, links and everything else unchanged.
+
+    Notes
+    -----
+    The sketch is re-placed by the closed-form position analysis of the Assur
+    groups (J. J. Uicker, G. R. Pennock and J. E. Shigley, *Theory of Machines
+    and Mechanisms*, 5th ed., ch. 3-4): the second intersection of the two
+    circles of an RRR dyad (the joint mirrored about the line of its two
+    known pins), of the circle and the line of an RRP dyad; the points
+    carried by a link move with it rigidly, and the dyads placed after it
+    follow.
+
+    Examples
+    --------
+    >>> t = flip_branch(example("fourbar"), "B")
+    >>> [(x["joint"], x["sigma"]) for x in branches(load(t))]
+    [('B', -1.0)]
+    >>> flip_branch(t, "B") == dump(_toml(example("fourbar")))
+    True
+    """
+    import dataclasses
+
+    from gearlever.mechanism.assur import _RRP, _RRR, DyadPlan
+    from gearlever.mechanism.model import GROUND
+
+    mech = load(text)
+    plan = mech.system.dyad_plan
+    names = [b["joint"] for b in branches(mech)]
+    if joint not in names:
+        raise WorkbenchError(
+            f"joint: {str(joint)[:60]!r} is not placed by a dyad of this model"
+            + (f" (branches: {', '.join(names)})" if names else " (it has no assembly branch to choose)")
+        )
+    steps = tuple(
+        dataclasses.replace(s, sigma=-s.sigma) if isinstance(s, (_RRR, _RRP)) and s.p == joint else s
+        for s in plan.steps
+    )
+    flipped = DyadPlan(plan.model, plan.ks, steps)
+    W = len(mech.model.inputs)
+    with np.errstate(all="ignore"):
+        _, st, _, pts, margin = flipped.run(np.zeros((W, 1)))
+    if margin is not None and not np.all(np.isfinite(margin)):
+        raise WorkbenchError(f"joint: the other branch of {joint} does not assemble at the sketch")
+    m = mech.model
+    d = _toml(text)
+    new = {}
+    for name, xy in m.points.items():
+        if name in pts:
+            X, Y = pts[name][:2]
+        else:
+            carrier = next((k for k in m.carriers(name) if k in st and (k == GROUND or st[k][4] is not None)), None)
+            if carrier is None or carrier == GROUND:
+                new[name] = [float(xy[0]), float(xy[1])]
+                continue
+            X, Y = flipped._point(st, pts, carrier, name)[:2]
+        new[name] = [float(np.asarray(X).ravel()[0]), float(np.asarray(Y).ravel()[0])]
+    # the sketch's digits: a point moved by the flip keeps the model's precision, not float noise
+    L = m.length_scale
+    for name, (x, y) in new.items():
+        if [x, y] != [float(c) for c in m.points[name]]:
+            new[name] = [_tidy(x, L), _tidy(y, L)]
+    d["points"] = {name: new.get(name, v) for name, v in d["points"].items()}
+    return dump(_jsonable(d))
+
+
+def _tidy(v: float, scale: float) -> float:
+    """``v`` rounded to 12 significant digits of ``scale`` (the sketch's positions, not their float noise)."""
+    if not scale > 0:
+        return float(v)
+    return float(round(v, 11 - math.floor(math.log10(scale)))) + 0.0
+
+
+def solve_frames(text, frames: int = 360, inputs=None, centres=None, plain: bool = True) -> dict:
     """One cycle of the model: every point, link, slider over a full turn of the first input.
 
     Parameters
@@ -454,6 +630,11 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
         for models of at most :data:`AUTO_CENTRE_BODIES` bodies, True for up
         to :data:`gearlever.plotting.viewer.MAX_CENTRE_BODIES` (``n (n - 1) / 2``
         centres a frame: 55 for 11 bodies, most of the answer), False never.
+    plain : bool
+        True (default): lists of floats.  False: a series whose values are
+        all finite is answered as its rounded numpy array, for an encoder
+        that writes arrays (the server's, orjson: the same JSON text, without
+        a Python float per value).
 
     Returns
     -------
@@ -481,25 +662,25 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
     >>> d["point"]["A"], d["input_deg"], d["message"]
     ([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]], [0.0, 90.0, 180.0, 270.0], '')
     """
+    from functools import partial
+
     from gearlever.mechanism.model import GROUND
     from gearlever.plotting.viewer import MAX_CENTRE_BODIES
 
     frames = _frames(frames)
+    num = partial(_num, plain=plain)
     mech = load(text)
     _work(mech, frames)
     m = mech.model
     labels = _inputs(mech)
     start = _start(mech, inputs)
     q, qd, direction = _cycle(mech, frames, start)
-    try:
-        r = mech.solve(q, qd)
-    except GearleverError as exc:
-        raise WorkbenchError(f"model: {exc}") from None
+    r = _solve(mech, q, qd)
     L = m.length_scale
     s = mech.structure()
     kinds = {lab: ("angle" if sp.kind == "link" else "slider") for lab, sp in zip(labels, m.inputs)}
     inputs_deg = {
-        lab: _num(np.degrees(q[:, i]) if sp.kind == "link" else q[:, i])
+        lab: num(np.degrees(q[:, i]) if sp.kind == "link" else q[:, i])
         for i, (lab, sp) in enumerate(zip(labels, m.inputs))
     }
     points = list(r.point)
@@ -513,17 +694,17 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
         "inputs_deg": inputs_deg,
         "direction": direction.tolist(),
         "closed": r.closed.tolist(),
-        "point": {p: _xy(r.point[p], L) for p in points},
-        "velocity": {p: _xy(r.velocity[p], L) for p in points},
-        "acceleration": {p: _xy(r.acceleration[p], L) for p in points},
-        "angle_deg": {k: _num(np.degrees(r.angle[k])) for k in m.moving},
-        "omega": {k: _num(r.omega[k]) for k in m.moving},
-        "alpha": {k: _num(r.alpha[k]) for k in m.moving},
+        "point": _xy_all({p: r.point[p] for p in points}, L, plain),
+        "velocity": _xy_all({p: r.velocity[p] for p in points}, L, plain),
+        "acceleration": _xy_all({p: r.acceleration[p] for p in points}, L, plain),
+        "angle_deg": {k: num(np.degrees(r.angle[k])) for k in m.moving},
+        "omega": {k: num(r.omega[k]) for k in m.moving},
+        "alpha": {k: num(r.alpha[k]) for k in m.moving},
         "slider": {
             sl.name: {
-                "s": _num(r.displacement[sl.name]),
-                "v": _num(r.slider_velocity[sl.name]),
-                "a": _num(r.slider_acceleration[sl.name]),
+                "s": num(r.displacement[sl.name]),
+                "v": num(r.slider_velocity[sl.name]),
+                "a": num(r.slider_acceleration[sl.name]),
             }
             for sl in m.sliders
         },
@@ -532,9 +713,12 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
             for g in m.gears.values()
         ],
         "centres": None,
+        "centre_direction": None,
+        "kennedy": None,
         "transmission_deg": _transmission(mech, r),
         "message": _message(mech, r, labels),
         "ground_points": list(m.links[GROUND].points),
+        "branches": branches(mech),
         "links": {k: list(m.links[k].points) for k in m.moving},
         "units": m.units or "",
     }
@@ -545,7 +729,9 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
         from gearlever.mechanism.centres import instant_centres
 
         ic = instant_centres(r)
-        out["centres"] = {str(k): _xy(ic.xy[:, p], L) for p, k in enumerate(ic.pairs)}
+        out["centres"] = _xy_all({str(k): ic.xy[:, p] for p, k in enumerate(ic.pairs)}, L, plain)
+        out["centre_direction"] = _directions(ic)
+        out["kennedy"] = _kennedy_triples(ic)
     xy = np.concatenate([r.point[p] for p in points]) if points else np.zeros((0, 2))
     xy = xy[np.all(np.isfinite(xy), axis=1)]
     if xy.size == 0:
@@ -558,6 +744,58 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None) -> dict:
         if rad is not None and c.size:
             lo, hi = np.minimum(lo, c.min(axis=0) - rad), np.maximum(hi, c.max(axis=0) + rad)
     out["extent"] = [float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])]
+    return out
+
+
+def _directions(ic) -> dict:
+    """Centres at infinity: ``{"a/b": [[frame, ux, uy], ...]}`` (the unit direction towards the centre), sparse."""
+    out = {}
+    for p, key in enumerate(ic.pairs):
+        d = ic.direction[:, p]
+        rows = np.flatnonzero(np.all(np.isfinite(d), axis=1))
+        if rows.size:
+            u = np.round(d[rows], DIGITS) + 0.0
+            out[str(key)] = [[int(i), float(x), float(y)] for i, (x, y) in zip(rows.tolist(), u.tolist())]
+    return out
+
+
+def _kennedy_triples(ic) -> list:
+    """Kennedy's lines: every triple of bodies as the keys of its three centres ``[ij, ik, jk]``.
+
+    By the Aronhold-Kennedy theorem the three instant centres of three bodies
+    lie on one straight line (Uicker, Pennock and Shigley, *Theory of
+    Machines and Mechanisms*, 5th ed., ch. 3); the page draws that line
+    through the centres :func:`gearlever.mechanism.centres.instant_centres`
+    answers (a centre at infinity gives the line's direction).
+    """
+    from itertools import combinations
+
+    n = len(ic.links)
+    key = ic.pairs.index
+    name = lambda i, j: f"{ic.links[i]}/{ic.links[j]}"  # noqa: E731
+    return [
+        [ic.pairs[key(name(i, j))], ic.pairs[key(name(i, k))], ic.pairs[key(name(j, k))]]
+        for i, j, k in combinations(range(n), 3)
+    ]
+
+
+def dump_solve(obj, frames: int = 360, inputs=None, centres=None, plain: bool = True) -> dict:
+    """:func:`dump` then :func:`solve_frames` in one call: the page's edit in one round trip.
+
+    The answer of :func:`solve_frames` with ``toml``, the model's TOML text,
+    added (the text pane shows it, saving writes it).
+
+    Examples
+    --------
+    >>> d = {"points": {"O": [0, 0], "A": [1, 0]}, "links": {"ground": ["O"], "crank": ["O", "A"]},
+    ...      "inputs": [{"link": "crank"}]}
+    >>> r = dump_solve(d, frames=4)
+    >>> r["toml"] == dump(d), r["point"]["A"][1]
+    (True, [0.0, 1.0])
+    """
+    text = dump(obj)
+    out = solve_frames(text, frames, inputs, centres, plain=plain)
+    out["toml"] = text
     return out
 
 
@@ -663,10 +901,7 @@ def forces(text, frames: int = 360, rpm=None) -> dict:
 # --------------------------------------------------------------------------- export
 def _sweep_result(mech, frames: int):
     q, qd, _ = _cycle(mech, frames, mech.sketch_inputs.astype(float))
-    try:
-        return mech.solve(q, qd)
-    except GearleverError as exc:
-        raise WorkbenchError(f"model: {exc}") from None
+    return _solve(mech, q, qd)
 
 
 def _safe_name(name: str) -> str:
@@ -674,13 +909,17 @@ def _safe_name(name: str) -> str:
     return keep or "mechanism"
 
 
-def export(text, fmt: str, frames: int = 360) -> tuple:
+def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
     """The model as a file: ``(body bytes, content type, file name)``.
 
     ``fmt``: ``svg``, ``png`` (the drawing of ``gearlever mechanism draw``),
     ``gif`` (its animation, :data:`GIF_FRAMES` frames), ``csv`` (the cycle as
     ``gearlever mechanism analyze`` writes it), ``html`` (the page of
-    ``gearlever mechanism view``), ``toml`` (the model file, :func:`dump`).
+    ``gearlever mechanism view``), ``toml`` (the model file, :func:`dump`),
+    ``dxf`` and ``svg-outline`` (every link's outline, pin holes and gears for
+    CAD, :func:`gearlever.export.mechanism_drawing`, one layer or group per
+    link) at the pose of ``inputs`` (``{input: deg, or length for a
+    slider}``, as for :func:`solve_frames`; default the sketch).
     """
     if fmt not in EXPORT_FORMATS:
         raise WorkbenchError(f"format must be one of {', '.join(EXPORT_FORMATS)}, got {fmt!r}")
@@ -688,6 +927,10 @@ def export(text, fmt: str, frames: int = 360) -> tuple:
     mech = load(text)
     _work(mech, frames)
     stem = _safe_name(mech.model.name or "mechanism")
+    if fmt in ("dxf", "svg-outline"):
+        return _cad(mech, fmt, stem, inputs)
+    if inputs is not None:
+        raise WorkbenchError(f"inputs: a pose is for the dxf and svg-outline formats, not {fmt}")
     if fmt == "toml":
         return dump(_toml(text)).encode("utf-8"), "application/toml; charset=utf-8", f"{stem}.toml"
     if fmt == "html":
@@ -724,6 +967,29 @@ def export(text, fmt: str, frames: int = 360) -> tuple:
         data = path.read_bytes()
     ctype = "image/svg+xml" if fmt == "svg" else "image/png"
     return data, ctype, f"{stem}.{fmt}"
+
+
+def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
+    """DXF or outline SVG of the mechanism at a pose (:mod:`gearlever.export`)."""
+    import tempfile
+    from pathlib import Path
+
+    from gearlever.export import FORMATS, mechanism_drawing
+
+    start = _start(mech, inputs)
+    pose = {lab: float(v) for lab, v in zip(_inputs(mech), start)}
+    try:
+        drawing = mechanism_drawing(mech, pose)
+    except GearleverError as exc:
+        raise WorkbenchError(f"inputs: {exc}") from None
+    suffix = "dxf" if fmt == "dxf" else "svg"
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / f"m.{suffix}"
+        FORMATS[suffix](drawing, path)
+        data = path.read_bytes()
+    if fmt == "dxf":
+        return data, "application/dxf", f"{stem}.dxf"
+    return data, "image/svg+xml", f"{stem}_outline.svg"
 
 
 # --------------------------------------------------------------------------- examples

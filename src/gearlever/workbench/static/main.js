@@ -9,6 +9,7 @@ import { drawPlot, el } from "./plots.js";
 import { modelFromFragment, shareUrl } from "./share.js";
 
 const FRAMES = 360;
+const POSE_PX = 36; // drawn length of a pose's direction
 const HIT_PX = 8;
 const $ = (sel) => document.querySelector(sel);
 const $$ = (sel) => [...document.querySelectorAll(sel)];
@@ -30,6 +31,7 @@ const S = {
   draftLink: null, // {first: joint} or {link: name} while the link tool grows a link
   lastGear: null,
   curve: [],
+  poses: [], // motion synthesis poses [x, y, angle_deg] placed with the pose tool
   dof: null,
   redundant: null,
   inputs: [],
@@ -39,6 +41,9 @@ const S = {
   file: { name: null, etag: null },
   pending: 0,
   revision: 0,
+  forces: null, // the last /api/forces answer, for S.forcesRevision
+  forcesRevision: -1,
+  rpm: 60,
 };
 
 // ---------------------------------------------------------------- view transform
@@ -176,7 +181,7 @@ function ensureDefs() {
   if ($("#canvas defs")) return;
   const defs = el("defs");
   svg().insertBefore(defs, svg().firstChild);
-  for (const [id, color] of [["arrow-v", "#2e7d32"], ["arrow-a", "#b3261e"]]) {
+  for (const [id, color] of [["arrow-v", "#2e7d32"], ["arrow-a", "#b3261e"], ["arrow-f", "#5e35b1"], ["arrow-p", "#00695c"]]) {
     const m = el("marker", { id, viewBox: "0 0 10 10", refX: 9, refY: 5, markerWidth: 7, markerHeight: 7, orient: "auto-start-reverse" }, defs);
     el("path", { d: "M0,0 L10,5 L0,10 z", fill: color }, m);
   }
@@ -238,6 +243,16 @@ function render() {
   if (S.curve.length > 1) {
     el("polyline", { points: S.curve.map((p) => toPx(...p).map((v) => v.toFixed(1)).join(",")).join(" "), class: "target-curve" }, curve);
   }
+  // motion poses: the coupler point and the coupler's direction
+  S.poses.forEach(([x, y, a], k) => {
+    const [px, py] = toPx(x, y);
+    const r = (a * Math.PI) / 180;
+    const grp = el("g", { class: "pose", "data-pose": k }, curve);
+    el("line", { x1: px, y1: py, x2: px + POSE_PX * Math.cos(r), y2: py - POSE_PX * Math.sin(r), class: "pose-dir", "marker-end": "url(#arrow-p)" }, grp);
+    el("circle", { cx: px, cy: py, r: 5, class: "pose-at" }, grp);
+    const t = el("text", { x: px - 14, y: py - 8, class: "pose-label" }, grp);
+    t.textContent = String(k + 1);
+  });
   // ground hatching between ground pivots
   const groundPts = (model.links?.ground || []).map(pos).filter(Boolean);
   if (groundPts.length > 1) {
@@ -339,9 +354,123 @@ function render() {
         t.textContent = key;
       }
     }
+    if ($("#show-kennedy").checked && S.frames.kennedy) drawKennedy(centres, i);
+    if ($("#show-forces").checked) drawForces(arrows, i);
+    else $("#torque").textContent = "";
   }
   $("#empty").hidden = Object.keys(model.points || {}).length > 0;
   updatePlayUi();
+}
+
+/** Kennedy's lines at frame i: the line through the three instant centres of each chosen triple of bodies
+ * (the server answers the centres and the triples; a centre at infinity gives the line's direction). */
+function drawKennedy(layer, i) {
+  const f = S.frames;
+  if (!f.closed[i]) return;
+  const choice = $("#kennedy-triple").value;
+  const triples = choice === "all" || choice === "" ? f.kennedy : [f.kennedy[Number(choice)]].filter(Boolean);
+  const r = svg().getBoundingClientRect();
+  const big = 4 * (r.width + r.height) / S.view.s;
+  for (const keys of triples) {
+    const fin = [];
+    let dir = null;
+    for (const key of keys) {
+      const c = f.centres[key]?.[i];
+      if (c && c[0] !== null) fin.push(c);
+      else if (!dir) dir = centreDirection(key, i);
+    }
+    let a = null;
+    let d = null;
+    if (fin.length >= 2) {
+      let best = -1;
+      for (let u = 0; u < fin.length; u++) for (let w = u + 1; w < fin.length; w++) {
+        const dd = Math.hypot(fin[w][0] - fin[u][0], fin[w][1] - fin[u][1]);
+        if (dd > best) { best = dd; a = fin[u]; d = [(fin[w][0] - a[0]) / dd, (fin[w][1] - a[1]) / dd]; }
+      }
+      if (!(best > 0)) continue;
+    } else if (fin.length === 1 && dir) { a = fin[0]; d = dir; }
+    else continue;
+    const [x1, y1] = toPx(a[0] - big * d[0], a[1] - big * d[1]);
+    const [x2, y2] = toPx(a[0] + big * d[0], a[1] + big * d[1]);
+    el("line", { x1, y1, x2, y2, class: "kennedy", "data-kennedy": keys.join(" ") }, layer);
+  }
+}
+
+/** Pin reactions at frame i as arrows at their pins (the force on the pin's second link), scaled so that the
+ * largest of the cycle is 70 px; the input torque in the play bar. Both from POST /api/forces. */
+function drawForces(layer, i) {
+  const F = S.forces;
+  const out = $("#torque");
+  if (!F || S.forcesRevision !== S.revision) { out.textContent = ""; return; }
+  if (F.error) { out.textContent = `forces: ${F.error}`; return; }
+  let max = 0;
+  for (const series of Object.values(F.pin)) for (const v of series) if (v && v[0] !== null) max = Math.max(max, Math.hypot(v[0], v[1]));
+  const scale = max > 0 ? 70 / max : 0;
+  for (const [key, series] of Object.entries(F.pin)) {
+    const v = series[i];
+    const p = pos(key.split(":")[0]);
+    if (!v || v[0] === null || !p) continue;
+    const [x, y] = toPx(...p);
+    const [dx, dy] = [v[0] * scale, -v[1] * scale];
+    if (Math.hypot(dx, dy) < 2) continue;
+    el("line", { x1: x, y1: y, x2: x + dx, y2: y + dy, class: "arrow force", "marker-end": "url(#arrow-f)", "data-force": key }, layer);
+  }
+  out.textContent = Object.entries(F.torque).map(([n, t]) => `T ${n} ${t[i] === null ? "–" : Number(t[i].toPrecision(4))} ${F.units.torque}`).join(" · ");
+}
+
+let forcing = null;
+/** Ask the server for the forces of the current model (masses, loads and gravity of the model, the input at
+ * S.rpm); the answer is kept for the revision it was asked for. */
+async function syncForces() {
+  if (!$("#show-forces").checked || !S.frames || S.stale || S.forcesRevision === S.revision) return;
+  const revision = S.revision;
+  const input = S.frames.inputs[0];
+  if (forcing === revision) return;
+  forcing = revision;
+  try {
+    // the first input turns at S.rpm, the others are held (rpm 0), as in the cycle drawn
+    const rpm = Object.fromEntries(S.frames.inputs.map((n) => [n, n === input ? S.rpm : 0]));
+    const F = await api.post("/api/forces", { model: S.toml, frames: S.frames.frames, rpm });
+    if (revision !== S.revision) return;
+    S.forces = F;
+  } catch (e) {
+    if (revision !== S.revision) return;
+    S.forces = { error: e.message };
+  } finally {
+    if (forcing === revision) forcing = null;
+  }
+  S.forcesRevision = revision;
+  render();
+  drawPlots();
+}
+
+const dirCache = new Map();
+function centreDirection(key, i) {
+  const rows = S.frames.centre_direction?.[key];
+  if (!rows) return null;
+  if (!dirCache.has(key)) dirCache.set(key, new Map(rows.map(([k, ux, uy]) => [k, [ux, uy]])));
+  return dirCache.get(key).get(i) || null;
+}
+
+function fillKennedy() {
+  const sel = $("#kennedy-triple");
+  const triples = S.frames && !S.stale ? S.frames.kennedy || [] : [];
+  const text = triples.map((t) => [...new Set(t.flatMap((k) => k.split("/")))].join(", "));
+  const want = ["all", ...text.map((_, k) => String(k))];
+  if ([...sel.options].map((o) => o.value).join("\n") === want.join("\n")) return;
+  const old = sel.value;
+  clear(sel);
+  const all = document.createElement("option");
+  all.value = "all";
+  all.textContent = "all triples";
+  sel.appendChild(all);
+  text.forEach((t, k) => {
+    const o = document.createElement("option");
+    o.value = String(k);
+    o.textContent = t;
+    sel.appendChild(o);
+  });
+  sel.value = want.includes(old) ? old : "all";
 }
 
 const scaleCache = new Map();
@@ -419,6 +548,10 @@ function drawPlots() {
 function linkSeries(f, ln, q) {
   if (q === "omega" && f.omega?.[ln]) return [{ label: `${ln} ω (rad/s per input rad/s)`, ys: f.omega[ln] }];
   if (q === "alpha" && f.alpha?.[ln]) return [{ label: `${ln} α (rad/s² per (input rad/s)²)`, ys: f.alpha[ln] }];
+  if (q === "torque") {
+    const F = S.forces && S.forcesRevision === S.revision && !S.forces.error ? S.forces : null;
+    return F ? Object.entries(F.torque).map(([n, ys]) => ({ label: `input ${n} torque (${F.units.torque}) at ${S.rpm} rpm`, ys })) : [];
+  }
   return [{ label: `${ln} angle (deg)`, ys: f.angle_deg[ln] }];
 }
 
@@ -492,6 +625,24 @@ function requestSync(opts = {}) {
 async function doSync({ fromText = false, text = null } = {}) {
   const revision = S.revision;
   let toml = text;
+  if (toml === null && M.solvable(S.model)) {
+    // an edit: the server writes the model's TOML and solves it in one round trip
+    try {
+      const f = await api.post("/api/solve", solveBody(S.model));
+      if (revision !== S.revision) return; // a newer edit is on its way
+      S.toml = f.toml;
+      setTomlText(f.toml);
+      takeFrames(f);
+    } catch (e) {
+      if (revision !== S.revision) return;
+      S.error = e.message;
+      S.stale = true;
+      S.toml = M.toToml(S.model); // the page's own writing of the model: what is drawn is what is saved
+      setTomlText(S.toml);
+    }
+    finishSync();
+    return;
+  }
   if (toml === null) {
     // an incomplete drawing (no ground, link or input yet) is not a model the server writes: written here
     toml = M.toToml(S.model);
@@ -517,13 +668,9 @@ async function doSync({ fromText = false, text = null } = {}) {
     return;
   }
   try {
-    const f = await api.post("/api/solve", { model: toml, frames: FRAMES });
+    const f = await api.post("/api/solve", solveBody(toml));
     if (revision !== S.revision) return; // a newer edit is on its way
-    S.frames = f;
-    S.stale = false;
-    S.dof = f.dof; S.redundant = f.redundant; S.inputs = f.inputs || []; S.message = f.message || ""; S.error = "";
-    if (S.frame >= f.frames) S.frame = 0;
-    scaleCache.clear();
+    takeFrames(f);
   } catch (e) {
     if (revision !== S.revision) return;
     S.error = e.message;
@@ -532,11 +679,39 @@ async function doSync({ fromText = false, text = null } = {}) {
   finishSync();
 }
 
+/** The body of a solve: instant centres are asked for (up to the server's cap of bodies) while they or
+ * Kennedy's lines are shown; otherwise the server answers them for small models only. */
+function solveBody(model) {
+  const body = { model, frames: FRAMES };
+  if ($("#show-centres").checked || $("#show-kennedy").checked) body.centres = true;
+  return body;
+}
+
+/** A check box of centres or Kennedy's lines turned on for a model whose centres were not answered: solve again. */
+function needCentres() {
+  render();
+  if (($("#show-centres").checked || $("#show-kennedy").checked) && S.frames && !S.stale && !S.frames.centres
+    && (S.frames.inputs || []).length === 1) {
+    changed({ text: S.toml, fromText: true });
+  }
+}
+
+function takeFrames(f) {
+  S.frames = f;
+  S.stale = false;
+  S.dof = f.dof; S.redundant = f.redundant; S.inputs = f.inputs || []; S.message = f.message || ""; S.error = "";
+  if (S.frame >= f.frames) S.frame = 0;
+  scaleCache.clear();
+  dirCache.clear();
+}
+
 function finishSync() {
+  fillKennedy();
   render();
   drawPlots();
   renderProps();
   setStatus();
+  syncForces();
 }
 
 function undo() {
@@ -641,10 +816,32 @@ function onPointerDown(ev) {
   } else if (S.tool === "curve") {
     gesture.kind = "curve";
     S.curve = [toModel(px, py)];
+  } else if (S.tool === "pose") {
+    const hit = poseAt(px, py);
+    if (hit) Object.assign(gesture, hit);
+    else if (S.poses.length >= 5) { gesture.kind = "none"; notify("five poses at most: drag one, or clear them in the synthesis panel"); }
+    else {
+      const [x, y] = toModel(px, py);
+      S.poses.push([x, y, 0]);
+      Object.assign(gesture, { kind: "pose-turn", index: S.poses.length - 1 });
+      render();
+    }
   } else if (S.tool === "input") {
     const inLink = joint && inputLinks().find((l) => S.model.links[l].includes(joint) && !M.isGround(S.model, joint));
     if (inLink && S.frames && !S.stale) { gesture.kind = "turn"; gesture.joint = joint; stop(); }
   }
+}
+
+/** The pose under the pixel: its point (drag moves it) or the tip of its direction (drag turns it). */
+function poseAt(px, py) {
+  for (let k = S.poses.length - 1; k >= 0; k--) {
+    const [x, y, a] = S.poses[k];
+    const [qx, qy] = toPx(x, y);
+    const r = (a * Math.PI) / 180;
+    if (Math.hypot(qx + POSE_PX * Math.cos(r) - px, qy - POSE_PX * Math.sin(r) - py) <= HIT_PX) return { kind: "pose-turn", index: k };
+    if (Math.hypot(qx - px, qy - py) <= HIT_PX) return { kind: "pose-move", index: k };
+  }
+  return null;
 }
 
 function onPointerMove(ev) {
@@ -672,6 +869,15 @@ function onPointerMove(ev) {
     render();
   } else if (gesture.kind === "turn") {
     turnInputTo(gesture.joint, toModel(px, py));
+  } else if (gesture.kind === "pose-move" && gesture.moved) {
+    const [x, y] = snap(toModel(px, py));
+    S.poses[gesture.index] = [x, y, S.poses[gesture.index][2]];
+    render();
+  } else if (gesture.kind === "pose-turn" && gesture.moved) {
+    const [x, y] = S.poses[gesture.index];
+    const [mx, my] = toModel(px, py);
+    S.poses[gesture.index][2] = Number(((Math.atan2(my - y, mx - x) * 180) / Math.PI).toFixed(2));
+    render();
   }
 }
 
@@ -692,6 +898,11 @@ function onPointerUp(ev) {
     S.curveClosed = true;
     render();
     notify(S.curve.length ? `curve of ${S.curve.length} points drawn: synthesize from it` : "");
+    return;
+  }
+  if (g.kind === "pose-move" || g.kind === "pose-turn" || g.kind === "none") {
+    const p = S.poses[g.index];
+    if (p) notify(`pose ${g.index + 1} of ${S.poses.length}: (${Number(p[0].toPrecision(5))}, ${Number(p[1].toPrecision(5))}) at ${p[2]}°`);
     return;
   }
   if (g.kind === "pan" || g.kind === "turn") {
@@ -875,6 +1086,20 @@ function renderProps() {
     const on = document.createElement("p");
     on.textContent = `on: ${M.linksOf(m, sel.name).join(", ") || "no link yet"}`;
     box.appendChild(on);
+    const carrier = M.linksOf(m, sel.name).find((l) => l !== "ground");
+    if (carrier && !M.isGround(m, sel.name)) {
+      const fload = (m.loads || []).find((l) => l.point === sel.name && l.force);
+      const setForce = (axis) => (v) => Number.isFinite(v) && edit((mm) => {
+        const old = (mm.loads || []).find((l) => l.point === sel.name && l.force);
+        const f = old ? [...old.force] : [0, 0];
+        f[axis] = v;
+        mm.loads = (mm.loads || []).filter((l) => !(l.point === sel.name && l.force));
+        if (f[0] !== 0 || f[1] !== 0) mm.loads.push({ link: old?.link ?? carrier, point: sel.name, force: f });
+        if (!mm.loads.length) delete mm.loads;
+      });
+      field(box, "load Fx", fload ? fload.force[0] : 0, setForce(0), { attrs: { "data-field": "load-fx" } });
+      field(box, "load Fy", fload ? fload.force[1] : 0, setForce(1), { attrs: { "data-field": "load-fy" } });
+    }
     const row = document.createElement("div");
     row.className = "row";
     if (!M.isGround(m, sel.name)) button(row, "make ground", () => edit((mm) => M.makeGround(mm, sel.name)));
@@ -916,6 +1141,12 @@ function renderProps() {
       mm.masses ||= {};
       mm.masses[sel.name] = { mass: 0, centre: pts[0], ...(mm.masses[sel.name] || {}), inertia: v };
     }), { attrs: { "data-field": "inertia" } });
+    const tload = (m.loads || []).find((l) => l.link === sel.name && l.torque !== undefined && l.force === undefined);
+    field(box, "load torque", tload?.torque ?? 0, (v) => Number.isFinite(v) && edit((mm) => {
+      mm.loads = (mm.loads || []).filter((l) => !(l.link === sel.name && l.torque !== undefined && l.force === undefined));
+      if (v !== 0) mm.loads.push({ link: sel.name, torque: v });
+      if (!mm.loads.length) delete mm.loads;
+    }), { attrs: { "data-field": "load-torque" } });
     for (const [gname, g] of Object.entries(m.gears || {})) {
       if (g.link !== sel.name) continue;
       field(box, `${gname} teeth`, g.teeth, (v) => Number.isInteger(v) && v >= 1 && edit((mm) => { mm.gears[gname].teeth = v; }), { step: "1", attrs: { "data-field": `teeth-${gname}` } });
@@ -933,12 +1164,57 @@ function renderProps() {
   box.appendChild(h);
   field(box, "name", m.mechanism?.name ?? "", (v) => edit((mm) => { mm.mechanism = { ...(mm.mechanism || {}), name: v }; }), { type: "text", attrs: { "data-field": "mechanism-name" } });
   field(box, "units", m.mechanism?.units ?? "", (v) => edit((mm) => { mm.mechanism = { ...(mm.mechanism || {}), units: v }; }), { type: "text", attrs: { "data-field": "units" } });
+  field(box, "input speed (rpm), for forces", S.rpm, (v, input) => {
+    if (!(v > 0 && v <= 1e6)) { input.value = S.rpm; notify("the input speed is a number of rev/min above 0"); return; }
+    S.rpm = v;
+    S.forcesRevision = -1;
+    syncForces();
+  }, { attrs: { "data-field": "rpm" } });
+  branchControls(box);
   const list = document.createElement("p");
   list.className = "muted";
   list.textContent = Object.keys(m.links || {}).length
     ? `links: ${Object.keys(m.links).join(", ")}. Click a joint or link to edit it.`
     : "Nothing drawn yet.";
   box.appendChild(list);
+}
+
+/** The assembly branch of each dyad the server lists: the side of its joint; a change moves the sketch there
+ * (POST /api/branch answers the model re-placed on the other branch) and re-solves, as one undo step. */
+function branchControls(box) {
+  const list = S.frames && !S.stale ? S.frames.branches || [] : [];
+  if (!list.length) return;
+  const h = document.createElement("h4");
+  h.textContent = "assembly branch";
+  box.appendChild(h);
+  for (const b of list) {
+    const wrap = document.createElement("label");
+    wrap.className = "field";
+    const span = document.createElement("span");
+    span.textContent = `${b.joint} (${b.links.join(", ")})`;
+    const sel = document.createElement("select");
+    sel.dataset.branch = b.joint;
+    const sides = b.kind === "RRR"
+      ? [["1", `left of ${b.about[0]}→${b.about[1]}`], ["-1", `right of ${b.about[0]}→${b.about[1]}`]]
+      : [["1", "ahead on the guide"], ["-1", "behind on the guide"]];
+    for (const [v, text] of sides) {
+      const o = document.createElement("option");
+      o.value = v;
+      o.textContent = text;
+      sel.appendChild(o);
+    }
+    sel.value = String(b.sigma);
+    sel.addEventListener("change", () => setBranch(b.joint).catch((e) => { notify(`branch: ${e.message}`); renderProps(); }));
+    wrap.append(span, sel);
+    box.appendChild(wrap);
+  }
+}
+
+async function setBranch(joint) {
+  stop();
+  const { model } = await api.post("/api/branch", { model: S.toml, joint });
+  await load(model, { fitView: false });
+  notify(`${joint} on its other assembly branch (undo takes it back)`);
 }
 
 // ---------------------------------------------------------------- notes, tools, dialogs
@@ -982,7 +1258,13 @@ async function exportAs(format) {
   const note = $("#export-note");
   note.textContent = `exporting ${format}…`;
   try {
-    const { blob, filename } = await api.postFile(`/api/export/${format}`, { model: S.toml, frames: FRAMES });
+    const body = { model: S.toml, frames: FRAMES };
+    // the CAD drawings are of one pose: the frame shown
+    if ((format === "dxf" || format === "svg-outline") && S.frames && !S.stale && S.frames.inputs_deg) {
+      const k = S.frames.closed[S.frame] ? S.frame : lastClosed(S.frame);
+      body.inputs = Object.fromEntries(Object.entries(S.frames.inputs_deg).map(([n, v]) => [n, v[k]]));
+    }
+    const { blob, filename } = await api.postFile(`/api/export/${format}`, body);
     const base = (S.file.name || S.model.mechanism?.name || "mechanism").replace(/\.toml$/, "").replace(/[^\p{L}\p{N}_.-]+/gu, "_");
     download(blob, filename || `${base}.${format}`);
     note.textContent = `${format}: ${blob.size} bytes`;
@@ -1081,6 +1363,17 @@ function synthParams(kind) {
       ? `target: the drawn curve (${S.curve.length} points)`
       : "draw the target first: curve tool (C), press, drag and release on the canvas";
     box.appendChild(note);
+    const file = document.createElement("label");
+    file.className = "field";
+    const span = document.createElement("span");
+    span.textContent = "or import the target (CSV: x, y a row)";
+    const input = document.createElement("input");
+    input.type = "file";
+    input.id = "synth-csv";
+    input.accept = ".csv,.txt,text/csv,text/plain";
+    input.addEventListener("change", () => importTarget(input.files[0]).then(() => synthParams(kind), (e) => { note.textContent = e.message; }));
+    file.append(span, input);
+    box.appendChild(file);
     if (kind === "curve") field(box, "time (s)", 20, () => {}, { attrs: { id: "synth-time" } });
     else field(box, "budget", 3000, () => {}, { step: "1", attrs: { id: "synth-budget" } });
     field(box, "seed", 1, () => {}, { step: "1", attrs: { id: "synth-seed" } });
@@ -1091,13 +1384,19 @@ function synthParams(kind) {
     field(box, "output range (deg)", "135, 225", () => {}, { type: "text", attrs: { id: "synth-out" } });
     field(box, "precision points", 3, () => {}, { step: "1", attrs: { id: "synth-points" } });
   } else if (kind === "motion") {
-    note.textContent = "three to five poses, one a line: x, y, angle (deg)";
+    note.textContent = "three to five poses, one a line: x, y, angle (deg); or place them on the canvas with the pose tool "
+      + "(M: press at the coupler point, drag along the coupler; drag a pose's point or tip to move or turn it). "
+      + "With three poses the moving pivots are taken on the first pose's line, a quarter of the poses' spread either side.";
     box.appendChild(note);
     const ta = document.createElement("textarea");
     ta.id = "synth-poses";
-    ta.rows = 4;
-    ta.value = "0, 0, 0\n20, 10, 30\n40, 10, 60";
+    ta.rows = 5;
+    ta.value = S.poses.length ? S.poses.map((p) => p.map((v) => Number(v.toPrecision(8))).join(", ")).join("\n") : "0, 0, 0\n20, 10, 30\n40, 10, 60";
     box.appendChild(ta);
+    const row = document.createElement("div");
+    row.className = "row";
+    button(row, "clear poses", () => { S.poses = []; render(); synthParams(kind); }, { id: "synth-clear-poses" });
+    box.appendChild(row);
   } else if (kind === "law") {
     note.textContent = "the [law] table of a cam law file";
     box.appendChild(note);
@@ -1145,10 +1444,45 @@ function jobBody(kind, opts = {}) {
     };
   }
   if (kind === "motion") {
-    return { kind, poses: opts.poses ?? val("#synth-poses", "").split("\n").filter((l) => l.trim()).map(nums) };
+    const typed = $("#synth-poses") ? val("#synth-poses", "").split("\n").filter((l) => l.trim()).map(nums) : [];
+    const poses = opts.poses ?? (S.poses.length >= 3 && !$("#dlg-synth").open ? S.poses : (typed.length ? typed : S.poses));
+    const body = { kind, poses: poses.map((p) => p.map((v) => Number(Number(v).toPrecision(10)))) };
+    if (body.poses.length === 3) body.moving_pivots = opts.moving_pivots ?? movingPivots(body.poses);
+    return body;
   }
   if (kind === "law") return { kind, law: opts.law ?? val("#synth-law", ""), type: opts.type ?? "auto" };
   throw new Error(`unknown synthesis kind ${kind}`);
+}
+
+/** Three poses need two moving pivots: on the first pose's coupler line, a quarter of the poses' spread either side. */
+function movingPivots(poses) {
+  const xs = poses.map((p) => p[0]);
+  const ys = poses.map((p) => p[1]);
+  const spread = Math.max(Math.max(...xs) - Math.min(...xs), Math.max(...ys) - Math.min(...ys)) || 1;
+  const [x, y, a] = poses[0];
+  const [c, s] = [Math.cos((a * Math.PI) / 180), Math.sin((a * Math.PI) / 180)];
+  const d = spread / 4;
+  return [[x - d * c, y - d * s], [x + d * c, y + d * s]].map((p) => p.map((v) => Number(v.toPrecision(10))));
+}
+
+/** A CSV of target points (x, y a row; rows that are not two numbers, such as a header, are skipped) read in the
+ * page: it becomes the target curve, as if drawn. Nothing is sent until a synthesis runs. */
+async function importTarget(file) {
+  if (!file) return;
+  if (file.size > 1_000_000) throw new Error(`${file.name}: ${file.size} bytes, more than the cap of 1000000`);
+  const text = await file.text();
+  const pts = [];
+  for (const line of text.split(/\r?\n/)) {
+    const cells = line.split(/[,;\t ]+/).filter(Boolean);
+    if (cells.length < 2) continue;
+    const [x, y] = [Number(cells[0]), Number(cells[1])];
+    if (Number.isFinite(x) && Number.isFinite(y)) pts.push([x, y]);
+  }
+  if (pts.length < 3) throw new Error(`${file.name}: ${pts.length} rows of two numbers, a target needs 3 or more`);
+  if (pts.length > 2000) throw new Error(`${file.name}: ${pts.length} points, more than the cap of 2000`);
+  S.curve = pts;
+  render();
+  notify(`target of ${pts.length} points imported from ${file.name}`);
 }
 
 let jobAbort = null;
@@ -1254,6 +1588,7 @@ const SHORTCUTS = [
   ["O", "point of interest", () => setTool("point")],
   ["I", "input", () => setTool("input")],
   ["C", "curve (freehand target)", () => setTool("curve")],
+  ["M", "motion pose (press at the point, drag along the coupler)", () => setTool("pose")],
   ["Space", "play / pause", () => play()],
   ["← →", "previous / next frame", null],
   ["Ctrl+Z", "undo", () => undo()],
@@ -1293,7 +1628,7 @@ function onKey(ev) {
   if (k === "f") { fit(); render(); return; }
   if (k === "n") { newBench(); return; }
   if (ev.key === "?") { $("#dlg-help").showModal(); return; }
-  const tool = { v: "select", g: "ground", p: "pin", l: "link", s: "slider", e: "gear", o: "point", i: "input", c: "curve" }[k];
+  const tool = { v: "select", g: "ground", p: "pin", l: "link", s: "slider", e: "gear", o: "point", i: "input", c: "curve", m: "pose" }[k];
   if (tool) setTool(tool);
 }
 
@@ -1301,6 +1636,7 @@ function newBench() {
   stop();
   edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); });
   S.curve = [];
+  S.poses = [];
   S.selected = null;
   S.file = { name: null, etag: null };
   fit();
@@ -1381,7 +1717,9 @@ function wire() {
   $("#scrub").addEventListener("input", () => { stop(); S.frame = Number($("#scrub").value); render(); });
   $("#speed").addEventListener("change", () => { S.speed = Number($("#speed").value); });
   $("#fit").addEventListener("click", () => { fit(); render(); });
-  for (const id of ["#show-velocity", "#show-acceleration", "#show-paths", "#show-centres"]) $(id).addEventListener("change", render);
+  for (const id of ["#show-velocity", "#show-acceleration", "#show-paths", "#kennedy-triple"]) $(id).addEventListener("change", render);
+  for (const id of ["#show-centres", "#show-kennedy"]) $(id).addEventListener("change", needCentres);
+  $("#show-forces").addEventListener("change", () => { render(); syncForces(); });
   $("#plot-link").addEventListener("change", drawPlots);
   $("#plot-point").addEventListener("change", drawPlots);
   $("#plot-quantity").addEventListener("change", drawPlots);
@@ -1419,8 +1757,10 @@ window.workbench = {
     message: S.error || S.message, job: S.job ? { ...S.job } : null,
     pending: S.pending > 0 || !!again, revision: S.revision, frame: S.frame, playing: S.playing,
     tool: S.tool, undo: S.undo.length, redo: S.redo.length, curve: S.curve.length, file: { ...S.file },
+    forces: S.forcesRevision === S.revision && S.forces ? (S.forces.error || "ready") : null,
   }),
   frames: () => (S.frames && !S.stale ? S.frames : null),
+  forces: () => (S.forcesRevision === S.revision ? S.forces : null),
   toScreen: (x, y) => { const r = svg().getBoundingClientRect(); const [px, py] = toPx(x, y); return [r.left + px, r.top + py]; },
   synthesize,
   undo: () => undo(),
@@ -1428,7 +1768,7 @@ window.workbench = {
   // for tests and scripts
   play: () => { if (!S.playing) play(); }, pause: stop, setFrame: (i) => { S.frame = i; render(); },
   setTool, fit: () => { fit(); render(); }, save: (name) => saveFile(name), open: openFile,
-  share: openShare, export: exportAs, curve: () => S.curve.map((p) => [...p]),
+  share: openShare, export: exportAs, curve: () => S.curve.map((p) => [...p]), poses: () => S.poses.map((p) => [...p]), branch: (joint) => setBranch(joint),
 };
 
 async function start() {
@@ -1441,7 +1781,11 @@ async function start() {
   setStatus();
   drawPlots();
   await loadExamples();
-  await fromFragment();
+  const opened = await fromFragment();
+  const name = new URL(window.location.href).searchParams.get("open");
+  if (name && !opened) {
+    try { await openFile(name); } catch (e) { notify(`open ${name}: ${e.message}`); }
+  }
   S.ready = true;
   setStatus();
 }
