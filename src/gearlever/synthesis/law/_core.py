@@ -93,7 +93,13 @@ KINDS = _LawKinds()
 
 
 def kind_class(name: str):
-    """The :class:`LawKind` subclass of law kind ``name``, or the registry's refusal naming the kinds."""
+    """The :class:`LawKind` subclass of law kind ``name``, or the registry's refusal naming the kinds.
+
+    Examples
+    --------
+    >>> kind_class("slotted-lever").__name__, kind_class("slotted-lever").outputs
+    ('SlottedLeverLaw', ('angle', 'displacement'))
+    """
     return registry.get("law", name).spec
 
 
