@@ -28,8 +28,9 @@ __all__ = [
     "REPORT_SAMPLES",
 ]
 
-#: Candidate evaluations of the global search per kind (all starts together).
-DEFAULT_BUDGET = 400_000
+#: Evaluations per kind, searches and polishes together (:func:`budget_split`): the starts' searches get
+#: 400 000 of it, as when the polishes were counted apart.
+DEFAULT_BUDGET = 800_000
 #: Default bound of the transmission angle, degrees (a linkage near a toggle is no design).
 MIN_TRANSMISSION_DEG = 20.0
 #: Lawson rounds of the final polish of the best start (each start has 25).
