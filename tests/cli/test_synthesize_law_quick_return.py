@@ -121,3 +121,19 @@ def test_a_bad_dwell_tolerance_is_refused_naming_the_flag(tmp_path, run, law, va
         "synthesize", "law", law, "--type", "auto", "--out", out, "--budget", 600, "--dwell-tolerance", value
     )
     assert code == 2 and words in err and len(err.strip().splitlines()) == 1 and not out.exists()
+
+
+def test_auto_says_which_types_were_searched_without_a_design_and_why(tmp_path, run):
+    # at a transmission angle of 89 deg only the slotted lever (its block drives the lever square to the slot)
+    # is buildable: the other angle types are searched and give no design, the displacement types are not tried
+    out, rep = tmp_path / "m.toml", tmp_path / "r.json"
+    argv = ["synthesize", "law", DWELL, "--type", "auto", "--out", out, "--report", rep, "--budget", 600]
+    code, text, err = run(*argv, "--min-transmission", 89)
+    assert code == 0, err
+    r = json.loads(rep.read_text())
+    assert r["kind"] == "slotted-lever"
+    assert set(r["types_not_tried"]) == {"slider-crank", "sixbar-slider"}
+    assert set(r["types_without_design"]) == {"fourbar", "geared-fourbar", "gear-lever", "sixbar-dwell"}
+    for k, why in r["types_without_design"].items():
+        assert why == "no design within the constraints (transmission angle at least 89 deg)"
+        assert f"no design        {k}: {why}" in text

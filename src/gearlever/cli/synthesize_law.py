@@ -206,6 +206,7 @@ def _run(args) -> int:
     ]
     if args.kind == "auto":
         lines += [f"not tried        {k}: {why}" for k, why in rep["types_not_tried"].items()]
+        lines += [f"no design        {k}: {why}" for k, why in rep["types_without_design"].items()]
     lines.append(
         f"error            max {rep['error_max' + unit]:.4g}{u}, rms {rep['error_rms' + unit]:.4g}{u} "
         f"over {rep['samples']} input angles ({100 * rep['error_fraction_of_range']:.3g} % of the range "

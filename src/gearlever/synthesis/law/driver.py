@@ -183,7 +183,8 @@ class LawSynthesis(Result):
     tried : dict
         Kind -> objective of each kind searched (``auto``), None where none was feasible.
     not_tried : dict
-        Kind -> why it gave no design (``auto``): the law it cannot give, or no design within the constraints.
+        Kind -> why it gave no design (``auto``): the law it cannot give (not searched), or no design within
+        the constraints (searched: a key of ``spent``).
     dwell_tolerance : float or None
         The bound on the output's excursion over each dwell (output units), if one was set.
     budget : int

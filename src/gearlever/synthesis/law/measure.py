@@ -341,7 +341,8 @@ def law_report(res, *, degrees: bool = True) -> dict:
         "seed": res.seed,
         "starts": res.starts,
         "types_tried": {k: (None if v is None else conv(v)) for k, v in res.tried.items()},
-        "types_not_tried": dict(res.not_tried),
+        "types_not_tried": {k: v for k, v in res.not_tried.items() if k not in res.spent},
+        "types_without_design": {k: v for k, v in res.not_tried.items() if k in res.spent},
         "samples": int(n),
     }
 
