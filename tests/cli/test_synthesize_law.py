@@ -172,10 +172,25 @@ def test_auto_tries_every_angle_kind_and_ranks_them(tmp_path, run):
     assert code == 0, err
     r = json.loads(rep.read_text())
     tried = r["types_tried"]
-    assert set(tried) == {"fourbar", "slider-crank", "geared-fourbar", "sixbar-dwell", "gear-lever"}
-    assert tried["slider-crank"] is None  # an angle law: no slider
+    assert set(tried) == {
+        "fourbar",
+        "slider-crank",
+        "geared-fourbar",
+        "sixbar-dwell",
+        "gear-lever",
+        "slotted-lever",
+        "sixbar-slider",
+    }
+    assert tried["slider-crank"] is None and tried["sixbar-slider"] is None  # an angle law: no slider
     best = min(v for v in tried.values() if v is not None)
     assert tried[r["kind"]] == best and "tried" in text
+    # why a kind was not tried: one reason per kind, in the report and the table (never "-")
+    why = r["types_not_tried"]
+    assert set(why) == {k for k, v in tried.items() if v is None}
+    for k in why:
+        assert why[k] == "a " + k + " gives an output displacement, the law is angle"
+        assert f"not tried        {k}: {why[k]}" in text
+    assert " -" not in text.splitlines()[0]
 
 
 def test_the_same_model_bytes_for_one_or_two_workers(tmp_path, run):

@@ -211,7 +211,7 @@ def _is_model(path: Path) -> bool:
 def test_every_shipped_example_is_a_model_or_a_motion_law():
     assert EXAMPLES
     laws = [p.name for p in EXAMPLES if not _is_model(p)]
-    assert laws == ["law_dwell_rocker.toml", "law_lift.toml"]
+    assert laws == ["law_dwell_rocker.toml", "law_lift.toml", "law_quick_return.toml"]
 
 
 @pytest.mark.parametrize("path", [p for p in EXAMPLES if _is_model(p)], ids=lambda p: p.stem)

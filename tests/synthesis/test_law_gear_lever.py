@@ -106,7 +106,7 @@ def test_polish_from_a_perturbed_gear_lever_recovers_it_to_1e_9(target):
 
 def test_teeth_are_whole_within_bounds_and_the_mesh_assembles():
     law = law_target(TH, math.radians(20) * np.sin(TH) ** 2)
-    res = synthesize_law(law, kind="gear-lever", budget=3000, workers=1, teeth=(20, 40))
+    res = synthesize_law(law, kind="gear-lever", budget=12_000, workers=1, teeth=(20, 40))
     rep = law_report(res)
     z9, z8 = rep["design"]["teeth"].values()
     assert isinstance(z9, int) and isinstance(z8, int) and 20 <= z9 <= 40 and 20 <= z8 <= 40

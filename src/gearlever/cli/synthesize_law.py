@@ -2,9 +2,10 @@
 
 Registered on the ``synthesize`` sub-parsers by :func:`register_law`::
 
-    gearlever synthesize law LAW.toml --type fourbar|slider-crank|geared-fourbar|sixbar-dwell|gear-lever|auto
+    gearlever synthesize law LAW.toml --type KIND|auto (the law kinds of gearlever.synthesis.kinds("law"))
         --out MODEL.toml [--report R.json] [--figure F.png] [--seed N] [--budget EVALS]
         [--workers N | --scheduler ADDRESS] [--min-transmission DEG] [--teeth ZMIN ZMAX]
+        [--dwell-tolerance TOL]
 
 and on the ``mechanism`` sub-parsers by :func:`register_mechanism_law`::
 
@@ -15,12 +16,18 @@ counter-clockwise as the law's input grows, its output link named
 ``output`` (:mod:`gearlever.synthesis.law`).  A law the kind cannot give (a
 displacement law for a rocker, a net output rotation for a linkage that
 returns every turn, a net rotation no whole teeth give) is refused with
-exit 2 naming the LAW file; nothing is written then.
+exit 2 naming the LAW file; nothing is written then.  With ``--type
+auto`` each kind that gave no design is listed with the reason.  A design
+whose largest error exceeds 2 % of the law's range
+(:data:`~gearlever.synthesis.law.measure.MISS_FRACTION`) is still written,
+with a warning on stderr naming the error, the fraction and the time ratio
+achieved against the one wanted.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 
 from gearlever._format import rounded
 from gearlever._progress import TerminalProgress
@@ -43,8 +50,8 @@ MAX_TEETH = 1000
 
 def register_law(ss) -> None:
     """Add the ``law`` sub-command to the ``synthesize`` sub-parsers ``ss``."""
-    from gearlever.synthesis.law import KINDS
     from gearlever.synthesis.law.driver import DEFAULT_BUDGET, MAX_BUDGET, MIN_TRANSMISSION_DEG
+    from gearlever.synthesis.registry import names
 
     p = ss.add_parser(
         "law",
@@ -54,7 +61,7 @@ def register_law(ss) -> None:
         "minimax polish; dwell samples weigh 4 times). The model is written sketched at law input 0.",
     )
     p.add_argument("law", metavar="LAW.toml", help="the motion law ([law] with [[law.segment]] or samples)")
-    p.add_argument("--type", dest="kind", choices=(*KINDS, "auto"), required=True, help="mechanism type")
+    p.add_argument("--type", dest="kind", choices=(*names("law"), "auto"), required=True, help="mechanism type")
     p.add_argument("--out", required=True, help="model file to write (TOML, atomically)")
     p.add_argument("--report", default=None, metavar="R.json", help="write a JSON report")
     p.add_argument("--figure", default=None, metavar="F.png", help="write a figure (wanted and achieved law, error)")
@@ -63,7 +70,8 @@ def register_law(ss) -> None:
         "--budget",
         type=capped_int(MAX_BUDGET, low=100),
         default=DEFAULT_BUDGET,
-        help=f"candidate evaluations per type (default {DEFAULT_BUDGET}, at most {MAX_BUDGET:.0e})",
+        help=f"evaluations per type, searches and polishes together: a cap (default {DEFAULT_BUDGET}, "
+        f"at most {MAX_BUDGET:.0e})",
     )
     g = p.add_mutually_exclusive_group()
     g.add_argument("--workers", type=capped_int(MAX_WORKERS), default=None, help="local dask threads")
@@ -82,6 +90,14 @@ def register_law(ss) -> None:
         default=(17, 120),
         metavar=("ZMIN", "ZMAX"),
         help="bounds of gear teeth (default 17 120)",
+    )
+    p.add_argument(
+        "--dwell-tolerance",
+        type=finite_float,
+        default=None,
+        metavar="TOL",
+        help="largest excursion (peak to peak) of the output over each dwell, in the law's units (deg for an "
+        "angle law): a constraint of the search",
     )
     p.set_defaults(func=_run)
 
@@ -125,8 +141,14 @@ def _run(args) -> int:
         raise GearleverError(f"--min-transmission must be 0 <= DEG < 90, got {args.min_transmission:g}")
     if args.teeth[0] > args.teeth[1]:
         raise GearleverError(f"--teeth must be ZMIN <= ZMAX, got {args.teeth[0]} {args.teeth[1]}")
+    if args.dwell_tolerance is not None and not args.dwell_tolerance > 0:
+        raise GearleverError(f"--dwell-tolerance must be greater than 0, got {args.dwell_tolerance:g}")
     law = load_law(args.law)
+    tol = args.dwell_tolerance
+    if tol is not None and law.output == "angle":
+        tol = math.radians(tol)
     flags = {
+        "dwell_tolerance": "--dwell-tolerance",
         "scheduler": "--scheduler",
         "budget": "--budget",
         "kind": "--type",
@@ -145,10 +167,13 @@ def _run(args) -> int:
             min_transmission=math.radians(args.min_transmission),
             teeth=tuple(args.teeth),
             progress=bar,
+            dwell_tolerance=tol,
         )
     except GearleverError as exc:
         text = str(exc)
-        if text.startswith(("the law", "a ", "no kind")):
+        if text.startswith(("the law", "a ", "no kind", "dwell_tolerance bounds")):
+            if text.startswith("dwell_tolerance"):
+                text = "--dwell-tolerance" + text[len("dwell_tolerance") :]
             raise GearleverError(f"LAW {args.law!r}: {text}") from None
         raise flagged(exc, flags) from None
     finally:
@@ -175,12 +200,31 @@ def _run(args) -> int:
 
         save(law_synthesis_figure(res), args.figure)
     u = " deg" if ang else f" {law.units}"
-    tried = ", ".join(f"{k} {v:.4g}" if v is not None else f"{k} -" for k, v in rep["types_tried"].items())
+    tried = ", ".join(f"{k} {v:.4g}" for k, v in rep["types_tried"].items() if v is not None)
     lines = [
         f"type             {res.kind}" + (f" (tried, weighted max error: {tried})" if args.kind == "auto" else ""),
-        f"error            max {rep['error_max' + unit]:.4g}{u}, rms {rep['error_rms' + unit]:.4g}{u} "
-        f"over {rep['samples']} input angles",
     ]
+    if args.kind == "auto":
+        lines += [f"not tried        {k}: {why}" for k, why in rep["types_not_tried"].items()]
+        lines += [f"no design        {k}: {why}" for k, why in rep["types_without_design"].items()]
+    lines.append(
+        f"error            max {rep['error_max' + unit]:.4g}{u}, rms {rep['error_rms' + unit]:.4g}{u} "
+        f"over {rep['samples']} input angles ({100 * rep['error_fraction_of_range']:.3g} % of the range "
+        f"{rep['range' + unit]:.4g}{u})"
+    )
+    tr = rep["time_ratio"]
+    if tr["wanted"] is not None:
+        got = "none (the output does not both rise and return)" if tr["achieved"] is None else f"{tr['achieved']:.3g}"
+        lines.append(
+            f"time ratio       {got} (wanted {tr['wanted']:.3g}): rise over {tr['rise_deg']['achieved']:.4g} deg, "
+            f"return over {tr['return_deg']['achieved']:.4g} deg of input"
+        )
+    if rep["dwell_excursion" + unit] is not None:
+        bound = rep["dwell_tolerance" + unit]
+        lines.append(
+            f"dwell excursion  {rep['dwell_excursion' + unit]:.4g}{u} peak to peak"
+            + ("" if bound is None else f" (at most {bound:.4g}{u})")
+        )
     for s in rep["segments"]:
         extra = f", dwell excursion {s['dwell_excursion' + unit]:.4g}{u}" if "dwell_excursion" + unit in s else ""
         lines.append(
@@ -211,10 +255,23 @@ def _run(args) -> int:
         ]
         lines.append("slide (err max)  " + ", ".join(cells))
     lines += [
-        f"evaluations      {rep['evaluations']} (seed {args.seed}, {rep['starts']} starts)",
+        f"evaluations      {rep['evaluations']} (budget {args.budget} per type; seed {args.seed}, "
+        f"{rep['starts']} starts)",
         f"model            {args.out} (output link 'output')",
     ]
     emit("\n".join(lines))
+    if rep["misses_law"]:
+        tr = rep["time_ratio"]
+        ratio = ""
+        if tr["wanted"] is not None:
+            got = "none" if tr["achieved"] is None else f"{tr['achieved']:.3g}"
+            ratio = f"; time ratio {got} achieved, {tr['wanted']:.3g} wanted"
+        print(
+            f"gearlever synthesize law: warning: the best design ({res.kind}) misses the law by "
+            f"{rep['error_max' + unit]:.4g}{u}, {100 * rep['error_fraction_of_range']:.3g} % of its range "
+            f"{rep['range' + unit]:.4g}{u} (more than {100 * rep['miss_fraction_limit']:g} %){ratio}",
+            file=sys.stderr,
+        )
     return 0
 
 

@@ -17,8 +17,12 @@ registers its kinds with :func:`register` when its module is imported:
   :mod:`~gearlever.synthesis.fivebar`, :mod:`~gearlever.synthesis.sixbar`):
   ``fourbar``, ``geared-fivebar``, ``sixbar`` (through
   :func:`gearlever.synthesis.path_kinds.register`);
-- :mod:`gearlever.synthesis.law`: ``fourbar``, ``slider-crank``,
-  ``geared-fourbar``, ``sixbar-dwell``, ``gear-lever``;
+- :mod:`gearlever.synthesis.law`: ``fourbar``, ``geared-fourbar``,
+  ``gear-lever``, ``sixbar-dwell``, ``slider-crank``, ``slotted-lever``,
+  ``sixbar-slider`` (each kind's module registers its
+  :class:`~gearlever.synthesis.law.LawKind` class, the record's ``spec``,
+  through :func:`gearlever.synthesis.law._core.register`: the law family has
+  no registry of its own);
 - :mod:`gearlever.curves.search`: ``topology`` (the curve synthesis).
 
 :func:`kinds` imports the family modules of :data:`FAMILIES` first (by name,
@@ -89,9 +93,10 @@ class Kind:
         ``budget`` and ``workers``.  Otherwise a closed form or an exact
         solve (function, motion): no seed, no budget.
     polish_counted : bool
-        The result's ``evaluations`` count the polish too (law), beside the
-        global search's (at most ``budget`` per kind tried); otherwise the
-        polish is not counted and ``evaluations <= budget`` (path, curve).
+        The result's ``evaluations`` count the polish too, inside the
+        budget (law: at most ``budget`` per kind tried, searches and
+        polishes together); otherwise the polish is not counted (path,
+        curve).  Either way ``evaluations <= budget``.
     min_budget : int
         Smallest budget of the tiny problem (searched kinds).
     order : float

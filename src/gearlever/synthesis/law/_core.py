@@ -1,7 +1,9 @@
 """The common core of law synthesis: the sampled target, the kind interface and registry, objective and polish.
 
 A *kind* (one module each: :mod:`~gearlever.synthesis.law.fourbar`, ...)
-is a :class:`LawKind`: a box of design variables, the achieved output of
+is a :class:`LawKind`, added by :func:`register` to the one registry of
+synthesis kinds (:mod:`gearlever.synthesis.registry`, family ``law``, its
+class the record's ``spec``; :data:`KINDS` is a read-only view of it): a box of design variables, the achieved output of
 ``n`` candidates at ``N`` law inputs at once in closed form
 (:meth:`LawKind.generate`, complex-safe so that the polish differentiates it
 by the complex step), its exact constraints and its model writer.
@@ -14,14 +16,17 @@ Pure numpy and scipy.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from gearlever.errors import GearleverError
+from gearlever.synthesis import registry
 
 __all__ = [
     "KINDS",
+    "MIN_BUDGET",
     "LawKind",
     "LawProblem",
     "LawTarget",
@@ -37,17 +42,117 @@ SAMPLES = 360
 #: Weight of the dwell samples in the objective: 4 asks for a dwell four times as tight as the rest
 #: (the benchmark's 0.25 deg over the dwell against 1 deg over the cycle).
 DWELL_WEIGHT = 4.0
+#: The dwell excursion is held to this fraction of ``dwell_tolerance`` over the search samples, so that the
+#: result measured at ten times as many inputs stays within it.
+DWELL_MARGIN = 0.99
+#: Weight of the dwell excursion's excess in the search's objective (the bound as a penalty, then exact), and
+#: the fraction of the bound above which the search's penalty starts (a search ends near, not on, its optimum).
+DWELL_PENALTY = 10.0
+SEARCH_MARGIN = 0.9
 #: Complex step of the derivatives (Squire and Trapp 1998): exact to rounding for any step this small.
 _H = 1e-30
 
-#: The registry: kind name -> :class:`LawKind` subclass, filled by the kind modules.
-KINDS: dict = {}
+#: Smallest budget of a law synthesis (per kind).
+MIN_BUDGET = 100
+
+#: Dwell, cycloidal rise of 45 deg, 3-4-5 return (a law with a dwell; the angle kinds' tiny problem).
+DWELL = (
+    {"to": 120, "motion": "dwell"},
+    {"to": 240, "motion": "cycloidal", "rise": 45},
+    {"to": 360, "motion": "345", "rise": -45},
+)
+#: A harmonic lift of 40 and its return (the displacement kinds' tiny problem).
+LIFT = ({"to": 180, "motion": "harmonic", "rise": 40}, {"to": 360, "motion": "harmonic", "rise": -40})
+
+
+class _LawKinds(Mapping):
+    """Read-only view of the law kinds of the one registry: name -> :class:`LawKind` subclass, in order.
+
+    Not a second registry: every lookup reads :func:`gearlever.synthesis.registry.kinds` (family ``law``),
+    so a kind registered there is seen here.
+    """
+
+    def _map(self) -> dict:
+        return {k.name: k.spec for k in registry.kinds("law")}
+
+    def __getitem__(self, name):
+        return self._map()[name]
+
+    def __iter__(self):
+        return iter(self._map())
+
+    def __len__(self):
+        return len(self._map())
+
+    def __repr__(self):
+        return f"KINDS({', '.join(self._map())})"
+
+
+#: The law kinds of the one registry (a view): kind name -> :class:`LawKind` subclass, in the order of ``auto``.
+KINDS = _LawKinds()
+
+
+def kind_class(name: str):
+    """The :class:`LawKind` subclass of law kind ``name``, or the registry's refusal naming the kinds.
+
+    Examples
+    --------
+    >>> kind_class("slotted-lever").__name__, kind_class("slotted-lever").outputs
+    ('SlottedLeverLaw', ('angle', 'displacement'))
+    """
+    return registry.get("law", name).spec
 
 
 def register(cls):
-    """Class decorator: add a :class:`LawKind` subclass to :data:`KINDS` under ``cls.name``."""
-    KINDS[cls.name] = cls
+    """Class decorator: add a :class:`LawKind` subclass to the one registry (family ``law``, name ``cls.name``).
+
+    The record's description is the first line of the class docstring, its order ``cls.order`` (that of
+    ``auto``), its tiny problem ``cls.example`` (see :func:`example`), its spec the class.
+    """
+    registry.register(
+        registry.Kind(
+            "law",
+            cls.name,
+            ((cls.__doc__ or "").strip().splitlines() or [cls.name])[0].replace(" (see the module docstring)", ""),
+            "gearlever.synthesis.law.driver:synthesize_law",
+            polish_counted=True,
+            min_budget=MIN_BUDGET,
+            order=cls.order,
+            example=example(cls.name, cls.example),
+            spec=cls,
+        )
+    )
     return cls
+
+
+def _sine(power: int = 1, **kwargs) -> tuple:
+    """A 20 deg sine of the input (to ``power``) sampled at 72 inputs, and the keyword arguments."""
+    th = np.linspace(0.0, 2 * math.pi, 72, endpoint=False)
+    return (law_target(th, math.radians(20) * np.sin(th) ** power),), dict(kwargs)
+
+
+class example:  # noqa: N801 (a picklable callable named as the function it stands for)
+    """The tiny problem of a law kind: ``example()`` gives ``(args, kwargs)`` of ``synthesize_law``.
+
+    ``spec`` is the kind's ``example`` attribute: None (a 20 deg sine of the input, 72 samples), a dict
+    ``{"output", "units", "segments"}`` (a segment law) or ``{"power": p, "kwargs": {...}}``.
+
+    >>> args, kwargs = example("gear-lever", {"power": 2, "kwargs": {"teeth": (20, 40)}})()
+    >>> args[0].theta.size, kwargs
+    (72, {'teeth': (20, 40)})
+    """
+
+    def __init__(self, name: str, spec=None):
+        self.name, self.spec = name, spec
+
+    def __call__(self) -> tuple:
+        spec = self.spec or {}
+        if "segments" in spec:
+            from gearlever.laws import law_from_segments
+
+            segments = [dict(g) for g in spec["segments"]]
+            return (law_from_segments(spec["output"], spec["units"], segments),), dict(spec.get("kwargs", {}))
+        return _sine(spec.get("power", 1), **spec.get("kwargs", {}))
 
 
 def atan2c(y, x):
@@ -209,7 +314,7 @@ class LawKind:
     Examples
     --------
     >>> th = np.linspace(0, 2 * np.pi, 36, endpoint=False)
-    >>> kind = KINDS["fourbar"](law_target(th, 0.3 * np.sin(th)))
+    >>> kind = kind_class("fourbar")(law_target(th, 0.3 * np.sin(th)))
     >>> kind.name, kind.d, kind.outputs
     ('fourbar', 5, ('angle',))
     """
@@ -218,6 +323,10 @@ class LawKind:
     outputs: tuple = ("angle",)
     names: tuple = ()
     fixed: tuple = ()
+    #: Place among the law kinds (that of ``auto``, smallest first).
+    order: float = math.inf
+    #: The kind's tiny problem (see :class:`example`): None, a segment law or a sine's power.
+    example = None
 
     def __init__(self, target: LawTarget, teeth=(17, 120)):
         self.target = target
@@ -296,13 +405,44 @@ class LawProblem:
     (5, ('b', 'c', 'u2'))
     """
 
-    def __init__(self, kind: str, target: LawTarget, min_transmission: float = 0.0, teeth=(17, 120)):
-        if kind not in KINDS:
-            raise GearleverError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
-        self.kind = KINDS[kind](target, teeth)
+    def __init__(
+        self,
+        kind: str,
+        target: LawTarget,
+        min_transmission: float = 0.0,
+        teeth=(17, 120),
+        dwell_tolerance: float | None = None,
+    ):
+        self.kind = kind_class(kind)(target, teeth)
         self.target = target
         self.min_transmission = float(min_transmission)
         self.evaluations = 0
+        #: Evaluations after which the polish stops (None: no cap); set by the driver to hold the budget.
+        self.cap: int | None = None
+        self.dwell_tolerance = None if dwell_tolerance is None else float(dwell_tolerance)
+        #: Sample indices of each dwell segment (the excursion is measured over each).
+        self.dwells = [np.flatnonzero(target.segment == k) for k, m in enumerate(target.motions) if m == "dwell"]
+        self.dwells = [idx for idx in self.dwells if idx.size > 1]
+        if self.dwell_tolerance is not None:
+            if not (math.isfinite(self.dwell_tolerance) and self.dwell_tolerance > 0):
+                raise GearleverError(f"dwell_tolerance must be a positive number, got {dwell_tolerance!r}")
+            if not self.dwells:
+                raise GearleverError("dwell_tolerance bounds the output's excursion over a dwell: the law has no dwell")
+
+    def excursion(self, G) -> np.ndarray:
+        """Largest excursion (peak to peak) of outputs ``G (n, N)`` over a dwell segment ``(n,)`` (0: no dwell)."""
+        G = np.real(G)
+        out = np.zeros(G.shape[0])
+        with np.errstate(invalid="ignore"):
+            for idx in self.dwells:
+                out = np.maximum(out, np.ptp(G[:, idx], axis=1))
+        return out
+
+    def violation(self, G, margin: float = DWELL_MARGIN) -> np.ndarray:
+        """How far the dwell excursion of ``G`` exceeds ``margin`` times :attr:`dwell_tolerance` (0: within)."""
+        if self.dwell_tolerance is None:
+            return np.zeros(np.shape(G)[0])
+        return np.maximum(self.excursion(G) - margin * self.dwell_tolerance, 0.0)
 
     @property
     def d(self):
@@ -319,6 +459,7 @@ class LawProblem:
     def feasible(self, Z, mn=None, mx=None) -> np.ndarray:
         Z = np.atleast_2d(Z)
         if mn is None:
+            self.evaluations += Z.shape[0]
             mn, mx = self.kind.transmission(Z)
         b = self.min_transmission
         with np.errstate(invalid="ignore"):
@@ -327,11 +468,13 @@ class LawProblem:
     def residuals(self, Z):
         """Unweighted ``generate - s`` (n, N) with the weighted-mean zero, and feasibility."""
         t = self.target
+        Z = np.atleast_2d(Z)
+        self.evaluations += Z.shape[0]
         G, ok = self.kind.generate(Z, t.theta)
         R = G - t.s
         w2 = t.weight**2
         k = -(R @ w2) / w2.sum()
-        return R + k[:, None], k, ok
+        return R + k[:, None], k, ok & (self.violation(G) == 0)
 
     def objective(self, Z) -> np.ndarray:
         Z = np.atleast_2d(Z)
@@ -342,7 +485,7 @@ class LawProblem:
         with np.errstate(invalid="ignore"):
             R = G - t.s
             R = R - (R @ w2)[:, None] / w2.sum()
-            F = np.sqrt((R * R) @ w2 / t.theta.size)
+            F = np.sqrt((R * R) @ w2 / t.theta.size) + DWELL_PENALTY * self.violation(G, SEARCH_MARGIN)
         ok = ok & self.feasible(Z, mn, mx) & np.isfinite(F)
         return np.where(ok, F, np.inf)
 
@@ -360,17 +503,27 @@ class LawProblem:
         return np.array([n not in self.kind.fixed for n in self.kind.names], dtype=bool)
 
     def weighted_max(self, z, k) -> float:
+        """Weighted maximum error of design ``z`` with output zero ``k``; ``inf`` if it breaks a constraint."""
+        self.evaluations += 1
         G, ok = self.kind.generate(z[None, :], self.target.theta)
-        if not ok[0]:
+        if not ok[0] or self.violation(G)[0] > 0:
             return math.inf
         return float(np.max(np.abs(G[0] + k - self.target.s) * self.target.weight))
 
     def jacobian(self, z):
-        """``d generate / d z`` (N, d) by the complex step (exact to rounding); ``z`` real (d,)."""
+        """``d generate / d z`` (N, d) by the complex step (exact to rounding); ``z`` real (d,).
+
+        Counts ``d`` evaluations (one complex candidate per variable).
+        """
         d = z.size
+        self.evaluations += d
         Zc = np.tile(z.astype(complex), (d, 1)) + 1j * _H * np.eye(d)
         G, _ = self.kind.generate(Zc, self.target.theta)
         return (np.imag(G) / _H).T
+
+    def remaining(self) -> float:
+        """Evaluations left before :attr:`cap` (``inf`` without a cap)."""
+        return math.inf if self.cap is None else self.cap - self.evaluations
 
     def polish(self, z, rounds: int = 25):
         """Minimax polish from ``z``: returns ``(z, k, weighted max error)``.
@@ -384,7 +537,10 @@ class LawProblem:
         (:func:`scipy.optimize.least_squares`, trust region in the box, the
         complex-step Jacobian) and multiplies each sample's weight by its
         error, which drives the weighted RMS towards the weighted maximum.
-        A step that breaks a constraint is not taken.
+        A step that breaks a constraint (the transmission angle, the dwell
+        excursion's bound) is not taken.  Every evaluation counts in
+        :attr:`evaluations` (a Jacobian as ``d``); the polish stops before it
+        would pass :attr:`cap`.
         """
         from scipy.optimize import least_squares
 
@@ -408,6 +564,10 @@ class LawProblem:
             return zz
 
         for _ in range(rounds):
+            # each function evaluation of least_squares may bring a Jacobian (d more) and the round's checks 2
+            nfev = min(60, int((self.remaining() - 2) // (1 + z.size))) if self.cap is not None else 60
+            if nfev < 2:
+                break
             sw = np.sqrt(lam) * t.weight
 
             def res(x, sw=sw):
@@ -421,11 +581,11 @@ class LawProblem:
             try:
                 with np.errstate(invalid="ignore", divide="ignore"):
                     sol = least_squares(
-                        res, x, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", max_nfev=60, xtol=1e-14
+                        res, x, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", max_nfev=nfev, xtol=1e-14
                     )
             except (ValueError, np.linalg.LinAlgError):
                 break
-            self.evaluations += int(sol.nfev)
+            self.evaluations += int(sol.nfev)  # the Jacobians were counted by ``jacobian``
             zz = full(sol.x)
             if not (self.feasible(zz)[0] and np.all(np.isfinite(sol.fun))):
                 break

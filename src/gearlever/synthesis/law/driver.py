@@ -15,7 +15,7 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.synthesis.driver import check_budget, multistart
-from gearlever.synthesis.law._core import KINDS, SAMPLES, LawProblem, LawTarget, law_target
+from gearlever.synthesis.law._core import KINDS, MIN_BUDGET, SAMPLES, LawProblem, LawTarget, kind_class, law_target
 from gearlever.synthesis.path import n_starts
 
 __all__ = [
@@ -28,14 +28,14 @@ __all__ = [
     "REPORT_SAMPLES",
 ]
 
-#: Candidate evaluations of the global search per kind (all starts together).
-DEFAULT_BUDGET = 400_000
+#: Evaluations per kind, searches and polishes together (:func:`budget_split`): the starts' searches get
+#: 400 000 of it, as when the polishes were counted apart.
+DEFAULT_BUDGET = 800_000
 #: Default bound of the transmission angle, degrees (a linkage near a toggle is no design).
 MIN_TRANSMISSION_DEG = 20.0
 #: Lawson rounds of the final polish of the best start (each start has 25).
 FINAL_ROUNDS = 100
-#: Smallest and largest budget accepted.
-MIN_BUDGET = 100
+#: Largest budget accepted (the smallest is :data:`~gearlever.synthesis.law._core.MIN_BUDGET`).
 MAX_BUDGET = 10**7
 #: Law inputs at which the result is measured (a tenth of a degree apart).
 REPORT_SAMPLES = 3600
@@ -71,56 +71,6 @@ def target_of_law(law, samples: int = SAMPLES, dwell_weight: float | None = None
     )
 
 
-def _sine(power: int = 1, **kwargs):
-    """A 20 deg sine of the input (to ``power``) sampled at 72 inputs, and the keyword arguments."""
-
-    def make() -> tuple:
-        th = np.linspace(0.0, 2 * math.pi, 72, endpoint=False)
-        return (law_target(th, math.radians(20) * np.sin(th) ** power),), dict(kwargs)
-
-    return make
-
-
-def _segments(output: str, units: str, segments: list):
-    def make() -> tuple:
-        from gearlever.laws import law_from_segments
-
-        return (law_from_segments(output, units, segments),), {}
-
-    return make
-
-
-#: Dwell, cycloidal rise of 45 deg, 3-4-5 return (a law with a dwell).
-DWELL = [
-    {"to": 120, "motion": "dwell"},
-    {"to": 240, "motion": "cycloidal", "rise": 45},
-    {"to": 360, "motion": "345", "rise": -45},
-]
-
-#: The tiny problem of each kind (a law it can give): kind -> ``example()`` giving ``(args, kwargs)``.
-EXAMPLES = {
-    "fourbar": _sine(),
-    "slider-crank": _segments(
-        "displacement",
-        "mm",
-        [{"to": 180, "motion": "harmonic", "rise": 40}, {"to": 360, "motion": "harmonic", "rise": -40}],
-    ),
-    "geared-fourbar": _segments("angle", "deg", DWELL),
-    "sixbar-dwell": _segments("angle", "deg", DWELL),
-    "gear-lever": _sine(2, teeth=(20, 40)),
-}
-
-
-def example(kind: str):
-    """The tiny problem of law kind ``kind``: ``example()`` gives ``(args, kwargs)`` of :func:`synthesize_law`.
-
-    >>> args, kwargs = example("gear-lever")()
-    >>> args[0].theta.size, kwargs
-    (72, {'teeth': (20, 40)})
-    """
-    return EXAMPLES.get(kind, _sine())
-
-
 def _target_spec(t: LawTarget) -> dict:
     return {
         "theta": t.theta.tolist(),
@@ -152,8 +102,14 @@ def _target_of(spec: dict) -> LawTarget:
 
 
 def make_problem(spec: dict) -> LawProblem:
-    """The :class:`LawProblem` of a spec (plain data: kind, target, bounds)."""
-    return LawProblem(spec["kind"], _target_of(spec["target"]), spec["min_transmission"], tuple(spec["teeth"]))
+    """The :class:`LawProblem` of a spec (plain data: kind, target, bounds, the polish's cap)."""
+    return LawProblem(
+        spec["kind"],
+        _target_of(spec["target"]),
+        spec["min_transmission"],
+        tuple(spec["teeth"]),
+        dwell_tolerance=spec.get("dwell_tolerance"),
+    )
 
 
 class LawSearch:
@@ -165,10 +121,6 @@ class LawSearch:
     minimax polish of :class:`LawProblem`: ``polish(z, rounds) -> (z, objective, {"offset": off})``.
     """
 
-    def __init__(self, pb: LawProblem):
-        self.pb = pb
-        self.lo, self.hi = pb.kind.search_box()
-
     @property
     def evaluations(self) -> int:
         return self.pb.evaluations
@@ -179,15 +131,25 @@ class LawSearch:
     def objective(self, Z):
         return self.pb.search_objective(Z)
 
+    def __init__(self, pb: LawProblem, polish_cap: int | None = None):
+        self.pb = pb
+        self.lo, self.hi = pb.kind.search_box()
+        self.polish_cap = polish_cap
+
     def polish(self, z, rounds=None) -> tuple:
-        """``(z, objective, {"offset": off})``: the minimax polish (its default rounds) of the full vector of ``z``."""
+        """``(z, objective, {"offset": off})``: the minimax polish (its default rounds) of the full vector of ``z``.
+
+        The polish spends at most ``polish_cap`` evaluations (the spec's ``polish_cap``).
+        """
+        if self.polish_cap is not None:
+            self.pb.cap = self.pb.evaluations + int(self.polish_cap)
         full = self.pb.kind.to_full(np.asarray(z)[None, :])[0]
         z, off, f = self.pb.polish(full) if rounds is None else self.pb.polish(full, rounds=rounds)
         return np.asarray(z), f, {"offset": off}
 
 
 def _search_problem(spec: dict) -> LawSearch:
-    return LawSearch(make_problem(spec))
+    return LawSearch(make_problem(spec), spec.get("polish_cap"))
 
 
 def search_problem(spec: dict):
@@ -216,8 +178,19 @@ class LawSynthesis(Result):
     details : dict
         Lengths, teeth, branch of the design.
     evaluations, seed, starts : int
+        ``evaluations`` counts every evaluation of the searches and the polishes, at most ``budget`` per kind
+        tried.
     tried : dict
-        Kind -> objective (``auto``), None where none was feasible.
+        Kind -> objective of each kind searched (``auto``), None where none was feasible.
+    not_tried : dict
+        Kind -> why it gave no design (``auto``): the law it cannot give (not searched), or no design within
+        the constraints (searched: a key of ``spent``).
+    dwell_tolerance : float or None
+        The bound on the output's excursion over each dwell (output units), if one was set.
+    budget : int
+        Evaluations allowed per kind.
+    spent : dict
+        Kind -> evaluations it spent (each at most ``budget``).
 
     Examples
     --------
@@ -246,14 +219,18 @@ class LawSynthesis(Result):
     seconds: float = field(default=0.0, compare=False)
     tried: dict = field(default_factory=dict)
     target: LawTarget = field(default=None, compare=False, repr=False)
+    not_tried: dict = field(default_factory=dict)
+    dwell_tolerance: float | None = None
+    budget: int = 0
+    spent: dict = field(default_factory=dict)
 
     def model(self) -> dict:
         """Model dict sketched at law input 0 (output link ``output``)."""
-        return KINDS[self.kind](self.target).model(self.z, self.offset)
+        return kind_class(self.kind)(self.target).model(self.z, self.offset)
 
     def generated(self, theta) -> np.ndarray:
         """The achieved output (with the fit's zero) at law inputs ``theta`` (closed form)."""
-        G, _ = KINDS[self.kind](self.target).generate(self.z[None, :], np.asarray(theta, dtype=float))
+        G, _ = kind_class(self.kind)(self.target).generate(self.z[None, :], np.asarray(theta, dtype=float))
         return G[0] + self.offset
 
 
@@ -281,6 +258,7 @@ def synthesize_law(
     method: str = "de",
     progress=None,
     law=None,
+    dwell_tolerance: float | None = None,
 ) -> LawSynthesis:
     """Synthesize a mechanism of ``kind`` (or every kind: ``"auto"``) whose output follows ``target``.
 
@@ -290,9 +268,11 @@ def synthesize_law(
         The law sampled over a turn (:func:`~gearlever.synthesis.law.law_target`), or the law itself
         (sampled by :func:`target_of_law`; the error is then measured against it).
     kind : str
-        A kind of :data:`~gearlever.synthesis.law.KINDS` or ``"auto"`` (all, the best kept).
+        A law kind of the registry (:func:`gearlever.synthesis.kinds` ``("law")``) or ``"auto"`` (all, the
+        best kept).
     seed, budget : int
-        The result is fixed by them: start ``k`` draws from ``default_rng([seed, k])``.
+        The result is fixed by them: start ``k`` draws from ``default_rng([seed, k])``.  ``budget`` caps the
+        evaluations of each kind, searches and polishes together.
     workers, scheduler
         Local dask threads (an int), a map-like, or a dask.distributed scheduler address (see
         :func:`gearlever.synthesis.driver.multistart`; the result does not depend on them).
@@ -303,6 +283,9 @@ def synthesize_law(
         Bounds of gear teeth.
     law : callable, optional
         Wanted output at any law input (radians) for the measured error; default: the samples interpolated.
+    dwell_tolerance : float, optional
+        Largest excursion (peak to peak) of the output over each dwell segment, output units (radians for an
+        angle law): a constraint of every kind; a design that breaks it is never returned.
 
     Returns
     -------
@@ -315,8 +298,12 @@ def synthesize_law(
     budget and the variables, never by the workers), each polished by the
     minimax polish of :class:`~gearlever.synthesis.law._core.LawProblem`;
     starts are reduced by (objective, start index)
-    (:func:`gearlever.synthesis.driver.multistart`).  ``evaluations`` counts
-    the global searches (at most ``budget`` per kind tried) and the polishes.
+    (:func:`gearlever.synthesis.driver.multistart`) and the best is polished
+    further.  The budget is a cap: of each kind's ``budget``,
+    :data:`SEARCH_SHARE` goes to the starts' searches, :data:`POLISH_SHARE`
+    to their polishes and the rest to the final polish; ``evaluations``
+    counts them all (a complex-step Jacobian as one evaluation per
+    variable), at most ``budget`` per kind tried.
 
     Examples
     --------
@@ -324,8 +311,8 @@ def synthesize_law(
     >>> from gearlever.synthesis.law import law_target
     >>> th = np.linspace(0, 2 * np.pi, 72, endpoint=False)
     >>> res = synthesize_law(law_target(th, np.radians(20) * np.sin(th)), kind="fourbar", budget=3000, workers=1)
-    >>> bool(np.degrees(np.abs(res.error).max()) < 1.0)
-    True
+    >>> bool(np.degrees(np.abs(res.error).max()) < 1.0), res.evaluations <= 3000
+    (True, True)
     """
     if not isinstance(target, LawTarget):  # a MotionLaw
         motion_law = target
@@ -338,6 +325,9 @@ def synthesize_law(
     if not (math.isfinite(min_transmission) and 0 <= min_transmission < math.pi / 2):
         raise GearleverError(f"min_transmission must be 0 <= . < pi/2 radians, got {min_transmission!r}")
     budget = check_budget("budget", budget, MIN_BUDGET, MAX_BUDGET)
+    if dwell_tolerance is not None:
+        dwell_tolerance = float(dwell_tolerance)
+        LawProblem(next(iter(KINDS)), target, dwell_tolerance=dwell_tolerance)  # the bound's refusals
     kinds = list(KINDS) if kind == "auto" else [kind]
     usable = []
     reasons = {}
@@ -353,17 +343,18 @@ def synthesize_law(
         raise GearleverError("no kind can give this law: " + "; ".join(f"{k}: {v}" for k, v in reasons.items()))
     t0 = time.perf_counter()
     spec_target = _target_spec(target)
-    best, tried, evals = None, {}, 0
+    best, tried, spent, failed = None, {}, {}, {}
     for kd in usable:
         spec = {
             "kind": kd,
             "target": spec_target,
             "min_transmission": float(min_transmission),
             "teeth": [int(teeth[0]), int(teeth[1])],
+            "dwell_tolerance": dwell_tolerance,
         }
         pb = make_problem(spec)
-        starts = n_starts(budget, pb.kind.search_box()[0].size)
-        per = max(budget // starts, 1)
+        starts, per, cap = budget_split(budget, pb.kind.search_box()[0].size)
+        spec["polish_cap"] = cap
         results = multistart(
             search_problem(spec),
             starts,
@@ -373,27 +364,73 @@ def synthesize_law(
             progress=progress,
             method=method,
         )
-        evals += sum(s.evaluations + s.polish_evaluations for s in results)
+        used = sum(s.evaluations + s.polish_evaluations for s in results)
         top = results[0]
         if top.x is None or not math.isfinite(top.objective):
-            tried[kd] = None
+            tried[kd], spent[kd] = None, used
+            failed[kd] = _why_none(min_transmission, dwell_tolerance, target)
             continue
         f, z, off = top.objective, top.x, top.info["offset"]
-        # the best start polished further (after the reduction: the same for any workers)
+        # the best start polished further with what is left of the budget (after the reduction: the same
+        # for any workers)
+        pb.cap = budget - used
         z2, off2, f2 = pb.polish(np.asarray(z), rounds=FINAL_ROUNDS)
         if f2 < f:
             z, off, f = z2, off2, f2
-        evals += pb.evaluations
+        spent[kd] = used + pb.evaluations
         res = _result(pb, np.asarray(z), off, f, seed, starts, law)
         tried[kd] = res.objective
         if best is None or res.objective < best.objective:
             best = res
     if best is None:
-        raise GearleverError("no buildable mechanism found within the constraints (min_transmission, teeth)")
+        raise GearleverError(
+            "no buildable mechanism found within the constraints ("
+            + "; ".join(f"{k}: {v}" for k, v in failed.items())
+            + ")"
+        )
     from dataclasses import replace
 
     tried.update({k: None for k in reasons})
-    return replace(best, evaluations=evals, seconds=time.perf_counter() - t0, tried=tried)
+    return replace(
+        best,
+        evaluations=sum(spent.values()),
+        seconds=time.perf_counter() - t0,
+        tried=tried,
+        not_tried={**reasons, **failed},
+        dwell_tolerance=dwell_tolerance,
+        budget=budget,
+        spent=spent,
+    )
+
+
+#: Shares of a kind's budget: the starts' global searches, their polishes; the rest is the final polish's.
+SEARCH_SHARE = 0.5
+POLISH_SHARE = 0.25
+#: Least evaluations of one start's polish (it measures its start and its output zero first).
+MIN_POLISH = 2
+
+
+def budget_split(budget: int, d: int) -> tuple:
+    """``(starts, search, polish)``: the starts and each one's search and polish evaluations within ``budget``.
+
+    The starts' searches get :data:`SEARCH_SHARE` of the budget, their polishes :data:`POLISH_SHARE` (at
+    least :data:`MIN_POLISH` each); the final polish of the best start gets what they leave.
+
+    >>> budget_split(400_000, 9), budget_split(100, 4)
+    ((32, 6250, 3125), (8, 6, 3))
+    """
+    starts = n_starts(budget, d)
+    polish = max(int(POLISH_SHARE * budget) // starts, MIN_POLISH)
+    search = max(min(int(SEARCH_SHARE * budget) // starts, budget // starts - polish), 1)
+    return starts, search, polish
+
+
+def _why_none(min_transmission: float, dwell_tolerance, target: LawTarget) -> str:
+    why = f"no design within the constraints (transmission angle at least {math.degrees(min_transmission):.6g} deg"
+    if dwell_tolerance is not None:
+        tol = math.degrees(dwell_tolerance) if target.output == "angle" else dwell_tolerance
+        why += f", dwell excursion at most {tol:.6g}" + (" deg" if target.output == "angle" else f" {target.units}")
+    return why + ")"
 
 
 def _result(pb: LawProblem, z, off, f, seed, starts, law) -> LawSynthesis:

@@ -107,6 +107,7 @@ class FourBarLaw(LawKind):
     """Crank-rocker four-bar, output the rocker (see the module docstring)."""
 
     name = "fourbar"
+    order = 0
     outputs = ("angle",)
     names = ("b", "c", "u2", "alpha", "branch")
     fixed = ("branch",)

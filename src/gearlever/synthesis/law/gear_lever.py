@@ -87,6 +87,8 @@ class GearLeverLaw(LawKind):
     """
 
     name = "gear-lever"
+    order = 2
+    example = {"power": 2, "kwargs": {"teeth": (20, 40)}}
     outputs = ("angle",)
     names = ("b", "c", "u2", "alpha", "c2", "beta", "b2", "l", "z9", "z8", "branch", "branch2")
     fixed = ("z9", "z8", "branch", "branch2")

@@ -32,7 +32,7 @@ from fractions import Fraction
 import numpy as np
 
 from gearlever.errors import GearleverError
-from gearlever.synthesis.law._core import LawKind, register
+from gearlever.synthesis.law._core import DWELL, LawKind, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, FourBarLaw, crank_rocker, fourbar_angles, transmission_range
 from gearlever.synthesis.model import mechanism_table, xy_pair
 
@@ -65,6 +65,8 @@ class GearedFourBarLaw(LawKind):
     """Geared four-bar, output the gear on the ground pivot (see the module docstring)."""
 
     name = "geared-fourbar"
+    order = 1
+    example = {"output": "angle", "units": "deg", "segments": DWELL}
     outputs = ("angle",)
     names = ("b", "c", "u2", "alpha", "z3", "z5", "branch")
     fixed = ("z3", "z5", "branch")

@@ -21,10 +21,22 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 
-__all__ = ["MechanismLaw", "mechanism_law", "fit_segments", "law_report", "cam_comparison", "DWELL_THRESHOLD"]
+__all__ = [
+    "MechanismLaw",
+    "mechanism_law",
+    "fit_segments",
+    "law_report",
+    "cam_comparison",
+    "time_ratio",
+    "DWELL_THRESHOLD",
+    "MISS_FRACTION",
+]
 
 #: A dwell: the output's speed analogue below this fraction of its peak.
 DWELL_THRESHOLD = 0.01
+#: A design misses its law when its largest error exceeds this fraction of the law's range (2 %): the report
+#: says so (``misses_law``) and the command line warns on stderr.
+MISS_FRACTION = 0.02
 #: Shortest dwell reported (degrees of input).
 MIN_DWELL_DEG = 10.0
 
@@ -184,13 +196,77 @@ def _runs(cls) -> list:
     return [(int(a), int(b - a)) for a, b in zip(change, ends)]
 
 
+def time_ratio(theta, s, net: float = 0.0, threshold: float = 0.0) -> dict:
+    """Quick-return time ratio of a periodic output: the input spent rising over the input spent returning.
+
+    The speed analogue is the periodic central difference of ``s`` (evenly
+    spaced ``theta`` over one turn); a sample rises where it is above
+    ``threshold`` times its peak, returns where it is below minus that,
+    dwells otherwise (dwells count in neither; the report takes
+    :data:`DWELL_THRESHOLD` for a law with a dwell, else 0).  The time ratio of a
+    quick-return mechanism is the crank angle of its working stroke over
+    that of its return at a uniform crank speed (Shigley and Uicker,
+    *Theory of Machines and Mechanisms*, quick-return mechanisms).
+
+    Returns
+    -------
+    dict
+        ``rise_deg``, ``return_deg`` (input spans) and ``ratio`` (None for an output that does not both rise
+        and return, or that turns on: ``net != 0``).
+
+    Examples
+    --------
+    >>> th = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+    >>> s = np.where(th < 4 * np.pi / 3, th / (4 * np.pi / 3), 1 - (th - 4 * np.pi / 3) / (2 * np.pi / 3))
+    >>> r = time_ratio(th, s)
+    >>> r["rise_deg"], r["return_deg"], r["ratio"]
+    (239.0, 121.0, 1.975206611570248)
+    """
+    theta, s = np.asarray(theta, dtype=float), np.asarray(s, dtype=float)
+    h = 2 * math.pi / theta.size
+    drift = s - net * theta / (2 * math.pi)
+    v = (np.roll(drift, -1) - np.roll(drift, 1)) / (2 * h) + net / (2 * math.pi)
+    top = float(np.max(np.abs(v))) if v.size else 0.0
+    rise = int(np.count_nonzero(v > threshold * top)) if top > 0 else 0
+    ret = int(np.count_nonzero(v < -threshold * top)) if top > 0 else 0
+    deg = 360.0 / theta.size
+    ok = rise > 0 and ret > 0 and net == 0.0
+    return {"rise_deg": rise * deg, "return_deg": ret * deg, "ratio": rise / ret if ok else None}
+
+
+def _segment_time_ratio(t) -> dict | None:
+    """The time ratio of a segment law from its segments (rises over returns), or None for a sampled law."""
+    if t.motions == ("samples",):
+        return None
+    rise = ret = 0.0
+    for k, motion in enumerate(t.motions):
+        m = t.segment == k
+        if motion == "dwell" or not m.any():
+            continue
+        span = math.degrees(t.breaks[k + 1] - t.breaks[k])
+        idx = np.flatnonzero(m)
+        nxt = (idx[-1] + 1) % t.s.size
+        change = t.s[nxt] - t.s[idx[0]] + (t.net if nxt == 0 else 0.0)
+        if change > 0:
+            rise += span
+        elif change < 0:
+            ret += span
+    ok = rise > 0 and ret > 0 and t.net == 0.0
+    return {"rise_deg": rise, "return_deg": ret, "ratio": rise / ret if ok else None}
+
+
 def law_report(res, *, degrees: bool = True) -> dict:
     """Strict-JSON-ready measures of a :class:`~gearlever.synthesis.law.driver.LawSynthesis` against its law.
 
     Error (max, RMS, per segment), dwell excursion per dwell segment (the
-    achieved output's range over the segment), peak velocity and
-    acceleration analogues achieved against wanted, transmission angle
-    range, the design's details.
+    achieved output's range over the segment) and the largest of them against
+    the bound set (``dwell_tolerance``), peak velocity and acceleration
+    analogues achieved against wanted, transmission angle range, the time
+    ratio achieved against wanted (:func:`time_ratio`), whether the design
+    misses the law (``misses_law``: its largest error above
+    :data:`MISS_FRACTION` of the law's range), the design's details, the
+    evaluations against the budget and, for ``auto``, why each kind not
+    kept gave no design.
     """
     t = res.target
     ang = t.output == "angle"
@@ -221,10 +297,29 @@ def law_report(res, *, degrees: bool = True) -> dict:
             rec[f"dwell_excursion{unit}"] = conv(float(np.ptp(ach[m])))
         segments.append(rec)
     mn, mx = res.transmission_range
+    emax = float(np.max(np.abs(err)))
+    scale = t.scale
+    excursions = [float(np.ptp(ach[seg == k])) for k, m in enumerate(t.motions) if m == "dwell" and (seg == k).any()]
+    thr = DWELL_THRESHOLD if "dwell" in t.motions else 0.0
+    tr_want = _segment_time_ratio(t) or time_ratio(th, res.wanted, t.net, thr)
+    tr_got = time_ratio(th, ach, t.net, thr)
+    tol = res.dwell_tolerance
     return {
         "kind": res.kind,
         "feasible": res.feasible,
-        f"error_max{unit}": conv(float(np.max(np.abs(err)))),
+        "misses_law": bool(emax > MISS_FRACTION * scale),
+        "miss_fraction_limit": MISS_FRACTION,
+        "error_fraction_of_range": emax / scale,
+        "range" + unit: conv(scale),
+        "time_ratio": {
+            "achieved": tr_got["ratio"],
+            "wanted": tr_want["ratio"],
+            "rise_deg": {"achieved": tr_got["rise_deg"], "wanted": tr_want["rise_deg"]},
+            "return_deg": {"achieved": tr_got["return_deg"], "wanted": tr_want["return_deg"]},
+        },
+        "dwell_excursion" + unit: conv(max(excursions)) if excursions else None,
+        "dwell_tolerance" + unit: None if tol is None else conv(tol),
+        f"error_max{unit}": conv(emax),
         f"error_rms{unit}": conv(float(np.sqrt(np.mean(err**2)))),
         "objective_weighted_max" + unit: conv(res.objective),
         "segments": segments,
@@ -241,9 +336,13 @@ def law_report(res, *, degrees: bool = True) -> dict:
         "output_offset" + unit: conv(res.offset),
         "output_at_input_0" + unit: conv(float(ach[0])),
         "evaluations": res.evaluations,
+        "budget_per_type": res.budget,
+        "evaluations_per_type": dict(res.spent),
         "seed": res.seed,
         "starts": res.starts,
         "types_tried": {k: (None if v is None else conv(v)) for k, v in res.tried.items()},
+        "types_not_tried": {k: v for k, v in res.not_tried.items() if k not in res.spent},
+        "types_without_design": {k: v for k, v in res.not_tried.items() if k in res.spent},
         "samples": int(n),
     }
 

@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from gearlever.synthesis.law._core import LawKind, atan2c, register
+from gearlever.synthesis.law._core import DWELL, LawKind, atan2c, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, crank_rocker, fourbar_angles, transmission_range
 from gearlever.synthesis.model import mechanism_table, xy_pair
 
@@ -48,6 +48,8 @@ class SixBarDwellLaw(LawKind):
     """Stephenson III arc-dwell six-bar, output the rocker O6-D (see the module docstring)."""
 
     name = "sixbar-dwell"
+    order = 3
+    example = {"output": "angle", "units": "deg", "segments": DWELL}
     outputs = ("angle",)
     names = ("b", "c", "u2", "alpha", "cx", "cy", "x6", "y6", "l5", "l6", "branch", "branch2")
     fixed = ("branch", "branch2")

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from gearlever.synthesis.law._core import LawKind, register
+from gearlever.synthesis.law._core import LIFT, LawKind, register
 from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["SliderCrankLaw"]
@@ -30,6 +30,8 @@ class SliderCrankLaw(LawKind):
     """Offset slider-crank, output the slider (see the module docstring)."""
 
     name = "slider-crank"
+    order = 4
+    example = {"output": "displacement", "units": "mm", "segments": LIFT}
     outputs = ("displacement",)
     names = ("a", "e", "m", "alpha", "branch")
     fixed = ("branch",)
