@@ -108,6 +108,15 @@ def test_square_rod_branch_stop_is_the_old_behaviour():
     assert input_limits(m).full_turn and not sweep_rows(m, 8).oscillates
 
 
+def test_square_rod_branch_stop_never_passes_a_row_closed_at_the_square_pose():
+    # 1000 rows put row 750 exactly on the pose: it closes there, and the rows past it are not reached (before
+    # the branch policy the continuation went on from it onto the kept branch for five rows, then stopped)
+    m = _square_rod()
+    r = m.solve(np.linspace(0.0, 2 * np.pi, 1000, endpoint=False), branch="stop")
+    assert r.closed[:751].all() and not r.closed[751:].any() and r.dead_rows.tolist() == [751]
+    assert "(at crank = 4.71239 rad)" in r.reason[751]
+
+
 def test_square_rod_branch_keep_holds_the_sketch_branch_and_the_velocity_jumps():
     m = _square_rod()
     q = np.linspace(0.0, 2 * np.pi, 721)[:-1] + 0.001

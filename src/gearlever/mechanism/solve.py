@@ -600,7 +600,7 @@ class KinematicSystem:
             if far.any():
                 k = int(prior[np.flatnonzero(far)[-1]])
                 back = (sub[:, k], self.N.T @ xs[:, k])
-        return cross(self, s_dq, back, target, sgn, branch, rows=sub[:, i:])
+        return cross(self, s_dq, back, target, sgn, "continue" if branch == "stop" else branch, rows=sub[:, i:])
 
     def _pred_sign(self, dq, z):
         """Sign of ``det J_z`` at the predicted states ``(dq, z)`` (W, M), (dz, M)."""
@@ -686,13 +686,21 @@ class KinematicSystem:
             rel = int(sgn * self.sgn0)
             got = None
             first = (np.zeros(self.W), np.zeros(self.dz)) if start is None else start
-            if branch != "stop" and len(points) + idle < MAX_BRANCH_POINTS:
+            if len(points) + idle < MAX_BRANCH_POINTS:
                 # a row closed at (or within RATIO_NEAR of) a singular pose: a branch point there?
                 for k in self._near_singular(xs, cl):
                     nxt = sub[:, k + 1] if k + 1 < sub.shape[1] else 2 * sub[:, k] - (sub[:, k - 1] if k else first[0])
                     trial = self._cross_at(sub, xs, k, sub[:, k], nxt, first, sgn, branch)
                     if trial is not None and trial["qstar"] is not None:
-                        got, i = trial, k
+                        if branch != "stop":
+                            got, i = trial, k
+                        else:  # stop at it: the rows past it (the row at it, if any, closed) are not reached
+                            cut = k + len(trial["pre"]) + (1 if trial["near"] is not None else 0)
+                            if cut < sub.shape[1]:
+                                cl[cut:] = False
+                                xs[:, cut:] = np.nan
+                                cs = None
+                                st.append(trial["qstar"])
                     break
             if got is None and not cl.all() and branch != "stop" and len(points) + idle < MAX_BRANCH_POINTS:
                 i = int(np.argmin(cl))
