@@ -28,7 +28,8 @@ The policy says which:
     anti-parallelogram); each such point is recorded too.
 ``"stop"``
     the continuation stops at the singular pose, as it does at a dead point:
-    the rows past it are not closed (the behaviour before this policy).
+    the rows past it are not closed (the behaviour before this policy; a row
+    closed at the branch point itself is the last one).
 
 How a branch point is crossed (:func:`cross`): from the state where the
 continuation stopped, a state :data:`ETA` before it is solved on the
