@@ -89,13 +89,13 @@ def test_triple_rocker_dead_point_is_reported_where_the_closed_form_puts_it():
         assert all(s.startswith("not reached") for s in r.reason[row + 1 :])
 
 
-def test_change_point_parallelogram_stops_at_the_change_point_and_says_so():
+def test_change_point_parallelogram_stops_at_the_change_point_and_says_so_with_branch_stop():
     # Grashof change point (s + l = p + q): crank 4, coupler 10, rocker 4, ground 10; at
     # crank 180 deg all links are collinear and the parallelogram could become an antiparallelogram
     m = _fourbar((10.0, 0.0), (0.0, 4.0), (10.0, 4.0))
     for n in (8, 360):
         q = np.pi / 2 + np.linspace(0.0, 2 * np.pi, n, endpoint=False)
-        r = m.solve(q)
+        r = m.solve(q, branch="stop")
         ok = q < np.pi - 1e-12
         assert r.closed[ok].all()
         assert np.abs(r.angle["rocker"][ok] - q[ok]).max() < 1e-9  # parallelogram: rocker parallel to the crank

@@ -32,7 +32,10 @@ efficiency``); ``--efficiency`` overrides the meshes' efficiency.
 ``simulate``: starts at the sketch with the speeds of ``--rpm``/``--speed``
 (one rotary input that rocks between two dead points: the run is refused, in one line naming the limit and
 the time, where the motion comes within :data:`LIMIT_MARGIN` of its range of a limit, since the reduced
-inertia grows without bound there; a run that stays away from them says so on stderr)
+inertia grows without bound there; a run that stays away from them says so on stderr and writes a
+``direction`` column, the sign of the input's speed.  ``simulate`` integrates the motion the torques
+make: a rocking input reverses only where the dynamics turn it back, never at a prescribed limit, since
+arriving at a dead point with speed is an impact the rigid model cannot carry through)
 (every input given) and integrates the equations of motion for ``--time``
 seconds under constant driving torques ``--torque NAME=VALUE`` (force for
 a slider input; inputs not named are free, torque 0), with the model's
@@ -372,6 +375,8 @@ def _simulate(args) -> int:
         print(note, file=sys.stderr)
     L, F, T, P, E = _units(mech)
     cols = {"t_s": s.t}
+    if any(notes):  # a rocking input: the sign of its motion, as the sweeps of a rocking input write it
+        cols["direction"] = np.sign(s.qdot[:, 0]).astype(int)
     for i, (name, rot) in enumerate(names):
         if rot:
             cols[f"{name}_deg"] = np.degrees(s.q[:, i])

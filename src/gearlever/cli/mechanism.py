@@ -177,6 +177,13 @@ def _sweep_args(p, points: bool):
         "(--input crank=0 90) or in [[inputs]] order (default: the first input turns a full turn from the "
         "sketch, the others stay at the sketch)",
     )
+    p.add_argument(
+        "--branch",
+        choices=("continue", "keep", "stop"),
+        default="continue",
+        help="at a branch point (a singular pose the input goes on through): continue on the branch that keeps "
+        "the motion smooth (default), keep the sketch's assembly branch (the velocity jumps), or stop there",
+    )
 
 
 class _InputRange(argparse.Action):
@@ -198,16 +205,27 @@ class _InputRange(argparse.Action):
         setattr(namespace, self.dest, items)
 
 
-def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1):
+def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1, branch: str = "continue"):
     """:func:`gearlever.mechanism.sweep.sweep_rows`, saying on stderr when the rows are one oscillation.
 
     ``AB rocks between 67.284 and 78.254 deg: sweeping one oscillation``: one
     line, when the first input cannot turn fully and no ``--input`` is given.
     """
-    s = _sweep_rows(mech, points, ranges, first)
+    s = _sweep_rows(mech, points, ranges, first, branch=branch)
     if s.oscillates:
         print(s.message(), file=sys.stderr)
     return s
+
+
+def solve_rows(mech, q, qdot, branch: str = "continue"):
+    """``mech.solve(q, qdot, branch=branch)``, saying on stderr in one line where the rows passed branch points."""
+    from gearlever.mechanism.branch import branch_message
+
+    r = mech.solve(q, qdot, branch=branch)
+    line = branch_message(r.branch_points, input_labels(mech), [spec.kind for spec in mech.model.inputs])
+    if line:
+        print(line, file=sys.stderr)
+    return r
 
 
 def _structure(args) -> int:
@@ -255,11 +273,15 @@ def with_direction(cols: dict, s, width: int) -> dict:
 
 def _analyze(args) -> int:
     mech = _load(args.model)
-    s = sweep_rows(mech, args.points, args.input)
+    s = sweep_rows(mech, args.points, args.input, branch=args.branch)
     q, qdot = s.q, s.qdot
     qdot, per = _rates(mech, args, q, qdot, s.direction if s.oscillates else None)
-    r = mech.solve(q, qdot)
+    r = solve_rows(mech, q, qdot, args.branch)
     cols = with_direction(r.columns(degrees=True, per=per), s, 3 * len(mech.model.inputs))
+    if r.branch_points:  # the assembly branch of each row: +1 the sketch's, -1 the other (0: not closed)
+        width = 3 * len(mech.model.inputs) + (1 if s.oscillates else 0)
+        items = list(cols.items())
+        cols = dict(items[:width] + [("branch", r.side)] + items[width:])
     if args.centres:
         from gearlever.mechanism.centres import centre_columns
 
@@ -307,8 +329,8 @@ def _draw(args) -> int:
 
     size, dpi = figure_args(args)
     mech = _load(args.model)
-    s = sweep_rows(mech, args.points, args.input)
-    r = mech.solve(s.q, s.qdot)
+    s = sweep_rows(mech, args.points, args.input, branch=args.branch)
+    r = solve_rows(mech, s.q, s.qdot, args.branch)
     from gearlever.plotting._common import save
     from gearlever.plotting.mechanism import draw_mechanism
 
@@ -354,9 +376,9 @@ def _animate(args) -> int:
 
     size, dpi = figure_args(args, args.frames)
     mech = _load(args.model)
-    s = sweep_rows(mech, args.frames, args.input)
-    r = mech.solve(s.q, s.qdot)
-    paths = mech.solve(*sweep(mech, DEFAULT_POINTS, args.input))
+    s = sweep_rows(mech, args.frames, args.input, branch=args.branch)
+    r = solve_rows(mech, s.q, s.qdot, args.branch)
+    paths = mech.solve(*sweep(mech, DEFAULT_POINTS, args.input), branch=args.branch)
     from gearlever.cli._common import progress
     from gearlever.plotting.mechanism import animate_mechanism
 

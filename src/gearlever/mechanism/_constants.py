@@ -12,3 +12,6 @@ imports the other for a number.
 
 #: Largest step (rad, or length / model length scale) of the sequential continuation.
 COARSE_STEP = 0.25
+
+#: Hadamard-ratio threshold below which the reduced Jacobian counts as singular (a dead point).
+SINGULAR_TOL = 1e-9

@@ -148,9 +148,12 @@ class Mechanism:
         """Input values of the sketch, ``(W,)``: link angles (rad) and slider displacements (0)."""
         return self.system.q0.copy()
 
-    def solve(self, q, qdot=None, qddot=None) -> MechanismResult:
-        """Positions, velocities, accelerations over the input rows (:func:`~gearlever.mechanism.solve.solve`)."""
-        return solve(self.system, q, qdot, qddot)
+    def solve(self, q, qdot=None, qddot=None, branch: str = "continue") -> MechanismResult:
+        """Positions, velocities, accelerations over the input rows (:func:`~gearlever.mechanism.solve.solve`).
+
+        ``branch``: ``"continue"`` (default: smooth through a branch point), ``"keep"`` or ``"stop"``.
+        """
+        return solve(self.system, q, qdot, qddot, branch=branch)
 
     def assemble(self, hold_inputs: bool = True) -> dict:
         """The model with its sketch closed to its ``[lengths]`` (:func:`~gearlever.mechanism.assemble.assemble`).

@@ -144,7 +144,7 @@ def _reachable(ks, dq, z, sgn0):
     return z1[:, 0], x[:, 0]
 
 
-def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL) -> InputLimits:
+def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL, branch: str = "continue") -> InputLimits:
     """The limits (dead points) of one input on the sketch's assembly branch, the other inputs held.
 
     Parameters
@@ -158,6 +158,12 @@ def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL) -> In
     tol : float
         Width of the final bisection bracket (rad; times the model size for
         a slider input), at least 1e-13.
+    branch : {"continue", "keep", "stop"}
+        The policy at branch points (:func:`~gearlever.mechanism.solve.solve`):
+        with ``"continue"`` (the default) and ``"keep"`` the motion goes on
+        through them and only a dead point of the input is a limit; with
+        ``"stop"`` a branch point is a limit too (a parallelogram four-bar
+        then rocks between its folding poses).
 
     Returns
     -------
@@ -215,7 +221,7 @@ def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL) -> In
     for sign in (1.0, -1.0):
         q = np.tile(q0, (steps.size, 1))
         q[:, index] += sign * steps
-        r = mech.solve(q, np.zeros_like(q))
+        r = mech.solve(q, np.zeros_like(q), branch=branch)
         if not r.closed[0]:
             raise GearleverError(
                 f"start: the mechanism does not assemble at {spec.label} = {q0[index]:.6g} on the sketch's branch"
@@ -233,15 +239,16 @@ def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL) -> In
         a, b = q[k - 1].copy(), q[k].copy()
         za = ks.N.T @ r.x[k - 1] if ks.dz else np.zeros(0)
         xa = r.x[k - 1].copy()
+        sgn = ks.sgn0 * (r.side[k - 1] if r.side is not None and r.side[k - 1] else 1)  # the branch there
         dq0 = ks.q0
         while abs(b[index] - a[index]) > tol * scale:
             mid = a.copy()
             mid[index] = 0.5 * (a[index] + b[index])
-            got = _reachable(ks, mid - dq0, za, ks.sgn0) if ks.dz else (np.zeros(0), None)
+            got = _reachable(ks, mid - dq0, za, sgn) if ks.dz else (np.zeros(0), None)
             if got is None:  # from the tangent's prediction (the other branch crosses nearby)
                 st = ks._state(a - dq0, za)
                 if st is not None:
-                    got = _reachable(ks, mid - dq0, za + st[0] @ (mid - a), ks.sgn0)
+                    got = _reachable(ks, mid - dq0, za + st[0] @ (mid - a), sgn)
             if got is None:
                 b = mid
             else:

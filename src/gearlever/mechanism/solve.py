@@ -34,15 +34,23 @@ import numpy as np
 from gearlever._result import Result
 from gearlever._validate import finite_array
 from gearlever.errors import GearleverError, GearleverWarning
-from gearlever.mechanism._constants import COARSE_STEP
+from gearlever.mechanism._constants import COARSE_STEP, SINGULAR_TOL
+from gearlever.mechanism.branch import (
+    DEFAULT_BRANCH,
+    ETA,
+    MAX_BRANCH_POINTS,
+    RATIO_NEAR,
+    BranchPoint,
+    check_branch,
+    cross,
+    richardson,
+)
 from gearlever.mechanism.constraints import mesh_coefficients
 from gearlever.mechanism.model import GROUND, MechanismModel
 from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independent_rows, numeric_rank
 
 __all__ = ["KinematicSystem", "MechanismResult", "input_name", "solve"]
 
-#: Hadamard-ratio threshold below which the reduced Jacobian counts as singular (a dead point).
-SINGULAR_TOL = 1e-9
 
 REASON_UNREACHED = "not reached continuously from the sketch (past a dead point, or no assembly there)"
 REASON_DEAD = "dead point: the constraint Jacobian is singular (velocities undefined)"
@@ -529,13 +537,16 @@ class KinematicSystem:
         return xd, xdd, dead
 
     # ------------------------------------------------------------- continuation
-    def _walk(self, dq0, z0, target, h):
+    def _walk(self, dq0, z0, target, h, sgn=None, stops=None):
         """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,).
 
         Returns ``(z, None)`` at the target, or ``(None, dq)`` with the last
         input reached when it cannot get there (a dead point or the end of
-        the assembly on the way: the step shrank below 1e-7).
+        the assembly on the way: the step shrank below 1e-7); then ``(dq, z)``
+        of that last state is appended to ``stops`` (when given).  ``sgn``:
+        the sign of ``det J`` of the branch followed (default the sketch's).
         """
+        sgn = self.sgn0 if sgn is None else sgn
         cur_dq, cur_z = dq0.copy(), z0.copy()
         step = h
         zeros = np.zeros((self.W, 1))
@@ -548,6 +559,8 @@ class KinematicSystem:
             x = self.coordinates(cur_dq[:, None], cur_z[:, None])
             xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
             if dead[0]:
+                if stops is not None:
+                    stops.append((cur_dq.copy(), cur_z.copy()))
                 return None, cur_dq
             zd, zdd = self.N.T @ xd[:, 0], self.N.T @ xdd[:, 0]  # N: orthonormal columns, orthogonal to X_p
             pred = cur_z + zd * t + 0.5 * zdd * t * t
@@ -555,44 +568,93 @@ class KinematicSystem:
             z, xn, C, S, conv = self.newton(new_dq[:, None], pred[:, None])
             ok = bool(conv[0])
             if ok:
-                ratio, sgn = self._hadamard(self.jz(xn, C, S)[self.sel])
+                ratio, sgn_ = self._hadamard(self.jz(xn, C, S)[self.sel])
                 trust = 0.2 * t * (1.0 + float(np.max(np.abs(zd)))) + 1e-12
-                ok = ratio[0] > SINGULAR_TOL and sgn[0] == self.sgn0 and float(np.max(np.abs(z[:, 0] - pred))) <= trust
+                ok = ratio[0] > SINGULAR_TOL and sgn_[0] == sgn and float(np.max(np.abs(z[:, 0] - pred))) <= trust
+                ok = ok and self._pred_sign(new_dq[:, None], pred[:, None])[0] == sgn
             if ok:
                 cur_dq, cur_z = new_dq, z[:, 0]
                 step = min(2 * step, h)
             else:
                 step /= 2
                 if step < 1e-7:
+                    if stops is not None:
+                        stops.append((cur_dq.copy(), cur_z.copy()))
                     return None, cur_dq
 
-    def solve(self, q, qd, qdd):
+    def _near_singular(self, xs, cl):
+        """Rows closed within :data:`~gearlever.mechanism.branch.RATIO_NEAR` of a singular pose (indices)."""
+        idx = np.flatnonzero(cl)
+        if not idx.size:
+            return idx
+        x = xs[:, idx]
+        ratio, _ = self._hadamard(self.jz(x, *self.trig(x))[self.sel])
+        return idx[ratio < RATIO_NEAR]
+
+    def _cross_at(self, sub, xs, i, s_dq, target, first, sgn, branch):
+        """:func:`~gearlever.mechanism.branch.cross` at the stop ``s_dq`` before row ``i`` of the segment ``sub``."""
+        back = first
+        prior = np.flatnonzero(~np.isnan(xs[0, :i])) if self.nx else np.zeros(0, dtype=int)
+        if prior.size:
+            far = np.max(np.abs((sub[:, prior] - s_dq[:, None]) / self.qscale[:, None]), axis=0) >= 0.5 * ETA
+            if far.any():
+                k = int(prior[np.flatnonzero(far)[-1]])
+                back = (sub[:, k], self.N.T @ xs[:, k])
+        return cross(self, s_dq, back, target, sgn, "continue" if branch == "stop" else branch, rows=sub[:, i:])
+
+    def _pred_sign(self, dq, z):
+        """Sign of ``det J_z`` at the predicted states ``(dq, z)`` (W, M), (dz, M)."""
+        x = self.coordinates(dq, z)
+        return self._hadamard(self.jz(x, *self.trig(x))[self.sel])[1]
+
+    def solve(self, q, qd, qdd, branch: str = DEFAULT_BRANCH):
         """Reduced coordinates and rates over the input rows; arrays (nx, N), see :func:`solve`.
 
         Parameters
         ----------
         q, qd, qdd : ndarray (W, N)
+        branch : {"continue", "keep", "stop"}
+            The policy at branch points (:mod:`gearlever.mechanism.branch`).
+
+        Returns
+        -------
+        tuple
+            ``x, xd, xdd, closed, reason, CS, points, side``: ``points`` the
+            :class:`~gearlever.mechanism.branch.BranchPoint` passed, ``side``
+            (N,) the assembly branch of each row (+1 the sketch's, -1 the
+            other, 0 not closed).
         """
         Nn = q.shape[1]
         dq = q - self.q0[:, None]
         CS = None
+        points, near = (), {}
         if self.dz == 0:
             x = self.coordinates(dq, np.zeros((0, Nn)))
             closed = np.ones(Nn, dtype=bool)
             if self.closure is not None:
                 C, S = self.trig(x)
                 closed = np.all(np.abs(self.residual(x, C, S)) <= 1e-9 * self.L, axis=0)
+            side = closed.astype(int)
         else:
             x = np.full((self.nx, Nn), np.nan)
             closed = np.zeros(Nn, dtype=bool)
             stuck = []
-            CS = self._positions(dq, x, closed, stuck)
+            CS, points, near, side = self._follow(dq, x, closed, stuck, branch)
         if closed.all():
             xs = x
         else:
             xs = np.where(closed, x, 0.0)
             CS = None
         xd, xdd, dead = self.derivatives(xs, qd, qdd, CS)
+        for i, (dq4, z4) in near.items():
+            if branch == "keep":  # the velocity jumps there: undefined
+                continue
+            x4 = self.coordinates(dq4, z4)
+            d1, d2, dd = self.derivatives(
+                x4, np.repeat(qd[:, i : i + 1], 4, axis=1), np.repeat(qdd[:, i : i + 1], 4, axis=1)
+            )
+            if not dd.any():
+                xd[:, i], xdd[:, i], dead[i] = richardson(d1), richardson(d2), False
         reason = np.full(Nn, "", dtype=object)
         reason[closed & dead] = REASON_DEAD
         reason[~closed] = REASON_UNREACHED
@@ -602,7 +664,86 @@ class KinematicSystem:
         if not closed.all():
             xd[:, ~closed] = np.nan
             xdd[:, ~closed] = np.nan
-        return x, xd, xdd, closed, reason, CS
+        return x, xd, xdd, closed, reason, CS, points, side
+
+    def _follow(self, dq, x_out, closed, stuck, branch):
+        """:meth:`_positions` through the branch points under the policy ``branch``, segment by segment.
+
+        Returns ``(CS, points, near, side)``: (C, S) when the one segment closed every row, the
+        :class:`~gearlever.mechanism.branch.BranchPoint` passed, the rows at a branch point (row ->
+        states either side, for their rates) and the assembly branch of each row (+1 the sketch's).
+        """
+        Nn = dq.shape[1]
+        side = np.zeros(Nn, dtype=int)
+        points, near = [], {}
+        start, sgn, off, idle, stall = None, self.sgn0, 0, 0, 0
+        while True:
+            sub = dq[:, off:]
+            xs = np.full((self.nx, sub.shape[1]), np.nan)
+            cl = np.zeros(sub.shape[1], dtype=bool)
+            st, stops = [], []
+            cs = self._positions(sub, xs, cl, st, start=start, sgn=sgn, stops=stops)
+            rel = int(sgn * self.sgn0)
+            got = None
+            first = (np.zeros(self.W), np.zeros(self.dz)) if start is None else start
+            if len(points) + idle < MAX_BRANCH_POINTS:
+                # a row closed at (or within RATIO_NEAR of) a singular pose: a branch point there?
+                for k in self._near_singular(xs, cl):
+                    nxt = sub[:, k + 1] if k + 1 < sub.shape[1] else 2 * sub[:, k] - (sub[:, k - 1] if k else first[0])
+                    trial = self._cross_at(sub, xs, k, sub[:, k], nxt, first, sgn, branch)
+                    if trial is not None and trial["qstar"] is not None:
+                        if branch != "stop":
+                            got, i = trial, k
+                        else:  # stop at it: the rows past it (the row at it, if any, closed) are not reached
+                            cut = k + len(trial["pre"]) + (1 if trial["near"] is not None else 0)
+                            if cut < sub.shape[1]:
+                                cl[cut:] = False
+                                xs[:, cut:] = np.nan
+                                cs = None
+                                st.append(trial["qstar"])
+                    break
+            if got is None and not cl.all() and branch != "stop" and len(points) + idle < MAX_BRANCH_POINTS:
+                i = int(np.argmin(cl))
+                a_dq = sub[:, i - 1] if i > 0 else first[0]
+                s_dq = (_stop_on(stops, a_dq, sub[:, i], self.qscale) or (a_dq,))[0]
+                got = self._cross_at(sub, xs, i, s_dq, sub[:, i], first, sgn, branch)
+            if got is not None and i == 0 and not got["pre"] and got["near"] is None:
+                stall += 1  # no row taken: two such crossings in a row go nowhere (stop there)
+                got = None if stall > 1 else got
+            else:
+                stall = 0
+            if got is None:
+                x_out[:, off:] = xs
+                closed[off:] = cl
+                side[off:] = np.where(cl, rel, 0)
+                stuck.extend(st)
+                return (cs if off == 0 else None), tuple(points), near, side
+            x_out[:, off : off + i] = xs[:, :i]
+            closed[off : off + i] = True
+            side[off : off + i] = rel
+            for zp in got["pre"]:  # rows in the window before the branch point
+                x_out[:, off + i] = self.coordinates(sub[:, i : i + 1], zp[:, None])[:, 0]
+                closed[off + i] = True
+                side[off + i] = rel
+                i += 1
+            after = int(got["sgn"] * self.sgn0)
+            if got["changed"] or (branch == "keep" and got["qstar"] is not None):
+                qs = got["qstar"] + self.q0
+                points.append(BranchPoint(int(off + i), tuple(float(v) for v in qs), branch, rel, after))
+            else:
+                idle += 1
+            if got["near"] is not None:
+                dq4, z4, zr = got["near"]
+                x_out[:, off + i] = self.coordinates(sub[:, i : i + 1], zr[:, None])[:, 0]
+                closed[off + i] = True
+                side[off + i] = after
+                near[off + i] = (dq4, z4)
+                off += i + 1
+            else:
+                off += i
+            start, sgn = (got["dq"], got["z"]), got["sgn"]
+            if off >= Nn:
+                return None, tuple(points), near, side
 
     def _stop_reason(self, dq, i, stuck):
         """Reason of the first row ``i`` not reached after a reached one (or the first row)."""
@@ -643,7 +784,7 @@ class KinematicSystem:
                 Zpp = self.N.T @ xdd[:, 0]
         return Zp, Zpp
 
-    def _coarse(self, cdq, cz, cok, h, stuck, block: int = 8):
+    def _coarse(self, cdq, cz, cok, h, stuck, block: int = 8, start=None, sgn=None, stops=None):
         """Continuation through the coarse points ``cdq`` (W, nb) from the sketch, in batched blocks.
 
         Consecutive coarse points (and the sketch and the first point) are at
@@ -655,10 +796,13 @@ class KinematicSystem:
         the trust radius, each point within ``h`` of the one accepted before
         it) is accepted; when none passes, the next point is walked to in
         small sequential steps (:meth:`_walk`).  The inputs where a walk
-        stopped are appended to ``stuck``.
+        stopped are appended to ``stuck``.  ``start``: the state ``(dq, z)``
+        to start from (default the sketch), ``sgn`` the sign of ``det J`` of
+        its branch (default the sketch's).
         """
         nb = cdq.shape[1]
-        st_dq, st_z = np.zeros(self.W), np.zeros(self.dz)
+        sgn = self.sgn0 if sgn is None else sgn
+        st_dq, st_z = (np.zeros(self.W), np.zeros(self.dz)) if start is None else (start[0].copy(), start[1].copy())
         st = self._state(st_dq, st_z)
         blocked = None  # (from, at) input values of a failed walk (one input only)
         reach = h * (1.0 + 1e-9)
@@ -679,7 +823,10 @@ class KinematicSystem:
                 if self.W == 1:
                     pred += 0.5 * Zpp[:, None] * d[0] ** 2
                 z, x, C, S, conv = self.newton(cdq[:, ks], pred)
-                ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
+                ratio, sg = self._hadamard(self.jz(x, C, S)[self.sel])
+                # the branch of the predictor (the incoming one, continued smoothly): Newton must not land on
+                # another branch of the same sign of det J past a branch point (the velocity would jump)
+                psg = self._pred_sign(cdq[:, ks], pred)
                 dist = np.max(np.abs(d / self.qscale[:, None]), axis=0)
                 # chain: every point within h of the one before it (the first: of the state), so that no
                 # dead point or gap in the assembly wider than h is stepped over
@@ -691,7 +838,8 @@ class KinematicSystem:
                         conv
                         & near
                         & (ratio > SINGULAR_TOL)
-                        & (sgn == self.sgn0)
+                        & (sg == sgn)
+                        & (psg == sgn)
                         & (np.max(np.abs(z - pred), axis=0) <= trust)
                     )
                 m = int(np.argmin(good)) if not good.all() else good.size
@@ -706,7 +854,7 @@ class KinematicSystem:
                         blocked = None
                         k += m
                         continue
-            zk, at = self._walk(st_dq, st_z, cdq[:, k], h)
+            zk, at = self._walk(st_dq, st_z, cdq[:, k], h, sgn, stops)
             if zk is None:
                 blocked = (st_dq[0], cdq[0, k])
                 stuck.append(at)
@@ -718,15 +866,17 @@ class KinematicSystem:
                 blocked = None
             k += 1
 
-    def _positions(self, dq, x_out, closed, stuck):
+    def _positions(self, dq, x_out, closed, stuck, start=None, sgn=None, stops=None):
         """Fill ``x_out`` (nx, N) and ``closed`` by continuation; return (C, S) of the points when all closed.
 
-        The inputs where the continuation stopped (dead points) are appended to ``stuck``.
+        The inputs where the continuation stopped (dead points) are appended to ``stuck`` (and the states
+        ``(dq, z)`` there to ``stops``); ``start`` and ``sgn`` as in :meth:`_coarse`.
         """
+        sgn = self.sgn0 if sgn is None else sgn
+        dq_start = np.zeros(self.W) if start is None else start[0]
         Nn, h = dq.shape[1], COARSE_STEP
-        qs = np.abs(dq / self.qscale[:, None])
         step = np.empty(Nn)
-        step[0] = np.max(qs[:, 0])
+        step[0] = np.max(np.abs((dq[:, 0] - dq_start) / self.qscale))
         if Nn > 1:
             step[1:] = np.max(np.abs(np.diff(dq / self.qscale[:, None], axis=1)), axis=0)
         bins = np.floor(np.cumsum(step) / h)
@@ -737,7 +887,7 @@ class KinematicSystem:
         cdq = dq[:, starts]
         # coarse points at most h apart, from the sketch: a large step between rows (a coarse sweep,
         # degrees given for radians) is subdivided, so the continuation never steps over a dead point
-        prev = np.concatenate([np.zeros((self.W, 1)), cdq[:, :-1]], axis=1)
+        prev = np.concatenate([dq_start[:, None], cdq[:, :-1]], axis=1)
         gap = np.max(np.abs((cdq - prev) / self.qscale[:, None]), axis=0)
         sub = np.maximum(np.ceil(gap / h * (1.0 - 1e-12)), 1).astype(int)
         if sub.max() > 1:
@@ -750,7 +900,7 @@ class KinematicSystem:
             ecdq, real = cdq, np.arange(nb)
         ecz = np.full((self.dz, ecdq.shape[1]), np.nan)
         ecok = np.zeros(ecdq.shape[1], dtype=bool)
-        self._coarse(ecdq, ecz, ecok, h, stuck)
+        self._coarse(ecdq, ecz, ecok, h, stuck, start=start, sgn=sgn, stops=stops)
         cz, cok = ecz[:, real], ecok[real]
 
         if not cok.any():
@@ -804,11 +954,11 @@ class KinematicSystem:
             pred = zb + np.einsum("dwn,wn->dn", Zb, d)
         dqi = dq if allok else dq[:, idx]
         z, x, C, S, conv = self.newton(dqi, pred)
-        ratio, sgn = self._hadamard(self.jz(x, C, S)[self.sel])
+        ratio, sg = self._hadamard(self.jz(x, C, S)[self.sel])
         zpb = np.max(np.abs(Zp * self.qscale[None, :, None]), axis=(0, 1))
         trust = 0.2 * h * (1.0 + (np.repeat(zpb, counts) if allok else zpb[b]))
         with np.errstate(invalid="ignore"):
-            ok = conv & (sgn == self.sgn0) & (np.max(np.abs(z - pred), axis=0) <= trust)
+            ok = conv & (sg == sgn) & (np.max(np.abs(z - pred), axis=0) <= trust)
         if allok and ok.all():
             x_out[:] = x
             closed[:] = True
@@ -831,7 +981,7 @@ class KinematicSystem:
                 src_dq, src_z = dq[:, prev], zfull[:, prev]
             else:
                 src_dq, src_z = cdq[:, bid[i]], cz[:, bid[i]]
-            zi, at = self._walk(src_dq, src_z, dq[:, i], h)
+            zi, at = self._walk(src_dq, src_z, dq[:, i], h, sgn, stops)
             if zi is None:
                 stuck.append(at)
                 skip_bin = bid[i]
@@ -840,6 +990,17 @@ class KinematicSystem:
             x_out[:, i] = self.coordinates(dq[:, i : i + 1], zi[:, None])[:, 0]
             closed[i] = True
         return None
+
+
+def _stop_on(stops, a, b, qscale):
+    """The state ``(dq, z)`` of ``stops`` that lies on the segment of inputs from ``a`` to ``b``, or None."""
+    span = b - a
+    nn = float(span @ span)
+    for at, z in reversed(stops):
+        t = float((at - a) @ span) / nn if nn > 0 else 0.0
+        if -1e-9 <= t <= 1 + 1e-9 and np.max(np.abs(a + t * span - at) / qscale) <= 1e-6:
+            return at, z
+    return None
 
 
 def _as_rows(name, v, N, W):
@@ -882,7 +1043,7 @@ def _warn_degrees(system: KinematicSystem, qa: np.ndarray) -> None:
             return
 
 
-def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
+def solve(system: KinematicSystem, q, qdot=None, qddot=None, branch: str = DEFAULT_BRANCH) -> MechanismResult:
     """Positions, velocities and accelerations of every link and point over the input rows.
 
     Parameters
@@ -896,6 +1057,18 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
         Input velocities and accelerations, same shape (default 1 and 0: the
         results are then the velocity and acceleration analogues, and
         :meth:`MechanismResult.columns` names them so: ``omega_coupler_per_crank``).
+    branch : {"continue", "keep", "stop"}
+        What the rows do at a *branch point*, a singular pose past which the
+        input goes on (:mod:`gearlever.mechanism.branch`): ``"continue"``
+        (the default) on the branch that keeps the motion smooth (velocity
+        continuous, the input's direction kept: the motion the mechanism
+        makes, carried through by its inertia, as PMKS+ animates it),
+        leaving the sketch's assembly branch; ``"keep"`` on the sketch's
+        assembly branch (the sign of ``det J_z``), the velocity jumping
+        there; ``"stop"`` not past it (the rows there not closed).  Every
+        branch point passed is in :attr:`MechanismResult.branch_points`.  A
+        dead point of the input (no assembly past it) stops the rows under
+        every policy.
 
     Returns
     -------
@@ -936,7 +1109,25 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     >>> r = solve(KinematicSystem(m), [0.0, np.pi / 2])
     >>> np.round(r.point["A"], 12).tolist()
     [[1.0, 0.0], [0.0, 1.0]]
+
+    A parallelogram four-bar folds onto one line at crank 180 deg and goes on
+    as a parallelogram (``"continue"``), or as an anti-parallelogram
+    (``"keep"``), or stops there (``"stop"``):
+
+    >>> p = model_from_dict({"points": {"O": [0, 0], "Q": [10, 0], "A": [0, 4], "B": [10, 4]},
+    ...     "links": {"ground": ["O", "Q"], "crank": ["O", "A"], "coupler": ["A", "B"], "rocker": ["Q", "B"]},
+    ...     "inputs": [{"link": "crank"}]})
+    >>> q = np.radians([90.0, 150.0, 210.0, 270.0])
+    >>> for policy in ("continue", "keep", "stop"):
+    ...     r = solve(KinematicSystem(p), q, branch=policy)
+    ...     print(policy, np.round(np.degrees(r.angle["rocker"]), 6).tolist(), r.side.tolist())
+    continue [90.0, 150.0, 210.0, 270.0] [1, 1, -1, -1]
+    keep [90.0, 150.0, 166.898227, 133.602819] [1, 1, 1, 1]
+    stop [90.0, 150.0, nan, nan] [1, 1, 0, 0]
+    >>> solve(KinematicSystem(p), q).branch_points[0].q
+    (3.141592653589793,)
     """
+    check_branch(branch)
     W = system.W
     qa = finite_array("q", q)
     if qa.ndim == 0:
@@ -953,20 +1144,22 @@ def solve(system: KinematicSystem, q, qdot=None, qddot=None) -> MechanismResult:
     qdd = np.zeros((N, W)) if qddot is None else _as_rows("qddot", qddot, N, W)
     plan = system.dyad_plan
     fast = plan.solve(qa.T, qd.T, qdd.T) if plan is not None else None
+    points, side = (), None
     if fast is not None and not np.all(np.isfinite(fast[0])):
         fast = None  # a row where a dyad does not assemble: the continuation answers (closed = False there)
     if fast is not None:
-        x, xd, xdd, CS, points = fast
+        x, xd, xdd, CS, _ = fast
         closed = np.ones(N, dtype=bool)
         reason = np.full(N, "", dtype=object)
     else:
-        x, xd, xdd, closed, reason, CS = system.solve(qa.T, qd.T, qdd.T)
-        points = None
-    r = MechanismResult(qa, qd, qdd, x.T, xd.T, xdd.T, closed, reason, system)
+        x, xd, xdd, closed, reason, CS, points, side = system.solve(qa.T, qd.T, qdd.T, branch)
+    fpoints = fast[4] if fast is not None else None
+    side = np.ones(N, dtype=int) if side is None else side
+    r = MechanismResult(qa, qd, qdd, x.T, xd.T, xdd.T, closed, reason, system, tuple(points), side)
     object.__setattr__(r, "_analogues", qdot is None)
     object.__setattr__(r, "_cs", CS)
-    if points is not None:
-        object.__setattr__(r, "_fast_points", points)
+    if fpoints is not None:
+        object.__setattr__(r, "_fast_points", fpoints)
     return r
 
 
@@ -988,6 +1181,13 @@ class MechanismResult(Result):
         ``(N,)``: ``""`` where closed with finite rates, otherwise why not.
     system : KinematicSystem
         The compiled model.
+    branch_points : tuple of BranchPoint
+        The branch points the rows passed (:func:`solve`'s ``branch``), in
+        row order: where the assembly branch changed (``"continue"``) or the
+        velocity jumped (``"keep"``); empty when none.
+    side : ndarray of int
+        ``(N,)``: the assembly branch of each row, +1 the sketch's (the sign
+        of ``det J_z`` there), -1 the other, 0 where not closed.
 
     Dicts (computed when first asked for): :attr:`angle`, :attr:`omega`,
     :attr:`alpha` (link -> ``(N,)``), :attr:`point`, :attr:`velocity`,
@@ -1020,6 +1220,8 @@ class MechanismResult(Result):
     closed: np.ndarray
     reason: np.ndarray
     system: KinematicSystem = field(repr=False, compare=False)
+    branch_points: tuple = ()
+    side: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def model(self) -> MechanismModel:

@@ -189,7 +189,7 @@ def oscillation(start: float, lower: float, upper: float, points: int, first: in
     return v, d
 
 
-def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1) -> Sweep:
+def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1, branch: str = "continue") -> Sweep:
     """Input rows of a sweep, their rates and directions: the one sweep rule (module docstring).
 
     Parameters
@@ -203,6 +203,10 @@ def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1) 
         (:func:`input_ranges`).
     first : {1, -1}
         Direction of the first leg of an oscillation (the sign of the speed).
+    branch : {"continue", "keep", "stop"}
+        The policy at branch points (:func:`~gearlever.mechanism.solve.solve`),
+        which decides the limits: with ``"stop"`` a branch point is one; solve
+        the rows with the same policy.
 
     Returns
     -------
@@ -231,8 +235,10 @@ def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1) 
     >>> np.degrees(s.q[:, 0]).round(9).tolist(), s.direction.tolist(), s.oscillates
     ([0.0, 90.0, 180.0, 270.0], [1, 1, 1, 1], False)
     """
+    from gearlever.mechanism.branch import check_branch
     from gearlever.mechanism.limits import input_limits
 
+    check_branch(branch)
     if points > MAX_POINTS:
         raise GearleverError(f"--points must be at most {MAX_POINTS}, got {points}")
     m = mech.model
@@ -246,7 +252,7 @@ def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1) 
                 f"--input: the first input of model {m.name!r} ({labels}) is a slider, which has no full turn; "
                 "give --input START STOP once per input"
             )
-        lim = input_limits(mech, 0)
+        lim = input_limits(mech, 0, branch=branch)
         q = np.broadcast_to(mech.sketch_inputs, (points, W)).copy()
         qdot = np.zeros((points, W))
         if lim.full_turn:
@@ -268,7 +274,7 @@ def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1) 
     conv = [1.0 if spec.kind == "slider" else math.pi / 180.0 for spec in m.inputs]
     start = np.array([r[0] * c for r, c in zip(ranges, conv)])
     stop = np.array([r[1] * c for r, c in zip(ranges, conv)])
-    _check_reach(mech, ranges, start, stop)
+    _check_reach(mech, ranges, start, stop, branch)
     t = np.linspace(0.0, 1.0, points)
     q = start + t[:, None] * (stop - start)
     span = stop - start
@@ -286,7 +292,7 @@ def _check_moves(lim) -> None:
         )
 
 
-def _check_reach(mech, ranges, start, stop) -> None:
+def _check_reach(mech, ranges, start, stop, branch: str = "continue") -> None:
     """Refuse the range of the one moving input when it leaves that input's limits (the others held)."""
     from gearlever.mechanism.limits import input_limits
 
@@ -299,7 +305,7 @@ def _check_reach(mech, ranges, start, stop) -> None:
     others = np.arange(held.size) != i
     held[others] = start[others]
     try:
-        lim = input_limits(mech, i, start=held)
+        lim = input_limits(mech, i, start=held, branch=branch)
     except GearleverError:
         return  # the held values do not assemble: the rows say so (not closed)
     if lim.full_turn:
