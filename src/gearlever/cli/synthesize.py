@@ -181,7 +181,7 @@ def _function(args) -> int:
         raise flagged(exc, _FLAGS) from None
     if res.defect:
         raise GearleverError(f"synthesize function: refused, {res.defect}; change the ranges or the points")
-    checked = np.concatenate([res.generated, res.dense_generated, [res.structural_error_max]])
+    checked = np.concatenate([res.achieved, res.dense_achieved, [res.structural_error_max]])
     if not np.all(np.isfinite(checked)):  # the engine reached every row (no defect): a gap is a bug, never written
         raise GearleverError("synthesize function: refused, the engine left outputs undefined over the range")
     unit = "" if slider else "_deg"
@@ -323,8 +323,8 @@ def _motion(args) -> int:
             "angle_error_deg": [rounded(float(math.degrees(e)), DIGITS_DESIGN, 360.0) for e in s.angle_error],
             "residual_relative": rounded(float(s.residual), DIGITS_DESIGN, 1.0),
             "transmission_angle_deg": [
-                rounded(float(math.degrees(s.transmission_angle_min)), 6),
-                rounded(float(math.degrees(s.transmission_angle_max)), 6),
+                rounded(float(math.degrees(s.transmission_range[0])), 6),
+                rounded(float(math.degrees(s.transmission_range[1])), 6),
             ],
             "defect": s.defect or None,
         }

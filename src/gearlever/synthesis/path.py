@@ -378,12 +378,12 @@ def synthesize_path(
     from dataclasses import replace
 
     if closing:
-        e0 = float(best_res.errors[0])
+        e0 = float(best_res.error[0])
         best_res = replace(
             best_res,
             targets=pb.targets.copy(),
-            traced=np.vstack([best_res.traced, best_res.traced[:1]]),
-            errors=np.append(best_res.errors, e0),
+            achieved=np.vstack([best_res.achieved, best_res.achieved[:1]]),
+            error=np.append(best_res.error, e0),
             objective=best_res.objective + e0 * e0,
             crank_angles=np.append(best_res.crank_angles, best_res.crank_angles[0] + 2 * math.pi),
             input_angles=np.append(best_res.input_angles, best_res.input_angles[0] + 2 * math.pi),

@@ -172,12 +172,12 @@ class PathSynthesis(Result):
     ----------
     kind : str
         Linkage type (a registered kind: ``"fourbar"``, ``"geared-fivebar"``, ``"sixbar"``).
-    targets, traced : ndarray (N, 2)
-        Target points and the coupler point at the targets' crank angles.
-    errors : ndarray (N,)
-        Distance target to coupler point (the per-target error).
+    targets, achieved : ndarray (N, 2)
+        Target points and the traced (coupler) point at the targets' crank angles.
+    error : ndarray (N,)
+        Distance target to traced point (the per-target error).
     objective : float
-        ``sum(errors**2)``.
+        ``sum(error**2)``.
     crank_angles : ndarray (N,)
         Crank angles from the ground line at the targets, radians, increasing.
     input_angles : ndarray (N,)
@@ -211,8 +211,8 @@ class PathSynthesis(Result):
 
     kind: str
     targets: np.ndarray
-    traced: np.ndarray
-    errors: np.ndarray
+    achieved: np.ndarray
+    error: np.ndarray
     objective: float
     crank_angles: np.ndarray
     input_angles: np.ndarray
@@ -247,7 +247,7 @@ class PathSynthesis(Result):
             "objective": self.objective,
             "feasible": self.feasible,
             "timing": self.timing,
-            "per_target_error": self.errors.tolist(),
+            "per_target_error": self.error.tolist(),
             "input_deg": np.degrees(self.input_angles).tolist(),
             "crank_deg_from_ground": np.degrees(self.crank_angles).tolist(),
             "grashof": self.grashof,
