@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -176,6 +177,16 @@ def test_result_meets_every_constraint_exactly():
     # the per-target error is the distance from the traced point
     assert np.allclose(r.error, np.hypot(*(r.achieved - T).T))
     assert math.isclose(r.objective, float(np.sum(r.error**2)))
+    # the summary (the CLI's report) is that result at the digits the computation determines
+    from gearlever._format import DIGITS_DESIGN, quantize
+
+    s = r.summary()
+    json.dumps(s, allow_nan=False)
+    S = math.hypot(*np.ptp(T, axis=0))
+    assert s["type"] == "fourbar" and s["feasible"] is True and s["seed"] == 3
+    assert s["per_target_error"] == [quantize(float(e), S, DIGITS_DESIGN) for e in r.error]
+    assert s["objective"] == quantize(r.objective, S * S, DIGITS_DESIGN)
+    assert s["transmission_deg"] == [quantize(math.degrees(v), 360.0, DIGITS_DESIGN) for v in r.transmission_range]
 
 
 def test_fixed_pivot_and_ground_angle_are_kept():
