@@ -10,7 +10,7 @@ import pytest
 
 from gearlever.errors import GearleverError
 from gearlever.loops import fourbar, grashof
-from gearlever.synthesis.model import model_toml
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.path import FourBarPathProblem, synthesize_path
 from gearlever.synthesis.path_fourbar import _coupler
 

@@ -8,8 +8,8 @@ import tomllib
 import numpy as np
 import pytest
 
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.fivebar import RATIOS, TURNS, GearedFiveBarPathProblem
-from gearlever.synthesis.model import model_toml
 from gearlever.synthesis.path import synthesize_path
 
 from ._jacobian import check_problem_jacobian

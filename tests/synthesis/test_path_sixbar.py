@@ -8,7 +8,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from gearlever.synthesis.model import model_toml
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.path import synthesize_path
 from gearlever.synthesis.path_fourbar import _coupler
 from gearlever.synthesis.sixbar import StephensonSixBarPathProblem

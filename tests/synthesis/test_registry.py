@@ -14,8 +14,8 @@ import pytest
 
 import gearlever.synthesis
 from gearlever.errors import GearleverError
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis import path, path_kinds, registry
-from gearlever.synthesis.model import model_toml
 from gearlever.synthesis.path_fourbar import FourBarPathProblem, fourbar_result
 from gearlever.synthesis.path_kinds import PathKind, PathSynthesis
 

@@ -193,7 +193,7 @@ def read_targets(path: str):
 def _run(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
     from gearlever.synthesis.path import synthesize_path
 
     check_output(args.report, "--report")

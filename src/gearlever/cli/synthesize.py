@@ -135,8 +135,8 @@ def _check_outputs(args) -> None:
 def _function(args) -> int:
     import numpy as np
 
+    from gearlever.mechanism.modelfile import model_toml
     from gearlever.synthesis.function import function_targets, synthesize_function
-    from gearlever.synthesis.model import model_toml
     from gearlever.synthesis.report import angle_offsets, check_pairs, function_summary
 
     _check_outputs(args)
@@ -256,7 +256,7 @@ def _scale_hint(res, args) -> str:
 def _motion(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
     from gearlever.synthesis.motion import MAX_POSES, burmester_curves, synthesize_motion
 
     _check_outputs(args)

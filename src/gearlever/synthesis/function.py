@@ -27,8 +27,9 @@ from gearlever._result import Result
 from gearlever._validate import finite_array, positive
 from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.loops.fourbar import fourbar, grashof, transmission_angle
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.expr import parse_expression, shown
-from gearlever.synthesis.model import fourbar_model, model_toml, slider_crank_model
+from gearlever.synthesis.model import fourbar_model, slider_crank_model
 from gearlever.synthesis.registry import Kind, register
 
 __all__ = [
@@ -244,7 +245,7 @@ class FunctionSynthesis(Result):
         ``"+"``/``"-"`` (slider ahead of or behind the crank pin).
     model : dict
         Model dict assembled at the first target (:mod:`gearlever.synthesis.model`),
-        exactly as :func:`~gearlever.synthesis.model.model_toml` writes it (coordinates at 10 digits of the size).
+        exactly as :func:`~gearlever.mechanism.modelfile.model_toml` writes it (coordinates at 10 digits of the size).
     dense_input, dense_desired, dense_achieved : ndarray
         The input range sampled, wanted output and engine output there.
     structural_error_max, structural_error_rms : float
@@ -497,7 +498,7 @@ def synthesize_function(
 
     The linkage is assembled at the first target on the branch nearest to
     its output, and the model is written to text and read back
-    (:func:`~gearlever.synthesis.model.model_toml`) so that what is checked
+    (:func:`~gearlever.mechanism.modelfile.model_toml`) so that what is checked
     is what a file holds.  The mechanism engine then solves that model over
     the targets and the whole range in one batched call, continuing from
     the sketch along its branch (:func:`gearlever.mechanism.solve.solve`):
