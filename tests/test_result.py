@@ -30,8 +30,6 @@ from gearlever._result import SUMMARY_MAX_ITEMS
 
 #: Result-like dataclasses in files another change owns (the synthesis driver: curves/search.py).
 NOT_YET = {"gearlever.curves.search.CurveSynthesis"}
-#: Summaries still spelled report() in the synthesis driver's files (path synthesis registry, renamed with it).
-REPORT_NOT_YET = {"gearlever.synthesis.path_kinds.PathSynthesis"}
 RESULT_NAME = re.compile(r".*(Result|Solution|Design|Run|State|Report)$")
 
 
@@ -93,8 +91,6 @@ def test_every_dataclass_named_as_a_result_derives_from_result():
 
 def test_no_result_spells_its_summary_report_or_to_dict():
     for name, cls in RESULTS.items():
-        if name in REPORT_NOT_YET:
-            continue
         for spelling in ("report", "to_dict"):
             assert not callable(getattr(cls, spelling, None)), f"{name}.{spelling}: call it summary()"
 

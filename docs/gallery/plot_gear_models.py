@@ -12,9 +12,9 @@ constraints found from the Jacobian's rank.
 import matplotlib.pyplot as plt
 import numpy as np
 
-from gearlever.cli.mechanism import sweep
 from gearlever.data import example_path
 from gearlever.mechanism import Mechanism
+from gearlever.mechanism.sweep import sweep
 from gearlever.plotting.mechanism import draw_mechanism
 
 names = ["planetary", "compound_planetary", "ferguson", "geared_fivebar"]

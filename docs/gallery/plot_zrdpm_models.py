@@ -11,9 +11,9 @@ constraints, as the paper's eq. 1 says.
 
 import matplotlib.pyplot as plt
 
-from gearlever.cli.mechanism import sweep
 from gearlever.data import example_path
 from gearlever.mechanism import Mechanism
+from gearlever.mechanism.sweep import sweep
 from gearlever.plotting.mechanism import draw_mechanism
 
 ranges = {"zrdpm_gear_contour": [(0.0, 360.0), (0.0, 60.0)], "parallel_levers": [(20.0, 160.0)]}

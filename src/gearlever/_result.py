@@ -13,9 +13,9 @@ inherits :class:`Result` (exported as :class:`gearlever.Result`), which gives it
   of :meth:`~Result.as_dict`; a result whose command-line report is more
   than that overrides it (the keys of a written report never change).
 
-Names of the same quantity across results (a short glossary; new results
-use these, older fields keep theirs where the name is written into an
-output file's columns):
+Names of the same quantity across results (a short glossary; every result
+uses these, and a written report that spelled a quantity otherwise keeps its
+key, mapped by its writer):
 
 =======================  ====================================================
 name                     quantity

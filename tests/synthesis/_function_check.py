@@ -48,7 +48,7 @@ def recompute(model, input_angle, output, dense_input, dense_desired):
     ``model`` is a dict or the path of a written model file; the crank is turned from its sketch by the
     change of the design input from target 1.
     """
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
 
     if not isinstance(model, dict):
         with open(model, "rb") as fh:

@@ -46,7 +46,7 @@ def test_freudenstein_identity_holds_along_the_engine_motion():
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
     r = synthesize_function(t.input_angle, t.output, desired=t.desired)
     K1, K2, K3 = r.coefficients
-    phi, psi = r.dense_input, r.dense_generated
+    phi, psi = r.dense_input, r.dense_achieved
     lhs = K1 * np.cos(psi) - K2 * np.cos(phi) + K3
     np.testing.assert_allclose(lhs, np.cos(phi - psi), atol=1e-12)
     d, a, b, c = (r.lengths[k] for k in ("ground", "crank", "coupler", "rocker"))
@@ -62,7 +62,7 @@ def test_log10_three_chebyshev_points_met_exactly_and_structural_error_from_engi
     assert np.abs(r.error).max() < 1e-8
     # the structural error vanishes at the precision points and is the engine's, over the range
     assert 0 < r.structural_error_max < np.radians(0.5)
-    at = np.interp(t.input_angle, r.dense_input, np.abs(r.dense_generated - r.dense_desired))
+    at = np.interp(t.input_angle, r.dense_input, np.abs(r.dense_achieved - r.dense_desired))
     assert at.max() < 1e-3 * r.structural_error_max + 1e-6
     m = Mechanism.from_dict(r.model)
     res = m.solve(m.sketch_inputs[None, :])
@@ -138,8 +138,8 @@ def test_input_range_extends_the_structural_error_to_the_ends_of_the_design_rang
     np.testing.assert_allclose(inner.dense_input[[0, -1]], t.input_angle[[0, -1]], rtol=1e-15)
     np.testing.assert_array_equal(full.lengths["coupler"], inner.lengths["coupler"])
     # the engine's output at the range ends, against the formula: the worst error is at x = 1
-    end_err = full.dense_generated[[0, -1]] - t.desired(np.radians([45, 105]))
-    assert full.structural_error_max == pytest.approx(np.abs(full.dense_generated - full.dense_desired).max())
+    end_err = full.dense_achieved[[0, -1]] - t.desired(np.radians([45, 105]))
+    assert full.structural_error_max == pytest.approx(np.abs(full.dense_achieved - full.dense_desired).max())
     assert full.structural_error_max == pytest.approx(abs(end_err[0]), rel=1e-12)
     assert full.structural_error_max > 1.3 * inner.structural_error_max
     with pytest.raises(GearleverError, match="input_range"):
@@ -197,9 +197,9 @@ def test_any_ranges_give_a_model_whose_structural_error_is_recomputed_or_a_clean
         assert margin.min() < 1e-6 or (r.exact and np.abs(err_t).max() > 1e-9), r.defect
         return
     assert margin.min() > 0
-    for v in (r.structural_error_max, r.structural_error_rms, r.transmission_angle_min, r.transmission_angle_max):
+    for v in (r.structural_error_max, r.structural_error_rms, *r.transmission_range):
         assert np.isfinite(v)
-    assert np.all(np.isfinite(r.generated)) and np.all(np.isfinite(r.dense_generated))
+    assert np.all(np.isfinite(r.achieved)) and np.all(np.isfinite(r.dense_achieved))
     assert r.structural_error_max == pytest.approx(sem, abs=tol)
     np.testing.assert_allclose(
         np.angle(np.exp(1j * (r.error - err_t))) if kind == "fourbar" else r.error - err_t, 0, atol=tol

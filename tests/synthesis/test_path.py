@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -9,7 +10,7 @@ import pytest
 
 from gearlever.errors import GearleverError
 from gearlever.loops import fourbar, grashof
-from gearlever.synthesis.model import model_toml
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.path import FourBarPathProblem, synthesize_path
 from gearlever.synthesis.path_fourbar import _coupler
 
@@ -174,8 +175,18 @@ def test_result_meets_every_constraint_exactly():
     inc = np.diff(r.input_angles)
     assert np.all(inc >= 0) and r.input_angles[-1] - r.input_angles[0] < 2 * np.pi
     # the per-target error is the distance from the traced point
-    assert np.allclose(r.errors, np.hypot(*(r.traced - T).T))
-    assert math.isclose(r.objective, float(np.sum(r.errors**2)))
+    assert np.allclose(r.error, np.hypot(*(r.achieved - T).T))
+    assert math.isclose(r.objective, float(np.sum(r.error**2)))
+    # the summary (the CLI's report) is that result at the digits the computation determines
+    from gearlever._format import DIGITS_DESIGN, quantize
+
+    s = r.summary()
+    json.dumps(s, allow_nan=False)
+    S = math.hypot(*np.ptp(T, axis=0))
+    assert s["type"] == "fourbar" and s["feasible"] is True and s["seed"] == 3
+    assert s["per_target_error"] == [quantize(float(e), S, DIGITS_DESIGN) for e in r.error]
+    assert s["objective"] == quantize(r.objective, S * S, DIGITS_DESIGN)
+    assert s["transmission_deg"] == [quantize(math.degrees(v), 360.0, DIGITS_DESIGN) for v in r.transmission_range]
 
 
 def test_fixed_pivot_and_ground_angle_are_kept():
@@ -200,7 +211,7 @@ def test_the_written_model_reproduces_the_reported_errors():
     sol = m.solve(r.input_angles)
     assert sol.closed.all()
     err = np.hypot(*(sol.point["P"] - T).T)
-    assert np.allclose(err, r.errors, rtol=1e-6, atol=1e-9 * math.sqrt(size2(T)))
+    assert np.allclose(err, r.error, rtol=1e-6, atol=1e-9 * math.sqrt(size2(T)))
 
 
 def test_same_seed_same_model_for_any_number_of_workers_and_on_a_distributed_cluster():
@@ -248,7 +259,7 @@ def test_a_closing_target_repeating_the_first_is_met_one_crank_turn_later():
 
     t = [[1.0, 2.0], [1.5, 2.4], [1.8, 3.0], [1.2, 3.5], [0.8, 2.9], [1.0, 2.0]]
     r = synthesize_path(t, length_range=(0.2, 5), coord_range=(-5, 5), budget=4000, workers=1)
-    assert r.targets.shape == (6, 2) and r.errors.shape == (6,)
-    assert r.errors[-1] == r.errors[0] and np.allclose(r.traced[-1], r.traced[0])
+    assert r.targets.shape == (6, 2) and r.error.shape == (6,)
+    assert r.error[-1] == r.error[0] and np.allclose(r.achieved[-1], r.achieved[0])
     assert math.isclose(r.crank_angles[-1] - r.crank_angles[0], 2 * math.pi)
-    assert math.isclose(r.objective, float(np.sum(r.errors**2)), rel_tol=1e-12)
+    assert math.isclose(r.objective, float(np.sum(r.error**2)), rel_tol=1e-12)

@@ -8,8 +8,8 @@ import tomllib
 import numpy as np
 import pytest
 
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.fivebar import RATIOS, TURNS, GearedFiveBarPathProblem
-from gearlever.synthesis.model import model_toml
 from gearlever.synthesis.path import synthesize_path
 
 from ._jacobian import check_problem_jacobian
@@ -61,7 +61,7 @@ def test_closure_holds_over_the_whole_period_on_a_fine_grid_and_the_model_reprod
     sol = m.solve(r.input_angles)
     assert sol.closed.all()
     err = np.hypot(*(sol.point["P"] - T).T)
-    assert np.allclose(err, r.errors, rtol=1e-6, atol=1e-9 * float(np.ptp(T)))
+    assert np.allclose(err, r.error, rtol=1e-6, atol=1e-9 * float(np.ptp(T)))
 
 
 def _ranges(T):

@@ -8,7 +8,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from gearlever.synthesis.model import model_toml
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.path import synthesize_path
 from gearlever.synthesis.path_fourbar import _coupler
 from gearlever.synthesis.sixbar import StephensonSixBarPathProblem
@@ -61,7 +61,7 @@ def test_dyad_closes_all_around_on_a_fine_grid_and_the_model_reproduces_the_erro
     assert sol.closed.all()
     err = np.hypot(*(sol.point["P"] - T).T)
     # the written model: coordinates at 10 digits of its size (gearlever._format)
-    assert np.allclose(err, r.errors, rtol=1e-6, atol=1e-8 * float(np.ptp(T)))
+    assert np.allclose(err, r.error, rtol=1e-6, atol=1e-8 * float(np.ptp(T)))
 
 
 @pytest.mark.slow

@@ -14,8 +14,8 @@ import pytest
 
 import gearlever.synthesis
 from gearlever.errors import GearleverError
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis import path, path_kinds, registry
-from gearlever.synthesis.model import model_toml
 from gearlever.synthesis.path_fourbar import FourBarPathProblem, fourbar_result
 from gearlever.synthesis.path_kinds import PathKind, PathSynthesis
 
@@ -187,7 +187,7 @@ def test_a_registered_kind_reaches_the_driver_without_touching_it(dummy):
     r = path.synthesize_path(T5, length_range=(0.2, 5), coord_range=(-5, 5), kind="dummy", budget=4000, workers=1)
     assert isinstance(r, PathSynthesis) and r.kind == "dummy" and r.feasible
     assert r.model()["mechanism"]["name"] == "dummy: synthesized path generator"
-    assert r.report()["type"] == "dummy"
+    assert r.summary()["type"] == "dummy"
 
 
 def test_auto_tries_a_registered_kind_in_the_registry_order(dummy, monkeypatch):

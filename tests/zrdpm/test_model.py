@@ -329,6 +329,7 @@ def test_package_re_exports_every_name_from_the_modules_by_concern():
         homes = [m for m in (model, parameters, published) if name in vars(m)]
         assert homes and all(getattr(m, name) is getattr(pkg, name) for m in homes), name
     assert not hasattr(model, "published_table")
+    assert not any(hasattr(model, n) for n in ("CONTOUR_OF_TABLE", "PAPER_NAMES", "TABLE_OF_CONTOUR"))  # nor parameters
     assert pkg.ZrdpmContour is parameters.ZrdpmContour and pkg.published_table is published.published_table
     assert callable(fast.fast_outputs)
 

@@ -55,7 +55,7 @@ in s; forces are in N and torques in N per length unit for a known unit (N mm wi
 with its unit (``gear9_torque_N_mm``, ``pin_A_x_N``, ``mesh_z9-z8_N``);
 JSON output repeats them under ``"units"``.
 
-Caps: ``--points`` at most :data:`gearlever.cli.mechanism.MAX_POINTS`;
+Caps: ``--points`` at most :data:`gearlever.mechanism.sweep.MAX_POINTS`;
 ``simulate`` at most :data:`MAX_TURNS` turns of the fastest input at its
 starting speed, and at most :data:`gearlever.mechanism.dynamics.MAX_EVALS`
 evaluations of the equations of motion (several inputs).
@@ -70,8 +70,9 @@ import numpy as np
 
 from gearlever._format import DIGITS_FORCES, DIGITS_SIMULATE
 from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress, table_text
-from gearlever.cli._shared import MAX_POINTS, load_model
+from gearlever.cli._shared import load_model
 from gearlever.errors import GearleverError
+from gearlever.mechanism.sweep import MAX_POINTS
 
 #: Largest number of input turns ``simulate`` integrates (``--time`` x fastest ``--rpm`` / 60); one input
 #: that turns fully uses spline tables (about 0.1 ms a turn), several inputs stop at MAX_EVALS anyway.

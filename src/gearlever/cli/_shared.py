@@ -14,7 +14,6 @@ from pathlib import Path
 
 from gearlever.cli._common import capped_int
 from gearlever.errors import GearleverError
-from gearlever.mechanism.sweep import MAX_POINTS  # noqa: F401  (the cap lives with the sweep rule)
 
 #: Largest ``--frames`` (same as :data:`gearlever.plotting.viewer.MAX_VIEW_FRAMES`, kept here so ``--help`` stays fast).
 MAX_VIEW_FRAMES = 3600

@@ -177,7 +177,7 @@ def read_targets(path: str):
 def _run(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
     from gearlever.synthesis.path import synthesize_path
 
     check_output(args.report, "--report")
@@ -231,7 +231,7 @@ def _run(args) -> int:
         raise flagged(exc, flags) from None
     finally:
         bar.close()
-    rep = _rounded(res.report(), res.targets)
+    rep = res.summary()  # rounded by the digits rule
     S = float(np.hypot(*np.ptp(res.targets, axis=0))) or 1.0
     rep["time_s"] = round(float(res.seconds), 2)
     if not res.feasible:  # a command writes all its files or none
@@ -269,21 +269,3 @@ def _run(args) -> int:
         )
     )
     return 0
-
-
-def _rounded(rep: dict, targets) -> dict:
-    """The report at the digits its computation determines (:func:`gearlever._format.rounded_report`).
-
-    Distances at :data:`~gearlever._format.DIGITS_DESIGN` digits of the targets' size ``S``, objectives
-    (sums of squared distances) at as many of ``S**2``, angles of 360 deg, lengths of the longest link:
-    an exact fit is written 0, not its rounding noise.
-    """
-    import numpy as np
-
-    from gearlever._format import DIGITS_DESIGN, rounded_report
-
-    S = float(np.hypot(*np.ptp(np.asarray(targets, dtype=float), axis=0))) or 1.0
-    links = [abs(float(v)) for v in rep["links"].values() if isinstance(v, (int, float))]
-    scales = {"objective": S * S, "per_target_error": S, "types_tried": S * S, "links": max(links) if links else 0.0}
-    scales.update(dict.fromkeys(("input_deg", "crank_deg_from_ground", "transmission_deg"), 360.0))
-    return rounded_report(rep, DIGITS_DESIGN, scales)

@@ -56,7 +56,7 @@ import numpy as np
 from gearlever.cli._common import emit, finite_float, named_values, positive_int, table_text, to_json
 from gearlever.cli._shared import load_model as _load
 from gearlever.errors import GearleverError
-from gearlever.mechanism.sweep import (  # noqa: F401  (the sweep rule lives in the library; names kept here)
+from gearlever.mechanism.sweep import (
     DEFAULT_POINTS,
     MAX_POINTS,
     input_labels,
@@ -302,7 +302,7 @@ def _analyze(args) -> int:
 
 def _assemble(args) -> int:
     from gearlever.mechanism import assemble
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
 
     mech = _load(args.model)
     exact = assemble(mech.model, hold_inputs=not args.free_inputs)

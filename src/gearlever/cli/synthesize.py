@@ -133,39 +133,81 @@ def _check_outputs(args) -> None:
 
 
 def _function(args) -> int:
-    import numpy as np
-
-    from gearlever.synthesis.function import function_targets, synthesize_function
-    from gearlever.synthesis.model import model_toml
-    from gearlever.synthesis.report import angle_offsets, check_pairs, function_summary
+    from gearlever.mechanism.modelfile import model_toml
+    from gearlever.synthesis.report import angle_offsets, function_summary
 
     _check_outputs(args)
     t0 = time.perf_counter()
     slider = args.kind == "slider-crank"
+    res, targets = _function_result(args, slider)
+    offsets = angle_offsets(res)
+    note = res.proportions()
+    warn = f"{note}; {_scale_hint(res, args)}" if note else None
+    rep = function_summary(
+        res,
+        expression=args.expr,
+        x=None if targets is None else targets.x,
+        warnings=[warn] if warn else [],
+        time_s=time.perf_counter() - t0,
+    )
+    lines = _function_lines(args, res, rep, offsets, slider)
+    figure = None
+    if args.figure:
+        from gearlever.plotting.synthesis import function_figure
+
+        figure = function_figure(res)
+    # every output is ready: only now is anything staged (written all or none by commit_outputs)
+    emit(model_toml(res.model, _function_comment(args, res, offsets)), args.out)
+    if args.report:
+        emit(to_json(rep), args.report, "--report")
+    if figure is not None:
+        from gearlever.plotting._common import save
+
+        save(figure, args.figure)
+    commit_outputs()  # the summary names the files written: they are there first
+    if warn:
+        print(f"gearlever synthesize function: warning: {warn}", file=sys.stderr)
+    print("\n".join(lines))
+    return 0
+
+
+def _function_targets(args, slider: bool) -> tuple:
+    """``(input angles, outputs, desired function or None, FunctionTargets or None)`` from PAIRS.csv or --expr."""
+    import numpy as np
+
+    from gearlever.synthesis.function import function_targets
+    from gearlever.synthesis.report import check_pairs
+
     out_col = "output" if slider else "output_deg"
     formula = [args.expr, args.x_range, args.input_range, args.output_range]
+    if args.pairs is not None:
+        if any(v is not None for v in formula[1:]):
+            raise GearleverError("--x-range/--input-range/--output-range go with --expr, not with PAIRS.csv")
+        cols = _read_csv(args.pairs, "PAIRS", ("input_deg", out_col))
+        check_pairs(cols["input_deg"], cols[out_col], slider=slider, where=f"PAIRS {args.pairs!r}")
+        phi = np.radians(cols["input_deg"])
+        out = np.asarray(cols[out_col]) if slider else np.radians(cols[out_col])
+        return phi, out, None, None
+    for flag, v in zip(("--x-range", "--input-range", "--output-range"), formula[1:]):
+        if v is None:
+            raise GearleverError(f"--expr needs {flag}")
+    if args.points < 3:
+        raise GearleverError(f"--points must be at least 3, got {args.points}")
+    orange = args.output_range if slider else np.radians(args.output_range)
+    targets = function_targets(args.expr, args.x_range, np.radians(args.input_range), orange, args.points, args.spacing)
+    return targets.input_angle, targets.output, targets.desired, targets
+
+
+def _function_result(args, slider: bool) -> tuple:
+    """``(FunctionSynthesis, FunctionTargets or None)`` of the command's targets; a defect is refused."""
+    import numpy as np
+
+    from gearlever.synthesis.function import synthesize_function
+
     if (args.pairs is None) == (args.expr is None):
         raise GearleverError("give either PAIRS.csv or --expr with --x-range, --input-range, --output-range")
     try:
-        if args.pairs is not None:
-            if any(v is not None for v in formula[1:]):
-                raise GearleverError("--x-range/--input-range/--output-range go with --expr, not with PAIRS.csv")
-            cols = _read_csv(args.pairs, "PAIRS", ("input_deg", out_col))
-            check_pairs(cols["input_deg"], cols[out_col], slider=slider, where=f"PAIRS {args.pairs!r}")
-            phi = np.radians(cols["input_deg"])
-            out = np.asarray(cols[out_col]) if slider else np.radians(cols[out_col])
-            desired, targets = None, None
-        else:
-            for flag, v in zip(("--x-range", "--input-range", "--output-range"), formula[1:]):
-                if v is None:
-                    raise GearleverError(f"--expr needs {flag}")
-            if args.points < 3:
-                raise GearleverError(f"--points must be at least 3, got {args.points}")
-            orange = args.output_range if slider else np.radians(args.output_range)
-            targets = function_targets(
-                args.expr, args.x_range, np.radians(args.input_range), orange, args.points, args.spacing
-            )
-            phi, out, desired = targets.input_angle, targets.output, targets.desired
+        phi, out, desired, targets = _function_targets(args, slider)
         with warnings.catch_warnings():
             # the library's warning is replaced by the line below, which names the flags
             warnings.filterwarnings("ignore", message="impractical proportions", category=GearleverWarning)
@@ -181,35 +223,36 @@ def _function(args) -> int:
         raise flagged(exc, _FLAGS) from None
     if res.defect:
         raise GearleverError(f"synthesize function: refused, {res.defect}; change the ranges or the points")
-    checked = np.concatenate([res.generated, res.dense_generated, [res.structural_error_max]])
+    checked = np.concatenate([res.achieved, res.dense_achieved, [res.structural_error_max]])
     if not np.all(np.isfinite(checked)):  # the engine reached every row (no defect): a gap is a bug, never written
         raise GearleverError("synthesize function: refused, the engine left outputs undefined over the range")
-    unit = "" if slider else "_deg"
-    offsets = angle_offsets(res)
+    return res, targets
+
+
+def _function_comment(args, res, offsets: dict) -> str:
+    """The model file's header comment: the command, the targets' source and the crank angle of target 1."""
     phi0 = math.degrees(res.input_angle[0])
-    comment = (
+    return (
         f"gearlever synthesize function ({args.kind}): "
         + (f"y = {args.expr}" if args.expr else f"pairs from {args.pairs}")
         + f"; the crank angle of target 1 is {phi0:.10g} deg"
         + (f"; the model's crank angle is the input angle {offsets['crank']:+d} deg" if offsets["crank"] else "")
     )
-    note = res.proportions()
-    warn = f"{note}; {_scale_hint(res, args)}" if note else None
+
+
+def _function_lines(args, res, rep: dict, offsets: dict, slider: bool) -> list:
+    """The summary printed on stdout, from the report ``rep`` (its rounded numbers)."""
+    import numpy as np
+
+    unit = "" if slider else "_deg"
+    phi0 = math.degrees(res.input_angle[0])
     out_scale = float(np.ptp([float(v) if slider else math.degrees(v) for v in res.output])) or 1.0
-    rep = function_summary(
-        res,
-        expression=args.expr,
-        x=None if targets is None else targets.x,
-        warnings=[warn] if warn else [],
-        time_s=time.perf_counter() - t0,
-    )
-    L = res.lengths
     model_at = f"crank angle at target 1: {phi0:.10g} deg"
     if offsets["crank"]:
         model_at += f"; the model's crank angle there: {phi0 + offsets['crank']:.10g} deg"
-    lines = [
+    return [
         f"type             {args.kind} ({rep['objective']})",
-        "lengths          " + ", ".join(f"{k} {rep['lengths'][k]:.10g}" for k in L),
+        "lengths          " + ", ".join(f"{k} {rep['lengths'][k]:.10g}" for k in res.lengths),
         f"grashof          {res.grashof}; branch {res.branch}",
         f"target error     max {below(rep[f'max_target_error{unit}'], out_scale, fmt='.3g')}"
         + ("" if slider else " deg"),
@@ -218,24 +261,6 @@ def _function(args) -> int:
         f"transmission     {rep['transmission_angle_deg'][0]:.4g} .. {rep['transmission_angle_deg'][1]:.4g} deg",
         f"model            {args.out} ({model_at})",
     ]
-    figure = None
-    if args.figure:
-        from gearlever.plotting.synthesis import function_figure
-
-        figure = function_figure(res)
-    # every output is ready: only now is anything staged (written all or none by commit_outputs)
-    emit(model_toml(res.model, comment), args.out)
-    if args.report:
-        emit(to_json(rep), args.report, "--report")
-    if figure is not None:
-        from gearlever.plotting._common import save
-
-        save(figure, args.figure)
-    commit_outputs()  # the summary names the files written: they are there first
-    if warn:
-        print(f"gearlever synthesize function: warning: {warn}", file=sys.stderr)
-    print("\n".join(lines))
-    return 0
 
 
 def _scale_hint(res, args) -> str:
@@ -256,7 +281,7 @@ def _scale_hint(res, args) -> str:
 def _motion(args) -> int:
     import numpy as np
 
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
     from gearlever.synthesis.motion import MAX_POSES, burmester_curves, synthesize_motion
 
     _check_outputs(args)
@@ -323,8 +348,8 @@ def _motion(args) -> int:
             "angle_error_deg": [rounded(float(math.degrees(e)), DIGITS_DESIGN, 360.0) for e in s.angle_error],
             "residual_relative": rounded(float(s.residual), DIGITS_DESIGN, 1.0),
             "transmission_angle_deg": [
-                rounded(float(math.degrees(s.transmission_angle_min)), 6),
-                rounded(float(math.degrees(s.transmission_angle_max)), 6),
+                rounded(float(math.degrees(s.transmission_range[0])), 6),
+                rounded(float(math.degrees(s.transmission_range[1])), 6),
             ],
             "defect": s.defect or None,
         }

@@ -127,9 +127,9 @@ def register_mechanism_law(ms) -> None:
 
 def _run(args) -> int:
     from gearlever.laws import load_law
+    from gearlever.mechanism.modelfile import model_toml
     from gearlever.synthesis.law import synthesize_law
     from gearlever.synthesis.law.measure import cam_comparison, law_report
-    from gearlever.synthesis.model import model_toml
 
     check_output(args.out, "--out")
     for flag, path in (("--report", args.report), ("--figure", args.figure)):

@@ -303,6 +303,26 @@ def network_torques(
     the torques; they are found by repeated exact solves until they settle.
     A device whose gears do not move relative to its carrier loses nothing.
     """
+    app, loads, eta, analysis = _checked_torques(network, applied, loads, efficiency)
+    spd = _member_speeds(network, speeds, eta, analysis)
+    devices = _devices(network, eta)
+    rows, lam, L, lam_free = _settled_equilibrium(network, devices, app, loads, spd, eta)
+    torques = dict(app)
+    torques.update({name: L[i] for i, name in enumerate(loads)})
+    multipliers = {d.label: (None if lam_free[k] else lam[k]) for k, d in enumerate(devices)}
+    flow = _power_flow(network, devices, rows, lam, lam_free, torques, spd, eta)
+    return NetworkTorques(
+        torques=torques,
+        frame_reactions=_frame_reactions(devices, rows, lam, lam_free),
+        multipliers=multipliers,
+        speeds=spd,
+        **flow,
+        efficiency=eta,
+    )
+
+
+def _checked_torques(network, applied, loads, efficiency) -> tuple:
+    """``(applied torques, load names, efficiency, the network's analysis)`` of :func:`network_torques`, checked."""
     if not isinstance(network, Network):
         raise GearleverError(f"network must be a Network, got {type(network).__name__}")
     known = set(network.names)
@@ -326,7 +346,11 @@ def network_torques(
     eta = _exact("efficiency", efficiency)
     if not 0 < eta <= 1:
         raise GearleverError(f"efficiency must be in (0, 1], got {efficiency}")
+    return app, loads, eta, analysis
 
+
+def _member_speeds(network, speeds, eta, analysis) -> dict[str, Fraction] | None:
+    """Every member's exact speed from ``speeds`` (None without them); refuses losses that cannot be charged."""
     spd: dict[str, Fraction] | None = None
     if speeds is not None:
         if not isinstance(speeds, Mapping):
@@ -343,8 +367,27 @@ def network_torques(
                 f"({'), ('.join(analysis.redundant)}) and the constraints they follow from are statically "
                 "indeterminate, so the power flow through them is not defined"
             )
+    return spd
 
-    devices = _devices(network, eta)
+
+def _driven_gears(devices, lam, spd) -> list:
+    """Per device, the gears driven in its carrier's frame (power out of the teeth) for the multipliers ``lam``."""
+    out = []
+    for k, d in enumerate(devices):
+        if d.eta == 1 or not d.gears or spd is None:
+            out.append(frozenset())
+            continue
+        wc = spd[d.carrier] if d.carrier is not None else Fraction(0)
+        rel = {g: lam[k] * d.row[g] * (spd[g] - wc) for g in d.gears}
+        if all(p == 0 for p in rel.values()):
+            out.append(frozenset())
+        else:
+            out.append(frozenset(g for g, p in rel.items() if p < 0))
+    return out
+
+
+def _settled_equilibrium(network, devices, app, loads, spd, eta) -> tuple:
+    """``(rows, lam, load torques, lam_free)``: the exact equilibrium, re-solved until the power flow settles."""
 
     def solve_with(driven):
         rows = [_lossy_row(d, driven[k]) for k, d in enumerate(devices)]
@@ -353,26 +396,12 @@ def network_torques(
             raise GearleverError("network: no equilibrium with these losses (the train self-locks)")
         return rows, res
 
-    def directions(lam):
-        out = []
-        for k, d in enumerate(devices):
-            if d.eta == 1 or not d.gears or spd is None:
-                out.append(frozenset())
-                continue
-            wc = spd[d.carrier] if d.carrier is not None else Fraction(0)
-            rel = {g: lam[k] * d.row[g] * (spd[g] - wc) for g in d.gears}
-            if all(p == 0 for p in rel.values()):
-                out.append(frozenset())
-            else:
-                out.append(frozenset(g for g, p in rel.items() if p < 0))
-        return out
-
     driven = [frozenset()] * len(devices)
     rows, (lam, L, lam_free, load_free) = solve_with(driven)
     if eta < 1:
         seen = {tuple(driven)}
         for _ in range(MAX_PASSES):
-            new = directions(lam)
+            new = _driven_gears(devices, lam, spd)
             if new == driven:
                 break
             if tuple(new) in seen:
@@ -384,22 +413,27 @@ def network_torques(
             rows, (lam, L, lam_free, load_free) = solve_with(driven)
         else:  # pragma: no cover - bounded by the finite number of direction sets seen
             raise GearleverError("efficiency: the power-flow directions do not settle")
-        if directions(lam) != driven:
+        if _driven_gears(devices, lam, spd) != driven:
             raise GearleverError(
                 "efficiency: the power-flow directions do not settle (the train self-locks at this efficiency)"
             )
     if any(load_free):  # pragma: no cover - excluded by network.solve(loads) above
         raise GearleverError(f"loads {list(loads)} are not independent")
+    return rows, lam, L, lam_free
 
-    torques = dict(app)
-    torques.update({name: L[i] for i, name in enumerate(loads)})
-    multipliers = {d.label: (None if lam_free[k] else lam[k]) for k, d in enumerate(devices)}
+
+def _frame_reactions(devices, rows, lam, lam_free) -> dict:
+    """The frame's reaction through each constraint that touches it (None where indeterminate)."""
     frame_reactions = {}
     for k, d in enumerate(devices):
         if d.touches_frame:
             s = sum(rows[k].values(), Fraction(0))
             frame_reactions[d.label] = None if (lam_free[k] and s != 0) else -lam[k] * s
+    return frame_reactions
 
+
+def _power_flow(network, devices, rows, lam, lam_free, torques, spd, eta) -> dict:
+    """The power fields of :class:`NetworkTorques` (members' power, flows, rolling power, losses, throughput)."""
     power = flows = None
     rolling: dict[str, Fraction | None] = {}
     losses: dict[str, Fraction] = {}
@@ -430,20 +464,15 @@ def network_torques(
             rolling[d.label] = sum((p for p in rel if p > 0), Fraction(0))
             losses[d.label] = -sum(f.values(), Fraction(0)) if d.gears else Fraction(0)
         circulating = tuple(lbl for lbl, t in throughput.items() if t is not None and t > input_power)
-    return NetworkTorques(
-        torques=torques,
-        frame_reactions=frame_reactions,
-        multipliers=multipliers,
-        speeds=spd,
-        power=power,
-        flows=flows if flows is not None else {},
-        rolling_power=rolling,
-        losses=losses,
-        throughput=throughput,
-        input_power=input_power,
-        circulating=circulating,
-        efficiency=eta,
-    )
+    return {
+        "power": power,
+        "flows": flows if flows is not None else {},
+        "rolling_power": rolling,
+        "losses": losses,
+        "throughput": throughput,
+        "input_power": input_power,
+        "circulating": circulating,
+    }
 
 
 def _num(x, what: str = "a result"):

@@ -554,25 +554,73 @@ def _inverse_dynamics(
     phi = pressure_angle_of(m, pressure_angle)
     effs = mesh_efficiency_of(m, efficiency)
     asm = _Assembly(mech, r)
-    n3 = asm.n3
+    Q = _generalized_forces(asm, r, masses_, loads_, g, _extra, _cache)
+    A, labels, members, geo, loss, base = _equilibrium_rows(asm, r, effs, _cache)
+    y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, asm.n3, _cache)
+    ok = r.closed & np.all(np.isfinite(r.xddot), axis=1) & consistent
+    A, y, und, driven = _settle_mesh_losses(asm, r, A, Q, y, und, ok, loss, base, effs, _driven, _cache)
+    mesh_loss = _mesh_losses(m, loss, y, driven, base)
+    y, und, Qg = _with_radial_tooth_forces(asm, A, y, und, geo, base, phi, _cache)
+    y_any = np.where(ok[:, None], y, 0.0)  # one particular solution: the frame's total action is the same for all
+    y = np.where(ok[:, None] & ~und, y, np.nan)
+    indeterminate = tuple(lab for j, lab in enumerate(labels) if np.any(und[ok, j]))
+    reaction, pins, slider_force, slider_moment, mesh_force, mesh_tan, input_force = _named_forces(m, y, phi)
+    gf, gm = _frame_action(asm, A, y_any, members, Qg, ok)
+    kin = r.closed & np.all(np.isfinite(r.xddot), axis=1)
+    _refuse_overflow(asm, r, masses_, loads_, g, kin, [Q])
+    _refuse_overflow(asm, r, masses_, loads_, g, ok, [y_any, gf, gm, *mesh_loss.values()])
+    return InverseDynamics(
+        q=r.q,
+        qdot=r.qdot,
+        qddot=r.qddot,
+        input_force=input_force,
+        reaction=reaction,
+        pins=pins,
+        slider_force=slider_force,
+        slider_moment=slider_moment,
+        mesh_force=mesh_force,
+        mesh_tangential=mesh_tan,
+        ground_force=gf,
+        ground_moment=gm,
+        mesh_loss={k: np.where(ok, v, np.nan) for k, v in mesh_loss.items()},
+        mesh_driven={mesh.name: driven[:, j].copy() for j, mesh in enumerate(m.meshes)},
+        indeterminate=indeterminate,
+        ok=ok,
+        pressure_angle=phi,
+        labels=tuple(labels),
+        multipliers=y,
+        kinematics=r,
+    )
 
-    # generalized applied + inertia forces (and the joint friction of the last pass, :func:`_with_friction`)
-    if _cache is not None and "Q" in _cache:
-        Q = _cache["Q"]
+
+def _generalized_forces(asm, r, masses, loads, g, extra, cache):
+    """Generalized applied and inertia forces (N, 3n), plus ``extra`` (the joint friction of the last pass)."""
+    if cache is not None and "Q" in cache:
+        Q = cache["Q"]
     else:
-        Q = _applied(asm, r, masses_, loads_, g, inertia=True)
-        if _cache is not None:
-            _cache["Q"] = Q
-    if _extra is not None:
-        Q = Q + _extra
+        Q = _applied(asm, r, masses, loads, g, inertia=True)
+        if cache is not None:
+            cache["Q"] = Q
+    if extra is not None:
+        Q = Q + extra
+    return Q
 
-    # rows: pins and sliders from the constraint Jacobian, meshes as rolling rows, drivers
-    if _cache is not None and "J" in _cache:
-        Jfull = _cache["J"]
+
+def _equilibrium_rows(asm, r, effs, cache) -> tuple:
+    """The equilibrium's rows: pins and sliders (constraint Jacobian), meshes as rolling rows, the drivers.
+
+    Returns ``(A (N, rows, 3n), labels, members, mesh geometry, mesh loss terms, index of the first mesh row)``;
+    a mesh's loss terms are ``(eta, loss row if gear a is driven, if gear b is driven, power into a, into b per
+    unit multiplier)``.
+    """
+    m = asm.m
+    N, n3 = r.q.shape[0], asm.n3
+    if cache is not None and "J" in cache:
+        Jfull = cache["J"]
     else:
         Jfull = constraint_jacobian(m, asm.pose)  # (N, m, 3n)
-        if _cache is not None:
-            _cache["J"] = Jfull
+        if cache is not None:
+            cache["J"] = Jfull
     labels_all = constraint_labels(m)
     n_ps = 2 * len(m.joints) + 2 * len(m.sliders)
     rows = [Jfull[:, i, :] for i in range(n_ps)]
@@ -583,7 +631,7 @@ def _inverse_dynamics(
     for s in m.sliders:
         members += [{s.link, s.on}, {s.link, s.on}]
     geo = {}
-    loss = []  # per mesh: (eta, loss row if a driven, if b driven, power into a, into b per unit multiplier)
+    loss = []
     spin = np.nan_to_num(r.pose_velocity)[..., 2]
 
     def omega(link):
@@ -612,20 +660,29 @@ def _inverse_dynamics(
     members += drv_members
     labels += [f"input {spec.label}" for spec in m.inputs]
     A = np.stack(rows, axis=1) if rows else np.zeros((N, 0, n3))
-    base = n_ps
+    return A, labels, members, geo, loss, n_ps
 
-    y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3, _cache)
-    ok = r.closed & np.all(np.isfinite(r.xddot), axis=1) & consistent
+
+def _settle_mesh_losses(asm, r, A0, Q, y, und, ok, loss, base, effs, given, cache) -> tuple:
+    """``(A, y, und, driven)``: the equilibrium with each lossy mesh charged on its driven gear.
+
+    ``driven`` (N, meshes) is 0 (no loss), 1 (gear a driven) or 2 (gear b);
+    ``given`` fixes it (forward dynamics: the map from accelerations to forces
+    is then linear), else it is found by re-solving until the directions of
+    the power flow settle.
+    """
+    m = asm.m
+    N, n3 = r.q.shape[0], asm.n3
     lossy = [j for j, lo in enumerate(loss) if lo[0] < 1.0]
     driven = np.zeros((N, len(m.meshes)), dtype=np.int8)  # 0 no loss, 1 gear a driven, 2 gear b driven
-    A0 = A
+    A = A0
 
     def with_losses(driven):
         A = A0.copy()
         for j in lossy:
             A[:, base + j] += np.where(driven[:, j, None] == 1, loss[j][1], 0.0)
             A[:, base + j] += np.where(driven[:, j, None] == 2, loss[j][2], 0.0)
-        y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3, _cache)
+        y, und, consistent = _solve_equilibrium(A, Q, m.length_scale, n3, cache)
         lost = ok & ~consistent
         if lost.any():
             i = int(np.argmax(lost))
@@ -642,8 +699,8 @@ def _inverse_dynamics(
                 f"self-locking: cannot decide, mesh losses need determined tooth forces, and those of {bad} are "
                 "statically indeterminate (redundant pairs); give them efficiency = 1"
             )
-    if lossy and _driven is not None:  # directions given (forward dynamics): the map qddot -> forces is linear
-        driven = np.where(ok[:, None], np.broadcast_to(np.asarray(_driven, dtype=np.int8), driven.shape), 0)
+    if lossy and given is not None:  # directions given (forward dynamics): the map qddot -> forces is linear
+        driven = np.where(ok[:, None], np.broadcast_to(np.asarray(given, dtype=np.int8), driven.shape), 0)
         A, y, und = with_losses(driven)
     elif lossy:
         history = [driven.copy()]
@@ -670,6 +727,11 @@ def _inverse_dynamics(
             A, y, und = with_losses(driven)
         else:  # pragma: no cover - bounded by the finite number of direction sets
             raise GearleverError("self-locking: the power-flow directions through the meshes do not settle")
+    return A, y, und, driven
+
+
+def _mesh_losses(m, loss, y, driven, base) -> dict:
+    """Power lost in each mesh per row: ``(1 - eta)`` times the rolling power of its driven gear."""
     mesh_loss = {}
     for j, mesh in enumerate(m.meshes):
         eta, _, _, pa, pb = loss[j]
@@ -677,32 +739,41 @@ def _inverse_dynamics(
         mesh_loss[mesh.name] = np.where(
             driven[:, j] == 1, (1.0 - eta) * yj * pa, np.where(driven[:, j] == 2, (1.0 - eta) * yj * pb, 0.0)
         )
-    # radial (workless) tooth forces: add them as known forces and re-solve the reactions
-    Qg = np.zeros((N, n3))  # radial tooth forces of ground gears on moving gears
-    if m.meshes:
-        Qr = np.zeros((N, n3))
-        for j, mesh in enumerate(m.meshes):
-            A_, B_, P, t, ga, gb = geo[mesh.name]
-            Ft = np.abs(y[:, base + j])
-            ext = gb if ga.internal else ga  # the external gear of the pair
-            C = B_ if ga.internal else A_
-            u = C - P
-            u = u / np.maximum(np.linalg.norm(u, axis=1, keepdims=True), 1e-300)
-            fr = (Ft * math.tan(phi))[:, None] * u
-            other = ga if ext is gb else gb
-            asm.add_force(Qr, ext.link, P, fr)
-            asm.add_force(Qr, other.link, P, -fr)
-            if ext.link == GROUND:
-                asm.add_force(Qg, other.link, P, -fr)
-            elif other.link == GROUND:
-                asm.add_force(Qg, ext.link, P, fr)
-        yr, und_r, _ = _solve_equilibrium(A, Qr, m.length_scale, n3, _cache)
-        y = y + yr
-        und = und | und_r
-    y_any = np.where(ok[:, None], y, 0.0)  # one particular solution: the frame's total action is the same for all
-    y = np.where(ok[:, None] & ~und, y, np.nan)
-    indeterminate = tuple(lab for j, lab in enumerate(labels) if np.any(und[ok, j]))
+    return mesh_loss
 
+
+def _with_radial_tooth_forces(asm, A, y, und, geo, base, phi, cache) -> tuple:
+    """``(y, und, Qg)``: the radial (workless) tooth forces added as known forces and the reactions re-solved.
+
+    ``Qg`` holds the radial forces of ground gears on moving gears (part of the frame's action).
+    """
+    m = asm.m
+    N, n3 = y.shape[0], asm.n3
+    Qg = np.zeros((N, n3))  # radial tooth forces of ground gears on moving gears
+    if not m.meshes:
+        return y, und, Qg
+    Qr = np.zeros((N, n3))
+    for j, mesh in enumerate(m.meshes):
+        A_, B_, P, t, ga, gb = geo[mesh.name]
+        Ft = np.abs(y[:, base + j])
+        ext = gb if ga.internal else ga  # the external gear of the pair
+        C = B_ if ga.internal else A_
+        u = C - P
+        u = u / np.maximum(np.linalg.norm(u, axis=1, keepdims=True), 1e-300)
+        fr = (Ft * math.tan(phi))[:, None] * u
+        other = ga if ext is gb else gb
+        asm.add_force(Qr, ext.link, P, fr)
+        asm.add_force(Qr, other.link, P, -fr)
+        if ext.link == GROUND:
+            asm.add_force(Qg, other.link, P, -fr)
+        elif other.link == GROUND:
+            asm.add_force(Qg, ext.link, P, fr)
+    yr, und_r, _ = _solve_equilibrium(A, Qr, m.length_scale, n3, cache)
+    return y + yr, und | und_r, Qg
+
+
+def _named_forces(m, y, phi) -> tuple:
+    """The multipliers ``y`` by name: pin reactions (and their links), slider forces and moments, meshes, inputs."""
     reaction, pins = {}, {}
     count = {}
     for p, _a, _b in m.joints:
@@ -723,16 +794,18 @@ def _inverse_dynamics(
         mesh_tan[mesh.name] = y[:, i]
         mesh_force[mesh.name] = np.abs(y[:, i]) / math.cos(phi)
         i += 1
-    input_force = y[:, i:]
+    return reaction, pins, slider_force, slider_moment, mesh_force, mesh_tan, y[:, i:]
 
-    # the frame's total action: every row that involves ground, as a world wrench on the moving links
+
+def _frame_action(asm, A, y_any, members, Qg, ok) -> tuple:
+    """``(force (N, 2), moment (N,))``: the frame's total action, every row that involves ground, as a world wrench."""
+    N = y_any.shape[0]
     gf = np.zeros((N, 2))
     gm = np.zeros(N)
-    yz = y_any
     for j, mem in enumerate(members):
         if GROUND not in mem:
             continue
-        Gj = A[:, j, :] * yz[:, j : j + 1]
+        Gj = A[:, j, :] * y_any[:, j : j + 1]
         f, mo = _wrench(asm, Gj)
         gf += f
         gm += mo
@@ -741,31 +814,7 @@ def _inverse_dynamics(
     gm += mo
     gf[~ok] = np.nan
     gm[~ok] = np.nan
-    kin = r.closed & np.all(np.isfinite(r.xddot), axis=1)
-    _refuse_overflow(asm, r, masses_, loads_, g, kin, [Q])
-    _refuse_overflow(asm, r, masses_, loads_, g, ok, [y_any, gf, gm, *mesh_loss.values()])
-    return InverseDynamics(
-        q=r.q,
-        qdot=r.qdot,
-        qddot=r.qddot,
-        input_force=input_force,
-        reaction=reaction,
-        pins=pins,
-        slider_force=slider_force,
-        slider_moment=slider_moment,
-        mesh_force=mesh_force,
-        mesh_tangential=mesh_tan,
-        ground_force=gf,
-        ground_moment=gm,
-        mesh_loss={k: np.where(ok, v, np.nan) for k, v in mesh_loss.items()},
-        mesh_driven={mesh.name: driven[:, j].copy() for j, mesh in enumerate(m.meshes)},
-        indeterminate=indeterminate,
-        ok=ok,
-        pressure_angle=phi,
-        labels=tuple(labels),
-        multipliers=y,
-        kinematics=r,
-    )
+    return gf, gm
 
 
 def _contributions(asm, r, masses, loads, g):

@@ -359,7 +359,7 @@ def check_mechanism(mech, points: int = 360, adjust: dict | None = None) -> tupl
         distance sets it (``2 a / (z_1 +- z_2)``).
     points : int
         Frames of the cycle (the first input turns one turn from its sketch,
-        the others held: :func:`gearlever.cli.mechanism.sweep`'s rule), and
+        the others held: :func:`gearlever.mechanism.sweep.sweep`'s rule), and
         samples of an adjustment's range.
     adjust : dict, optional
         ``{mesh name: (start, stop)}``: centre distances an adjusting slide

@@ -22,7 +22,7 @@ def path_synthesis_plot(result, ax=None):
     ax.plot(curve[:, 0], curve[:, 1], color="tab:blue", lw=1.2, label="coupler curve")
     T = result.targets
     ax.plot(T[:, 0], T[:, 1], "o", mfc="none", mec="tab:red", ms=8, label="targets")
-    ax.plot(result.traced[:, 0], result.traced[:, 1], "x", color="tab:blue", ms=6, label="coupler point at targets")
+    ax.plot(result.achieved[:, 0], result.achieved[:, 1], "x", color="tab:blue", ms=6, label="coupler point at targets")
     for i, (x, y) in enumerate(T):
         ax.annotate(str(i + 1), (x, y), textcoords="offset points", xytext=(5, 5), fontsize=8, color="tab:red")
     q = {k: np.asarray(v) for k, v in result.points.items()}

@@ -268,7 +268,6 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     >>> d["S"]["x"]["A"], d["S"]["y"]["A"]
     ([[1, 0, -1, 0]], [[0, 1, 0, -1]])
     """
-    from gearlever.mechanism.centres import instant_centres
     from gearlever.mechanism.model import GROUND
 
     if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or not 2 <= frames <= MAX_VIEW_FRAMES:
@@ -291,87 +290,17 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
             s = start.copy()
             s[1] = v
             slices.append(s)
-    M = len(slices)
     results = []
     for s in slices:
         q = np.tile(s, (frames, 1))
         q[:, 0] = turn
         results.append(mech.solve(q, frame_rates))
 
-    def cat(attr, key=None):
-        """``result.attr[key]`` (or ``result.attr``) of every grid slice, concatenated."""
-        parts = [getattr(r, attr) if key is None else getattr(r, attr)[key] for r in results]
-        return np.concatenate([np.asarray(a, dtype=float) for a in parts])
-
     points = [p for p in results[0].point]
     L = m.length_scale
     closed = np.concatenate([r.closed for r in results])
-    series = {k: {} for k in ("x", "y", "vx", "vy", "ax", "ay", "phi", "w", "al", "s", "sv", "sa")}
-    for p in points:
-        P, V, A = cat("point", p), cat("velocity", p), cat("acceleration", p)
-        for key, arr, c in (("x", P, 0), ("y", P, 1), ("vx", V, 0), ("vy", V, 1), ("ax", A, 0), ("ay", A, 1)):
-            series[key][p] = _slices(arr[:, c], M, L if key in ("x", "y") else None)
-    for k in m.moving:
-        i = mech.system.idx[k]
-        series["phi"][k] = _slices(cat("x")[:, i], M)
-        series["w"][k] = _slices(cat("omega", k), M)
-        series["al"][k] = _slices(cat("alpha", k), M)
-    for sl in m.sliders:
-        series["s"][sl.name] = _slices(cat("displacement", sl.name), M)
-        series["sv"][sl.name] = _slices(cat("slider_velocity", sl.name), M)
-        series["sa"][sl.name] = _slices(cat("slider_acceleration", sl.name), M)
-
-    # extent of the drawing over every frame: points and gear rims
-    xy = np.concatenate([cat("point", p) for p in points])
-    xy = xy[np.all(np.isfinite(xy), axis=1)]
-    if xy.size == 0:
-        xy = np.array(list(m.points.values()), dtype=float)
-    lo, hi = xy.min(axis=0), xy.max(axis=0)
-    gears = []
-    for g in m.gears.values():
-        r = m.pitch_radius(g.name)
-        gears.append(
-            {"name": g.name, "link": g.link, "centre": g.centre, "teeth": g.teeth, "internal": g.internal, "r": r}
-        )
-        if r is not None:
-            c = cat("point", g.centre)
-            c = c[np.all(np.isfinite(c), axis=1)]
-            if c.size:
-                lo = np.minimum(lo, c.min(axis=0) - r)
-                hi = np.maximum(hi, c.max(axis=0) + r)
-    pad = 0.12 * L
-    bbox = [float(lo[0] - pad), float(lo[1] - pad), float(hi[0] + pad), float(hi[1] + pad)]
-
-    sliders = []
-    for sl in m.sliders:
-        s = cat("displacement", sl.name)
-        s = s[np.isfinite(s)]
-        smin, smax = (float(s.min()), float(s.max())) if s.size else (0.0, 0.0)
-        sliders.append(
-            {
-                "name": sl.name,
-                "link": sl.link,
-                "on": sl.on,
-                "point": sl.point,
-                "dir": list(sl.direction),
-                "smin": smin - 0.08 * L,
-                "smax": smax + 0.08 * L,
-            }
-        )
-
-    # one arrow scale for every point and frame: the longest arrow is L / 2
-    def longest(attr):
-        best = 0.0
-        for p in points:
-            v = cat(attr, p)
-            a = np.hypot(v[:, 0], v[:, 1])
-            a = a[np.isfinite(a)]
-            if a.size:
-                best = max(best, float(a.max()))
-        return best
-
-    vmax, amax = longest("velocity"), longest("acceleration")
-
+    bbox, gears = _extent(m, results, points)
+    vmax, amax = _longest(results, points, "velocity"), _longest(results, points, "acceleration")
     ground_pts = set(m.links[GROUND].points)
     joints = sorted({p for p, _, _ in m.joints}, key=list(m.points).index)
     units = m.units or "len"
@@ -403,10 +332,10 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
         "ground_points": [p for p in points if p in ground_pts],
         "joints": joints,
         "links": [{"name": k, "points": list(m.links[k].points), "angle0": m.links[k].angle0} for k in m.moving],
-        "sliders": sliders,
+        "sliders": _slider_tracks(m, results),
         "gears": gears,
         "closed": "".join("1" if c else "0" for c in closed),
-        "S": series,
+        "S": _series(mech, results, points),
         "vscale": 0.5 * L / vmax if vmax > 0 else 0.0,
         "ascale": 0.5 * L / amax if amax > 0 else 0.0,
         "ic": None,
@@ -421,22 +350,113 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     data["centres_capped"] = W == 1 and not with_centres
     data["centres_max"] = MAX_CENTRE_BODIES
     if W == 1 and with_centres:
-        ic = instant_centres(results[0])
-        data["ic"] = {
-            "links": list(ic.links),
-            "pairs": list(ic.pairs),
-            "x": {k: _slices(ic.xy[:, p, 0], 1, L) for p, k in enumerate(ic.pairs)},
-            "y": {k: _slices(ic.xy[:, p, 1], 1, L) for p, k in enumerate(ic.pairs)},
-            "inf": {
-                k: [
-                    [int(i), round(float(ic.direction[i, p, 0]), 6), round(float(ic.direction[i, p, 1]), 6)]
-                    for i in np.flatnonzero(np.all(np.isfinite(ic.direction[:, p]), axis=1))
-                ]
-                for p, k in enumerate(ic.pairs)
-                if np.isfinite(ic.direction[:, p]).any()
-            },
-        }
+        data["ic"] = _centres(results[0], L)
     return data
+
+
+def _cat(results, attr: str, key=None) -> np.ndarray:
+    """``result.attr[key]`` (or ``result.attr``) of every grid slice, concatenated."""
+    parts = [getattr(r, attr) if key is None else getattr(r, attr)[key] for r in results]
+    return np.concatenate([np.asarray(a, dtype=float) for a in parts])
+
+
+def _series(mech, results, points) -> dict:
+    """The page's per-frame arrays: point positions, velocities, accelerations; link and slider motions."""
+    m = mech.model
+    M, L = len(results), m.length_scale
+    series = {k: {} for k in ("x", "y", "vx", "vy", "ax", "ay", "phi", "w", "al", "s", "sv", "sa")}
+    for p in points:
+        P, V, A = _cat(results, "point", p), _cat(results, "velocity", p), _cat(results, "acceleration", p)
+        for key, arr, c in (("x", P, 0), ("y", P, 1), ("vx", V, 0), ("vy", V, 1), ("ax", A, 0), ("ay", A, 1)):
+            series[key][p] = _slices(arr[:, c], M, L if key in ("x", "y") else None)
+    for k in m.moving:
+        i = mech.system.idx[k]
+        series["phi"][k] = _slices(_cat(results, "x")[:, i], M)
+        series["w"][k] = _slices(_cat(results, "omega", k), M)
+        series["al"][k] = _slices(_cat(results, "alpha", k), M)
+    for sl in m.sliders:
+        series["s"][sl.name] = _slices(_cat(results, "displacement", sl.name), M)
+        series["sv"][sl.name] = _slices(_cat(results, "slider_velocity", sl.name), M)
+        series["sa"][sl.name] = _slices(_cat(results, "slider_acceleration", sl.name), M)
+    return series
+
+
+def _extent(m, results, points) -> tuple:
+    """``(bbox, gears)``: the drawing's box over every frame (points and gear rims, padded) and the gears drawn."""
+    xy = np.concatenate([_cat(results, "point", p) for p in points])
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    if xy.size == 0:
+        xy = np.array(list(m.points.values()), dtype=float)
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    gears = []
+    for g in m.gears.values():
+        r = m.pitch_radius(g.name)
+        gears.append(
+            {"name": g.name, "link": g.link, "centre": g.centre, "teeth": g.teeth, "internal": g.internal, "r": r}
+        )
+        if r is not None:
+            c = _cat(results, "point", g.centre)
+            c = c[np.all(np.isfinite(c), axis=1)]
+            if c.size:
+                lo = np.minimum(lo, c.min(axis=0) - r)
+                hi = np.maximum(hi, c.max(axis=0) + r)
+    pad = 0.12 * m.length_scale
+    return [float(lo[0] - pad), float(lo[1] - pad), float(hi[0] + pad), float(hi[1] + pad)], gears
+
+
+def _slider_tracks(m, results) -> list:
+    """Each slider's guide as drawn: its line and the travel it covers over the frames (padded)."""
+    L = m.length_scale
+    sliders = []
+    for sl in m.sliders:
+        s = _cat(results, "displacement", sl.name)
+        s = s[np.isfinite(s)]
+        smin, smax = (float(s.min()), float(s.max())) if s.size else (0.0, 0.0)
+        sliders.append(
+            {
+                "name": sl.name,
+                "link": sl.link,
+                "on": sl.on,
+                "point": sl.point,
+                "dir": list(sl.direction),
+                "smin": smin - 0.08 * L,
+                "smax": smax + 0.08 * L,
+            }
+        )
+    return sliders
+
+
+def _longest(results, points, attr: str) -> float:
+    """The longest ``attr`` vector (velocity or acceleration) of any point in any frame: one arrow scale for all."""
+    best = 0.0
+    for p in points:
+        v = _cat(results, attr, p)
+        a = np.hypot(v[:, 0], v[:, 1])
+        a = a[np.isfinite(a)]
+        if a.size:
+            best = max(best, float(a.max()))
+    return best
+
+
+def _centres(result, L: float) -> dict:
+    """The instant centres of every frame (one input): positions, and directions of those at infinity."""
+    from gearlever.mechanism.centres import instant_centres
+
+    ic = instant_centres(result)
+    return {
+        "links": list(ic.links),
+        "pairs": list(ic.pairs),
+        "x": {k: _slices(ic.xy[:, p, 0], 1, L) for p, k in enumerate(ic.pairs)},
+        "y": {k: _slices(ic.xy[:, p, 1], 1, L) for p, k in enumerate(ic.pairs)},
+        "inf": {
+            k: [
+                [int(i), round(float(ic.direction[i, p, 0]), 6), round(float(ic.direction[i, p, 1]), 6)]
+                for i in np.flatnonzero(np.all(np.isfinite(ic.direction[:, p]), axis=1))
+            ]
+            for p, k in enumerate(ic.pairs)
+            if np.isfinite(ic.direction[:, p]).any()
+        },
+    }
 
 
 def _template(name: str) -> str:

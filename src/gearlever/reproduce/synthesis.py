@@ -148,7 +148,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     err = ax.twinx()
     (line,) = err.plot(
         np.degrees(r.dense_input),
-        np.degrees(r.dense_generated - r.dense_desired),
+        np.degrees(r.dense_achieved - r.dense_desired),
         color="0.45",
         lw=1,
         label="structural error (right axis)",

@@ -212,8 +212,8 @@ def fivebar_result(pb: GearedFiveBarPathProblem, w, mode, evals, seed, starts, s
     return PathSynthesis(
         kind="geared-fivebar",
         targets=pb.targets.copy(),
-        traced=traced,
-        errors=err,
+        achieved=traced,
+        error=err,
         objective=float(np.sum(err**2)),
         crank_angles=crank,
         input_angles=a1 + inc,

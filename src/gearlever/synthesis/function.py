@@ -27,8 +27,9 @@ from gearlever._result import Result
 from gearlever._validate import finite_array, positive
 from gearlever.errors import GearleverError, GearleverWarning
 from gearlever.loops.fourbar import fourbar, grashof, transmission_angle
+from gearlever.mechanism.modelfile import model_toml
 from gearlever.synthesis.expr import parse_expression, shown
-from gearlever.synthesis.model import fourbar_model, model_toml, slider_crank_model
+from gearlever.synthesis.model import fourbar_model, slider_crank_model
 from gearlever.synthesis.registry import Kind, register
 
 __all__ = [
@@ -229,10 +230,10 @@ class FunctionSynthesis(Result):
         Crank angles of the targets, radians (the design's input angle).
     output : ndarray
         Wanted outputs: rocker angle (radians) or slider travel (length).
-    generated : ndarray
+    achieved : ndarray
         The engine's output at the targets (solving :attr:`model`).
     error : ndarray
-        ``generated - output`` (four-bar: wrapped to ``(-pi, pi]``, a rocker
+        ``achieved - output`` (four-bar: wrapped to ``(-pi, pi]``, a rocker
         angle being a pose).
     coefficients : ndarray
         ``(K1, K2, K3)`` of the design equation (see :func:`synthesize_function`).
@@ -244,13 +245,14 @@ class FunctionSynthesis(Result):
         ``"+"``/``"-"`` (slider ahead of or behind the crank pin).
     model : dict
         Model dict assembled at the first target (:mod:`gearlever.synthesis.model`),
-        exactly as :func:`~gearlever.synthesis.model.model_toml` writes it (coordinates at 10 digits of the size).
-    dense_input, dense_desired, dense_generated : ndarray
+        exactly as :func:`~gearlever.mechanism.modelfile.model_toml` writes it (coordinates at 10 digits of the size).
+    dense_input, dense_desired, dense_achieved : ndarray
         The input range sampled, wanted output and engine output there.
     structural_error_max, structural_error_rms : float
         Over the dense samples (output units); NaN only with a :attr:`defect`.
-    transmission_angle_min, transmission_angle_max : float
-        Radians, over the dense samples.
+    transmission_range : tuple
+        Smallest and largest transmission angle over the dense samples, radians
+        (NaN where no sample assembles).
     grashof : str
         Grashof type (four-bar), ``"crank turns fully"`` / ``"crank rocks"`` (slider).
     defect : str
@@ -287,7 +289,7 @@ class FunctionSynthesis(Result):
     kind: str
     input_angle: np.ndarray
     output: np.ndarray
-    generated: np.ndarray
+    achieved: np.ndarray
     error: np.ndarray
     coefficients: np.ndarray
     lengths: dict
@@ -295,11 +297,10 @@ class FunctionSynthesis(Result):
     model: dict
     dense_input: np.ndarray
     dense_desired: np.ndarray
-    dense_generated: np.ndarray
+    dense_achieved: np.ndarray
     structural_error_max: float
     structural_error_rms: float
-    transmission_angle_min: float
-    transmission_angle_max: float
+    transmission_range: tuple
     grashof: str
     defect: str
     exact: bool
@@ -314,7 +315,7 @@ class FunctionSynthesis(Result):
         return {
             "input_angle_rad": self.input_angle,
             f"output_{unit}": self.output,
-            f"generated_{unit}": self.generated,
+            f"achieved_{unit}": self.achieved,
             f"error_{unit}": self.error,
         }
 
@@ -377,13 +378,12 @@ def _targets(input_angle, output, kind):
 
 
 def _error_and_angle_stats(derr, mu) -> tuple:
-    """Max and RMS of the structural error, min and max transmission angle (NaN rows ignored; NaN if none)."""
+    """Max and RMS of the structural error, ``(min, max)`` transmission angle (NaN rows ignored; NaN if none)."""
     e, m = np.isfinite(derr).any(), np.isfinite(mu).any()
     return (
         float(np.nanmax(np.abs(derr))) if e else math.nan,
         float(np.sqrt(np.nanmean(derr**2))) if e else math.nan,
-        float(np.nanmin(mu)) if m else math.nan,
-        float(np.nanmax(mu)) if m else math.nan,
+        (float(np.nanmin(mu)) if m else math.nan, float(np.nanmax(mu)) if m else math.nan),
     )
 
 
@@ -498,12 +498,12 @@ def synthesize_function(
 
     The linkage is assembled at the first target on the branch nearest to
     its output, and the model is written to text and read back
-    (:func:`~gearlever.synthesis.model.model_toml`) so that what is checked
+    (:func:`~gearlever.mechanism.modelfile.model_toml`) so that what is checked
     is what a file holds.  The mechanism engine then solves that model over
     the targets and the whole range in one batched call, continuing from
     the sketch along its branch (:func:`gearlever.mechanism.solve.solve`):
     a row it cannot reach (a dead point or a branch change between the
-    targets) is a :attr:`FunctionSynthesis.defect`, and the generated
+    targets) is a :attr:`FunctionSynthesis.defect`, and the achieved
     outputs and the structural error are the engine's.
 
     Examples
@@ -571,7 +571,7 @@ def _engine(model, phi, dense, out0, output):
     to the low end of the range, then from target 1 up to the high end, so
     that the continuation meets a dead point next to the last row it
     reached; the engine's crank input of a row is the sketch's angle plus
-    the input's change from target 1.  Returns ``(generated at the targets,
+    the input's change from target 1.  Returns ``(achieved at the targets,
     over the range, defect, input_offset, rows solved)``.
     """
     from gearlever.mechanism import Mechanism

@@ -439,8 +439,9 @@ class MotionSolution(Result):
         ``ground, crank, coupler, rocker``.
     grashof : str
     crank_turns : bool
-    transmission_angle_min, transmission_angle_max : float
-        Over the crank motion through the poses, radians.
+    transmission_range : tuple
+        Smallest and largest transmission angle over the crank motion through
+        the poses, radians (NaN where none assembles).
     defect : str
         Empty, or the branch, order or circuit defect found.
 
@@ -462,8 +463,7 @@ class MotionSolution(Result):
     lengths: dict
     grashof: str
     crank_turns: bool
-    transmission_angle_min: float
-    transmission_angle_max: float
+    transmission_range: tuple
     defect: str
 
     def _frame_columns(self) -> dict:
@@ -517,7 +517,7 @@ class MotionSynthesis(Result):
             "ground_x": np.array([x.crank.ground_pivot[0] for x in s]),
             "ground_y": np.array([x.crank.ground_pivot[1] for x in s]),
             "residual": np.array([x.residual for x in s]),
-            "transmission_angle_min_rad": np.array([x.transmission_angle_min for x in s]),
+            "transmission_angle_min_rad": np.array([x.transmission_range[0] for x in s]),
             "defect": np.array([x.defect for x in s], dtype=object),
         }
 
@@ -606,8 +606,7 @@ def _solution(z, th, d1, d2, info, name):
             {"ground": info["d"], "crank": info["a"], "coupler": info["b"], "rocker": info["c"]},
             info["grashof"].kind,
             bool(info["grashof"].crank_rotates),
-            float(np.nanmin(mu)) if np.isfinite(mu).any() else math.nan,
-            float(np.nanmax(mu)) if np.isfinite(mu).any() else math.nan,
+            (float(np.nanmin(mu)), float(np.nanmax(mu))) if np.isfinite(mu).any() else (math.nan, math.nan),
             info["defect"],
         ),
         int(q.size),
@@ -615,7 +614,7 @@ def _solution(z, th, d1, d2, info, name):
 
 
 def _rank_key(s: MotionSolution, spread: float):
-    mu = s.transmission_angle_min, s.transmission_angle_max
+    mu = s.transmission_range
     worst = min(mu[0], math.pi - mu[1]) if all(map(math.isfinite, mu)) else 0.0
     return (
         bool(s.defect),

@@ -302,9 +302,65 @@ def synthesize_path(
     kinds = list(known[:-1]) if kind == "auto" else [kind]
     if timing is None:
         timing = "none" if angles is None else "relative"
+    base = _base_spec(targets, angles, timing, pivot, ground_angle, length_range, coord_range)
+    if min_transmission is not None:
+        _check_min_transmission_kind(kind, known)
+        base["min_transmission"] = min_transmission
+    pb = FourBarPathProblem(**base)  # checks the input before any work
+    least = max(min_budget(make_problem({"kind": kd, **base}).d) for kd in kinds)
+    budget = check_budget(
+        "budget", budget, least, MAX_BUDGET, f"for this problem: at least {STARTS} starts of one population each"
+    )
+    S2 = float(np.sum(np.ptp(pb.targets, axis=0) ** 2))
+    closing = _closes(kind, timing, pb.targets)
+    if closing:
+        # the first target stands for two (it is met again one turn later): it weighs twice
+        n = pb.targets.shape[0] - 1
+        base = {**base, "targets": base["targets"][:-1], "weights": [2.0] + [1.0] * (n - 1)}
+    t0 = time.perf_counter()
+    best_res, tried, evals = _search_kinds(kinds, kind, base, budget, seed, workers, scheduler, progress, method, S2)
+    if best_res is None:
+        bounds = "length_range, coord_range" + (", min_transmission" if min_transmission else "")
+        raise GearleverError(f"no buildable linkage found within the constraints ({bounds})")
+    from dataclasses import replace
+
+    if closing:
+        best_res, tried = _closed(best_res, pb.targets, tried)
+    return replace(best_res, evaluations=evals, seconds=time.perf_counter() - t0, tried=tried)
+
+
+def _check_min_transmission_kind(kind: str, known: tuple) -> None:
+    """Refuses ``min_transmission`` for a kind whose problem does not take it (naming the kinds that do)."""
+    takers = [k for k in known[:-1] if "min_transmission" in path_kinds.get(k).options]
+    if kind not in takers:
+        raise GearleverError(
+            f"min_transmission bounds a four-bar's transmission angle only: kind must be "
+            f"{' or '.join(repr(k) for k in takers)}, got {kind!r}"
+        )
+
+
+def _closes(kind: str, timing: str, targets) -> bool:
+    """A closed path whose last target repeats the first (a full crank turn), for a kind that closes it.
+
+    The crank of a crank-rocker is back at the same pose after 2 pi, so the
+    last target is met exactly as well as the first: the search runs without
+    it (the counter-clockwise order within one turn could not place it), then
+    :func:`_closed` adds it back at the first target's crank angle plus one turn.
+    """
+    return (
+        kind != "auto"
+        and path_kinds.get(kind).closed_path
+        and timing == "none"
+        and targets.shape[0] >= 4
+        and bool(np.array_equal(targets[-1], targets[0]))
+    )
+
+
+def _base_spec(targets, angles, timing, pivot, ground_angle, length_range, coord_range) -> dict:
+    """The problem arguments shared by every kind tried: targets, timing and the constraints (ranges by default)."""
     targets = _targets(targets)
     dl, dc = default_ranges(targets)
-    base = {
+    return {
         "targets": targets.tolist(),
         "timing": timing,
         "angles": None if angles is None or timing == "none" else np.asarray(angles, dtype=float).tolist(),
@@ -313,36 +369,14 @@ def synthesize_path(
         "length_range": tuple(length_range) if length_range is not None else dl,
         "coord_range": tuple(coord_range) if coord_range is not None else dc,
     }
-    if min_transmission is not None:
-        takers = [k for k in known[:-1] if "min_transmission" in path_kinds.get(k).options]
-        if kind not in takers:
-            raise GearleverError(
-                f"min_transmission bounds a four-bar's transmission angle only: kind must be "
-                f"{' or '.join(repr(k) for k in takers)}, got {kind!r}"
-            )
-        base["min_transmission"] = min_transmission
-    pb = FourBarPathProblem(**base)  # checks the input before any work
-    least = max(min_budget(make_problem({"kind": kd, **base}).d) for kd in kinds)
-    budget = check_budget(
-        "budget", budget, least, MAX_BUDGET, f"for this problem: at least {STARTS} starts of one population each"
-    )
-    S2 = float(np.sum(np.ptp(pb.targets, axis=0) ** 2))
-    # A closed path whose last target repeats the first (a full crank turn): the crank of a
-    # crank-rocker is back at the same pose after 2 pi, so the last target is met exactly as
-    # well as the first. Search without it (the ccw order within one turn could not place it),
-    # then add it back at the first target's crank angle plus one turn.
-    closing = (
-        kind != "auto"
-        and path_kinds.get(kind).closed_path
-        and timing == "none"
-        and pb.targets.shape[0] >= 4
-        and bool(np.array_equal(pb.targets[-1], pb.targets[0]))
-    )
-    if closing:
-        # the first target stands for two (it is met again one turn later): it weighs twice
-        n = pb.targets.shape[0] - 1
-        base = {**base, "targets": base["targets"][:-1], "weights": [2.0] + [1.0] * (n - 1)}
-    t0 = time.perf_counter()
+
+
+def _search_kinds(kinds, kind, base, budget, seed, workers, scheduler, progress, method, S2) -> tuple:
+    """``(best feasible result or None, objective per kind tried, evaluations)``: the multistart search of each kind.
+
+    ``auto`` stops at the first kind whose best is within :data:`AUTO_GOOD` of
+    the targets' size squared ``S2``.
+    """
     best_res, tried, evals = None, {}, 0
     for kd in kinds:
         spec = {"kind": kd, **base}
@@ -372,21 +406,25 @@ def synthesize_path(
         # auto: a type is tried only when the ones before it do not reach the targets
         if kind == "auto" and best_res is not None and best_res.objective <= AUTO_GOOD * S2:
             break
-    if best_res is None:
-        bounds = "length_range, coord_range" + (", min_transmission" if min_transmission else "")
-        raise GearleverError(f"no buildable linkage found within the constraints ({bounds})")
+    return best_res, tried, evals
+
+
+def _closed(res: PathSynthesis, targets, tried: dict) -> tuple:
+    """The result of a closed path searched without its repeated last target, with that target added back.
+
+    The last target is met at the first one's crank angle plus one turn (the
+    crank-rocker repeats its pose), so its error is the first one's.
+    """
     from dataclasses import replace
 
-    if closing:
-        e0 = float(best_res.errors[0])
-        best_res = replace(
-            best_res,
-            targets=pb.targets.copy(),
-            traced=np.vstack([best_res.traced, best_res.traced[:1]]),
-            errors=np.append(best_res.errors, e0),
-            objective=best_res.objective + e0 * e0,
-            crank_angles=np.append(best_res.crank_angles, best_res.crank_angles[0] + 2 * math.pi),
-            input_angles=np.append(best_res.input_angles, best_res.input_angles[0] + 2 * math.pi),
-        )
-        tried = {k: (v + e0 * e0 if v is not None else None) for k, v in tried.items()}
-    return replace(best_res, evaluations=evals, seconds=time.perf_counter() - t0, tried=tried)
+    e0 = float(res.error[0])
+    res = replace(
+        res,
+        targets=targets.copy(),
+        achieved=np.vstack([res.achieved, res.achieved[:1]]),
+        error=np.append(res.error, e0),
+        objective=res.objective + e0 * e0,
+        crank_angles=np.append(res.crank_angles, res.crank_angles[0] + 2 * math.pi),
+        input_angles=np.append(res.input_angles, res.input_angles[0] + 2 * math.pi),
+    )
+    return res, {k: (v + e0 * e0 if v is not None else None) for k, v in tried.items()}

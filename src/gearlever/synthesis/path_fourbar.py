@@ -653,8 +653,8 @@ def fourbar_result(pb: FourBarPathProblem, w, sigma, evals, seed, starts, second
     return PathSynthesis(
         kind="fourbar",
         targets=pb.targets.copy(),
-        traced=traced,
-        errors=err,
+        achieved=traced,
+        error=err,
         objective=float(np.sum(err**2)),
         crank_angles=crank,
         input_angles=a1 + inc,

@@ -27,7 +27,7 @@ at import time (:func:`names` and :func:`get` load :data:`BUILTIN` on first
 use), so a kind module may import it, and the four-bar module, without an
 import circle.
 
-Imports numpy, :mod:`gearlever._result`, :mod:`gearlever.errors` and
+Imports numpy, :mod:`gearlever._format`, :mod:`gearlever._result`, :mod:`gearlever.errors` and
 :mod:`gearlever.synthesis.registry`.
 """
 
@@ -172,12 +172,12 @@ class PathSynthesis(Result):
     ----------
     kind : str
         Linkage type (a registered kind: ``"fourbar"``, ``"geared-fivebar"``, ``"sixbar"``).
-    targets, traced : ndarray (N, 2)
-        Target points and the coupler point at the targets' crank angles.
-    errors : ndarray (N,)
-        Distance target to coupler point (the per-target error).
+    targets, achieved : ndarray (N, 2)
+        Target points and the traced (coupler) point at the targets' crank angles.
+    error : ndarray (N,)
+        Distance target to traced point (the per-target error).
     objective : float
-        ``sum(errors**2)``.
+        ``sum(error**2)``.
     crank_angles : ndarray (N,)
         Crank angles from the ground line at the targets, radians, increasing.
     input_angles : ndarray (N,)
@@ -211,8 +211,8 @@ class PathSynthesis(Result):
 
     kind: str
     targets: np.ndarray
-    traced: np.ndarray
-    errors: np.ndarray
+    achieved: np.ndarray
+    error: np.ndarray
     objective: float
     crank_angles: np.ndarray
     input_angles: np.ndarray
@@ -240,14 +240,42 @@ class PathSynthesis(Result):
         """The traced point's closed path (K, 2) from the first target over the period of the motion."""
         return self.path
 
-    def report(self) -> dict:
-        """Strict-JSON-ready summary (degrees for angles)."""
-        return {
+    def summary(self) -> dict:
+        """The JSON-ready summary (degrees for angles), each number at the digits its computation determines.
+
+        Keys: ``type``, ``objective``, ``feasible``, ``timing``,
+        ``per_target_error`` (:attr:`error`), ``input_deg``,
+        ``crank_deg_from_ground``, ``grashof``, ``teeth``, ``branch``,
+        ``links``, ``transmission_deg`` (:attr:`transmission_range`),
+        ``evaluations``, ``seed``, ``types_tried`` (:attr:`tried`), ``starts``,
+        ``time_s`` (to 0.01 s); the command line writes it as its report.
+
+        Notes
+        -----
+        The digits rule of :mod:`gearlever._format`
+        (:func:`~gearlever._format.rounded_report`, :data:`~gearlever._format.DIGITS_DESIGN`
+        digits): distances at the digits of the targets' size ``S`` (the
+        diagonal of their bounding box), objectives (sums of squared
+        distances) at those of ``S**2``, angles of 360 deg, link lengths of
+        the longest link, so that an exact fit is written 0, not its rounding
+        noise; NaN is None (strict JSON).
+
+        Examples
+        --------
+        >>> from gearlever.synthesis.path import synthesize_path
+        >>> t = [[1.0, 2.0], [1.5, 2.4], [1.8, 3.0], [1.2, 3.5]]
+        >>> s = synthesize_path(t, length_range=(0.2, 5), coord_range=(-5, 5), budget=4000, workers=1).summary()
+        >>> s["type"], s["feasible"], len(s["per_target_error"])
+        ('fourbar', True, 4)
+        """
+        from gearlever._format import DIGITS_DESIGN, rounded_report
+
+        rep = {
             "type": self.kind,
             "objective": self.objective,
             "feasible": self.feasible,
             "timing": self.timing,
-            "per_target_error": self.errors.tolist(),
+            "per_target_error": self.error.tolist(),
             "input_deg": np.degrees(self.input_angles).tolist(),
             "crank_deg_from_ground": np.degrees(self.crank_angles).tolist(),
             "grashof": self.grashof,
@@ -259,5 +287,11 @@ class PathSynthesis(Result):
             "seed": self.seed,
             "types_tried": dict(self.tried),
             "starts": self.starts,
-            "time_s": self.seconds,
+            "time_s": round(float(self.seconds), 2),
         }
+        S = float(np.hypot(*np.ptp(np.asarray(self.targets, dtype=float), axis=0))) or 1.0
+        links = [abs(float(v)) for v in rep["links"].values() if isinstance(v, (int, float))]
+        scales = {"objective": S * S, "per_target_error": S, "types_tried": S * S}
+        scales["links"] = max(links) if links else 0.0
+        scales.update(dict.fromkeys(("input_deg", "crank_deg_from_ground", "transmission_deg"), 360.0))
+        return rounded_report(rep, DIGITS_DESIGN, scales)

@@ -118,7 +118,8 @@ def function_summary(res, *, expression: str | None = None, x=None, warnings=(),
         ``kind``, ``objective`` (in words), ``expression``, ``lengths``,
         ``link_ratio``, ``coefficients``, ``branch``, ``grashof``, ``targets``
         (per target: ``x``, ``input_deg``, ``model_input_deg``, output,
-        generated and error, ``_deg`` for a four-bar), the largest target
+        ``generated`` (the field :attr:`~gearlever.synthesis.function.FunctionSynthesis.achieved`:
+        the report's key is kept) and error, ``_deg`` for a four-bar), the largest target
         error, the structural error (max, rms, samples) over the range, the
         transmission angle range, ``defect``, ``model_angle_offsets_deg``,
         ``warnings``, ``evaluations``, ``time_s``.
@@ -166,7 +167,7 @@ def function_summary(res, *, expression: str | None = None, x=None, warnings=(),
                 "input_deg": rounded(math.degrees(res.input_angle[j]), D),
                 "model_input_deg": rounded(math.degrees(res.input_angle[j]) + offsets["crank"], D),
                 f"output{unit}": rounded(float(conv(res.output[j])), D),
-                f"generated{unit}": rounded(float(conv(res.generated[j])), D),
+                f"generated{unit}": rounded(float(conv(res.achieved[j])), D),  # the report's key, the field achieved
                 f"error{unit}": rounded(float(conv(res.error[j])), D, out_scale),
             }
             for j in range(res.input_angle.size)
@@ -176,8 +177,8 @@ def function_summary(res, *, expression: str | None = None, x=None, warnings=(),
         f"structural_error_rms{unit}": rounded(float(conv(res.structural_error_rms)), 6),
         "structural_error_samples": int(res.dense_input.size),
         "transmission_angle_deg": [
-            rounded(math.degrees(res.transmission_angle_min), 6),
-            rounded(math.degrees(res.transmission_angle_max), 6),
+            rounded(math.degrees(res.transmission_range[0]), 6),
+            rounded(math.degrees(res.transmission_range[1]), 6),
         ],
         "defect": res.defect or None,
         "model_angle_offsets_deg": offsets,

@@ -159,7 +159,7 @@ def sixbar_result(pb: StephensonSixBarPathProblem, w, mode, evals, seed, starts,
     p = {k: float(v[0]) for k, v in p.items()}
     traced = pb._pts(Z[None, :], phi[None, :], np.array([mode]))[0]
     err = np.hypot(*(traced - pb.targets).T)
-    C = np.array(r4.traced[0])
+    C = np.array(r4.achieved[0])
     D = _dyad(C[0], C[1], p["x6"] - C[0], p["y6"] - C[1], p["l5"], p["l6"], p["l5"], 0.0, s2)
     pts = {k: r4.points[k] for k in ("O2", "O4", "A", "B")}
     pts.update({"O6": [p["x6"], p["y6"]], "C": C.tolist(), "D": D.tolist(), "P": traced[0].tolist()})
@@ -167,8 +167,8 @@ def sixbar_result(pb: StephensonSixBarPathProblem, w, mode, evals, seed, starts,
     return replace(
         r4,
         kind="sixbar",
-        traced=traced,
-        errors=err,
+        achieved=traced,
+        error=err,
         objective=float(np.sum(err**2)),
         points=pts,
         links={**r4.links, "link5": p["l5"], "output": p["l6"]},

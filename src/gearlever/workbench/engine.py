@@ -11,7 +11,7 @@ line naming the field, and for a TOML syntax error the line.
 
 - :func:`parse`, :func:`dump`: TOML text <-> the model as a JSON object
   (:func:`gearlever.mechanism.model.model_from_dict` validates;
-  :func:`gearlever.synthesis.model.model_toml` writes, plus the
+  :func:`gearlever.mechanism.modelfile.model_toml` writes, plus the
   ``[lengths]`` table it does not write).
 - :func:`solve_frames`: one cycle of every point, link and slider
   (:meth:`gearlever.mechanism.Mechanism.solve`, all frames in one batched
@@ -1182,7 +1182,7 @@ def _law(text: str):
 
 
 def _result(rank: int, score: dict, model: dict, comment: str) -> dict:
-    from gearlever.synthesis.model import model_toml
+    from gearlever.mechanism.modelfile import model_toml
 
     return {
         "rank": rank,

@@ -31,9 +31,7 @@ with respect to contour 2, the two contours being mirror images; this is the
 Modules: :mod:`~gearlever.zrdpm.parameters` (parameters and names), this
 module (the two models), :mod:`~gearlever.zrdpm.fast` (their fast path),
 :mod:`~gearlever.zrdpm.published` (the published tables, the identification
-of their constants, the recovery of analogues).  The names of the other
-modules are re-exported here as well, for code written against the single
-module this used to be.
+of their constants, the recovery of analogues).
 """
 
 from __future__ import annotations
@@ -42,15 +40,12 @@ import math  # noqa: F401  (used by the doctests)
 
 import numpy as np
 
-from gearlever._validate import finite_array  # noqa: F401
+from gearlever._validate import finite_array
 from gearlever.errors import GearleverError
 from gearlever.gears import willis
 from gearlever.loops import closed
 from gearlever.zrdpm.fast import fast_outputs
 from gearlever.zrdpm.parameters import (
-    CONTOUR_OF_TABLE,
-    PAPER_NAMES,
-    TABLE_OF_CONTOUR,
     ContourKinematics,
     TablesConstants,
     ZrdpmContour,
@@ -273,17 +268,10 @@ def tables_outputs(
 
 
 __all__ = [
-    "CONTOUR_OF_TABLE",
-    "PAPER_NAMES",
-    "TABLE_OF_CONTOUR",
-    "ContourKinematics",
-    "TablesConstants",
-    "ZrdpmContour",
     "analogues",
     "contour1",
     "contour2",
     "lever_angle",
     "tables_outputs",
     "tables_point_accelerations",
-    "x_sign",
 ]
