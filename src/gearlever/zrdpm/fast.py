@@ -15,7 +15,45 @@ from gearlever._validate import finite_array, positive_int
 from gearlever.errors import GearleverError
 from gearlever.zrdpm.parameters import ContourKinematics, TablesConstants, ZrdpmContour
 
-__all__ = ["fast_outputs"]
+__all__ = ["fast_outputs", "sincos_half_angle"]
+
+
+def sincos_half_angle(phi: np.ndarray, sin_out: np.ndarray, cos_out: np.ndarray) -> None:
+    """Write ``sin(phi)`` and ``cos(phi)`` into the given arrays, from one tangent of the half angle.
+
+    With ``t = tan(phi / 2)``: ``cos(phi) = 2 / (1 + t**2) - 1`` and
+    ``sin(phi) = t (2 / (1 + t**2))``: one transcendental call instead of two,
+    then four multiply-adds.  ``sin_out`` serves as scratch for ``t``.  Within
+    3.4e-16 (absolute) of ``np.sin`` and ``np.cos`` for any finite angle
+    (measured on 10^6 angles per decade up to 1e300; tested).
+
+    Notes
+    -----
+    The tangent half-angle substitution (Weierstrass).  Why: numpy evaluates
+    float64 ``sin`` and ``cos`` one element at a time through the C library
+    (its SIMD versions are disabled for accuracy), but ``tan`` by a SIMD
+    kernel where the CPU has AVX-512 (numpy's SVML dispatch): on the 2-core
+    Intel Xeon (AVX-512) measured 4 ns a tangent against 11-19 ns a sine or
+    cosine.  Near ``phi = pi`` (``t`` large) both forms stay exact to rounding:
+    ``2 / (1 + t**2)`` tends to 0, never to an overflow for a finite float
+    angle (the closest a float comes to an odd multiple of pi gives ``|t|``
+    below 1e17).
+
+    Examples
+    --------
+    >>> s, c = np.empty(3), np.empty(3)
+    >>> sincos_half_angle(np.array([0.0, np.pi / 2, np.pi]), s, c)
+    >>> np.round(s, 15).tolist(), np.round(c, 15).tolist()
+    ([0.0, 1.0, 0.0], [1.0, 0.0, -1.0])
+    """
+    t = sin_out
+    np.multiply(phi, 0.5, out=t)
+    np.tan(t, out=t)
+    np.multiply(t, t, out=cos_out)
+    cos_out += 1.0
+    np.divide(2.0, cos_out, out=cos_out)
+    t *= cos_out  # sin = t * 2 / (1 + t^2)
+    cos_out -= 1.0
 
 
 def _check_out(out, shape):
@@ -40,12 +78,13 @@ def fast_outputs(
 
     Tables model: one pass over the angles, block by block (``block``
     angles; ~32768 keeps the (3, block) buffer in a 1-2 MB L2 cache): ``sin``
-    and ``cos`` of the block into the buffer (whose third row is ones), then
+    and ``cos`` of the block into the buffer (whose third row is ones), both
+    from one tangent of the half angle (:func:`sincos_half_angle`), then
     the six outputs as one 6 x 3 matrix product, every output being
     ``alpha sin + beta cos + gamma`` with the coefficients of eqs. 9, 11, 14
     and 16.  Self-consistent
     model: per block, in-place ufuncs, with a second sin/cos pair for the lever
-    angle.  The six outputs are rows of one ``(6, *phi.shape)`` array, which
+    angle (both pairs by :func:`sincos_half_angle`).  The six outputs are rows of one ``(6, *phi.shape)`` array, which
     may be given as ``out`` to reuse memory.
 
     Notes
@@ -94,8 +133,7 @@ def fast_outputs(
         for start in range(0, n, bs):
             stop = min(start + bs, n)
             xb = x[:, : stop - start]
-            np.sin(flat[start:stop], out=xb[0])
-            np.cos(flat[start:stop], out=xb[1])
+            sincos_half_angle(flat[start:stop], xb[0], xb[1])
             np.matmul(coef, xb, out=rows[:, start:stop])
         return ContourKinematics(*out)
     u_c, u_g, e_c, e_g, a_x, a_y = rows
@@ -106,8 +144,7 @@ def fast_outputs(
         stop = min(start + bs, n)
         m = stop - start
         S, C, T1, T2 = s[:m], co[:m], t1[:m], t2[:m]
-        np.sin(flat[start:stop], out=S)
-        np.cos(flat[start:stop], out=C)
+        sincos_half_angle(flat[start:stop], S, C)
         uc, ug, ec, eg, ax, ay = (
             u_c[start:stop],
             u_g[start:stop],
@@ -128,8 +165,7 @@ def fast_outputs(
         T1 += 1.0
         T1 *= c
         T1 += th0
-        np.cos(T1, out=C)
-        np.sin(T1, out=S)
+        sincos_half_angle(T1, S, C)
         np.multiply(uc, uc, out=T2)  # u**2
         # eq. 16: a_x = -l (cos u2 + sin e), a_y = l (cos e - sin u2)
         np.multiply(C, T2, out=ax)
