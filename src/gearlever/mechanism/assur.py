@@ -242,6 +242,10 @@ class DyadPlan:
         else:
             QX, QY, QVX, QVY, QAX, QAY = self._point(st, pts, s.k2, s.p, keep=False)
             ux, uy = CK * s.u[0] - SK * s.u[1], SK * s.u[0] + CK * s.u[1]
+        if dest is not None and rates:
+            o1, op, osl = dest[0][s.l1], dest[1][s.p], dest[2][s.slider]
+        else:
+            o1, op, osl = _NO_LINK, _NO_POINT, _NO_LINK
         wx, wy = QX - X1, QY - Y1
         uw = ux * wx + uy * wy
         disc = uw * uw - (wx * wx + wy * wy - s.r1 * s.r1)
@@ -249,12 +253,12 @@ class DyadPlan:
             root = np.sqrt(disc)
         margin = root * (1.0 / s.r1)  # |u . e1|: the link is not normal to the guide
         t = s.sigma * root - uw
-        X, Y = QX + t * ux, QY + t * uy
+        X, Y = np.add(QX, t * ux, out=op[0]), np.add(QY, t * uy, out=op[1])
         r1x, r1y = X - X1, Y - Y1
         i1 = 1.0 / s.r1
-        C1 = (r1x * s.e1[0] + r1y * s.e1[1]) * i1
-        S1 = (r1y * s.e1[0] - r1x * s.e1[1]) * i1
-        phi[s.l1] = np.arctan2(S1, C1)
+        C1 = np.multiply(r1x * s.e1[0] + r1y * s.e1[1], i1, out=o1[1])
+        S1 = np.multiply(r1y * s.e1[0] - r1x * s.e1[1], i1, out=o1[2])
+        phi[s.l1] = np.arctan2(S1, C1, out=o1[0])
         phi[s.l2] = phi[s.k2] if not ground else np.zeros_like(t)
         if not rates:
             st[s.l1] = (C1, S1, None, None, s.p)
@@ -268,9 +272,9 @@ class DyadPlan:
         if not ground:
             bx = bx - t * wK * uy
             by = by + t * wK * ux
-        w1 = (by * ux - bx * uy) * iru  # b . perp(u) / (r1 . u)
+        w1 = np.multiply(by * ux - bx * uy, iru, out=o1[3])  # b . perp(u) / (r1 . u)
         td = -(bx * r1x + by * r1y) * iru
-        VX, VY = VX1 - w1 * r1y, VY1 + w1 * r1x
+        VX, VY = np.subtract(VX1, w1 * r1y, out=op[2]), np.add(VY1, w1 * r1x, out=op[3])
         q1 = w1 * w1
         # al1 perp(r1) - tdd u = aQ + 2 td wK perp(u) + t (alK perp(u) - wK^2 u) - aP1 + w1^2 r1 =: c
         cx = QAX - AX1 + q1 * r1x
@@ -280,14 +284,14 @@ class DyadPlan:
             wk2t = t * wK * wK
             cx = cx - k * uy - wk2t * ux
             cy = cy + k * ux - wk2t * uy
-        al1 = (cy * ux - cx * uy) * iru
+        al1 = np.multiply(cy * ux - cx * uy, iru, out=o1[4])
         tdd = -(cx * r1x + cy * r1y) * iru
-        AX = AX1 - al1 * r1y - q1 * r1x
-        AY = AY1 + al1 * r1x - q1 * r1y
+        AX = np.subtract(AX1 - al1 * r1y, q1 * r1x, out=op[4])
+        AY = np.subtract(AY1 + al1 * r1x, q1 * r1y, out=op[5])
         st[s.l1] = (C1, S1, w1, al1, s.p)
         st[s.l2] = (CK, SK, wK if not ground else np.zeros_like(t), alK if not ground else np.zeros_like(t), s.p)
         pts[s.p] = (X, Y, VX, VY, AX, AY)
-        slider[s.slider] = (s.sgn_s * t, s.sgn_s * td, s.sgn_s * tdd)
+        slider[s.slider] = tuple(np.multiply(s.sgn_s, v, out=o) for v, o in zip((t, td, tdd), osl))
         return margin
 
     # ---------------------------------------------------------------- solve
