@@ -4,7 +4,7 @@ In one process and one run, times
   (a) all six contour-1 outputs u_1, u_8, e_1, e_8, a_B, a_A for 10^6 angles, and
   (b) numpy computing only sin and cos of the same array (the floor for any
       implementation that calls numpy's sin and cos; the fast path gets both from one
-      tangent of the half angle, gearlever.zrdpm.fast.sincos_half_angle, so it can run
+      tangent of the half angle, gearlever.loops.trig.sincos_half_angle, so it can run
       above this floor where numpy's tan is faster than its sin and cos),
 and prints both rates and the ratio rate(a)/rate(b) (1.0 would be "as fast as the floor").
 
@@ -25,7 +25,7 @@ import time
 import numpy as np
 
 from gearlever import zrdpm
-from gearlever.zrdpm.fast import sincos_half_angle
+from gearlever.loops.trig import sincos_half_angle
 
 N = 1_000_000
 REPEATS = 21

@@ -117,6 +117,10 @@ class DyadPlan:
         vx, vy = P[name][0] - P[ref][0], P[name][1] - P[ref][1]
         OX, OY, OVX, OVY, OAX, OAY = pts[ref]
         o = dest[1].get(name, _NO_POINT) if dest is not None and keep and link != GROUND else _NO_POINT
+        if o[0] is not None and w is not None:
+            out = _point_in_place(C, S, w, al, vx, vy, pts[ref], o, dest[3])
+            pts[name] = out
+            return out
         rx = C * vx - S * vy
         ry = S * vx + C * vy
         if o[0] is None:
@@ -180,13 +184,14 @@ class DyadPlan:
         return phi, st, slider, pts, margin
 
     def _rrr(self, s: _RRR, st, pts, phi, rates, dest=None):
-        X1, Y1, VX1, VY1, AX1, AY1 = self._point(st, pts, s.k1, s.p1, dest=dest)
-        X2, Y2, VX2, VY2, AX2, AY2 = self._point(st, pts, s.k2, s.p2, dest=dest)
+        P1 = self._point(st, pts, s.k1, s.p1, dest=dest)
+        P2 = self._point(st, pts, s.k2, s.p2, dest=dest)
         if dest is not None and rates:
-            o1, o2, op = dest[0][s.l1], dest[0][s.l2], dest[1][s.p]
-        else:
-            o1 = o2 = _NO_LINK
-            op = _NO_POINT
+            return _rrr_in_place(s, st, pts, phi, P1, P2, dest)
+        X1, Y1, VX1, VY1, AX1, AY1 = P1
+        X2, Y2, VX2, VY2, AX2, AY2 = P2
+        o1 = o2 = _NO_LINK
+        op = _NO_POINT
         dx, dy = X2 - X1, Y2 - Y1
         d2 = dx * dx + dy * dy
         a = 0.5 + (s.r1 * s.r1 - s.r2 * s.r2) * 0.5 / d2
@@ -336,8 +341,8 @@ class DyadPlan:
         drivers = {s.link for s in self.steps if isinstance(s, _Driver)}
         dyad_links = [k for k in model.moving if k not in drivers]
         jumps = dict.fromkeys(dyad_links, False)  # a step of the wrapped rotation beyond pi
-        pts = {name: tuple(np.empty((Nn, 2)) for _ in range(3)) for name, v in lpts.items() if v[0] is not None}
-        pts = {name: v for name, v in pts.items() if name not in self._ground_points}
+        pts = {name: tuple(np.empty((Nn, 2)) for _ in range(3)) for name in lpts if name not in self._ground_points}
+        scratch = np.empty((_SCRATCH_ROWS, min(BLOCK, Nn)))  # the temporaries, reused block after block
         for start in range(0, Nn, BLOCK):
             stop = min(start + BLOCK, Nn)
             b = slice(start, stop)
@@ -351,6 +356,7 @@ class DyadPlan:
                 {k: (x[idx[k], b], C[idx[k], b], S[idx[k], b], xd[idx[k], b], xdd[idx[k], b]) for k in model.moving},
                 {p: (P[b, 0], P[b, 1], V[b, 0], V[b, 1], A[b, 0], A[b, 1]) for p, (P, V, A) in pts.items()},
                 {j: (x[n + j, b], xd[n + j, b], xdd[n + j, b]) for j in range(ks.S)},
+                scratch[:, : stop - start],
             )
             phi, st, slider, bpts, margin = self.run(dq, qd[:, b], qdd[:, b], dest)
             if margin is not None and not np.all(margin >= DYAD_MARGIN):
@@ -378,6 +384,126 @@ class DyadPlan:
 
 _NO_LINK = (None,) * 5
 _NO_POINT = (None,) * 6
+_SCRATCH_ROWS = 11
+
+# The in-place forms below do the operations of the expressions in DyadPlan._point and
+# DyadPlan._rrr, in the same order, into scratch rows (no temporary array is allocated: a
+# block's temporaries neither go through malloc nor fault their pages in again), so their
+# results are the same bits (tests/mechanism/test_assur.py checks it).
+
+
+def _point_in_place(C, S, w, al, vx, vy, ref, o, t):
+    """:meth:`DyadPlan._point` with rates, its six results written into ``o``, scratch rows ``t``."""
+    OX, OY, OVX, OVY, OAX, OAY = ref
+    np.multiply(C, vx, out=t[0])
+    np.multiply(S, vy, out=t[1])
+    rx = np.subtract(t[0], t[1], out=t[0])
+    np.multiply(S, vx, out=t[1])
+    np.multiply(C, vy, out=t[2])
+    ry = np.add(t[1], t[2], out=t[1])
+    X, Y = np.add(OX, rx, out=o[0]), np.add(OY, ry, out=o[1])
+    np.multiply(w, ry, out=t[2])
+    VX = np.subtract(OVX, t[2], out=o[2])
+    np.multiply(w, rx, out=t[2])
+    VY = np.add(OVY, t[2], out=o[3])
+    w2 = np.multiply(w, w, out=t[2])
+    np.multiply(al, ry, out=t[3])
+    np.subtract(OAX, t[3], out=t[3])
+    np.multiply(w2, rx, out=t[4])
+    AX = np.subtract(t[3], t[4], out=o[4])
+    np.multiply(al, rx, out=t[3])
+    np.add(OAY, t[3], out=t[3])
+    np.multiply(w2, ry, out=t[4])
+    AY = np.subtract(t[3], t[4], out=o[5])
+    return X, Y, VX, VY, AX, AY
+
+
+def _rrr_in_place(s: _RRR, st, pts, phi, P1, P2, dest):
+    """:meth:`DyadPlan._rrr` with rates, every result written into ``dest``, its scratch rows for the rest."""
+    X1, Y1, VX1, VY1, AX1, AY1 = P1
+    X2, Y2, VX2, VY2, AX2, AY2 = P2
+    o1, o2, op, t = dest[0][s.l1], dest[0][s.l2], dest[1][s.p], dest[3]
+    dx, dy = np.subtract(X2, X1, out=t[0]), np.subtract(Y2, Y1, out=t[1])
+    np.multiply(dx, dx, out=t[2])
+    np.multiply(dy, dy, out=t[3])
+    d2 = np.add(t[2], t[3], out=t[2])
+    a = np.divide((s.r1 * s.r1 - s.r2 * s.r2) * 0.5, d2, out=t[3])
+    np.add(0.5, a, out=a)
+    np.divide(s.r1 * s.r1, d2, out=t[4])
+    np.multiply(a, a, out=t[5])
+    np.subtract(t[4], t[5], out=t[4])
+    with np.errstate(invalid="ignore"):
+        h = np.sqrt(t[4], out=t[4])
+    margin = np.multiply(h, d2)
+    margin *= 1.0 / (s.r1 * s.r2)
+    sh = np.multiply(s.sigma, h, out=t[5])
+    np.multiply(a, dx, out=t[6])
+    np.multiply(sh, dy, out=t[7])
+    r1x = np.subtract(t[6], t[7], out=t[6])
+    np.multiply(a, dy, out=t[7])
+    np.multiply(sh, dx, out=t[8])
+    r1y = np.add(t[7], t[8], out=t[7])
+    X, Y = np.add(X1, r1x, out=op[0]), np.add(Y1, r1y, out=op[1])
+    r2x, r2y = np.subtract(X, X2, out=t[8]), np.subtract(Y, Y2, out=t[9])
+    # rotations from the sketch (t[0] to t[5] are free from here)
+    for (ux, uy), e, i, o, k in ((r1x, r1y), s.e1, 1.0 / s.r1, o1, s.l1), ((r2x, r2y), s.e2, 1.0 / s.r2, o2, s.l2):
+        np.multiply(ux, e[0], out=t[0])
+        np.multiply(uy, e[1], out=t[1])
+        np.add(t[0], t[1], out=t[0])
+        C = np.multiply(t[0], i, out=o[1])
+        np.multiply(uy, e[0], out=t[0])
+        np.multiply(ux, e[1], out=t[1])
+        np.subtract(t[0], t[1], out=t[0])
+        S = np.multiply(t[0], i, out=o[2])
+        phi[k] = np.arctan2(S, C, out=o[0])
+    # rates: w1 = b.r2 / (r1 x r2), w2 = b.r1 / (r1 x r2), b = vP2 - vP1
+    np.multiply(r1x, r2y, out=t[0])
+    np.multiply(r1y, r2x, out=t[1])
+    np.subtract(t[0], t[1], out=t[0])
+    icr = np.divide(1.0, t[0], out=t[0])
+    bx, by = np.subtract(VX2, VX1, out=t[1]), np.subtract(VY2, VY1, out=t[2])
+    ws = []
+    for ux, uy, o in ((r2x, r2y, o1), (r1x, r1y, o2)):
+        np.multiply(bx, ux, out=t[3])
+        np.multiply(by, uy, out=t[4])
+        np.add(t[3], t[4], out=t[3])
+        ws.append(np.multiply(t[3], icr, out=o[3]))
+    w1, w2 = ws
+    np.multiply(w1, r1y, out=t[3])
+    VX = np.subtract(VX1, t[3], out=op[2])
+    np.multiply(w1, r1x, out=t[3])
+    VY = np.add(VY1, t[3], out=op[3])
+    q1, q2 = np.multiply(w1, w1, out=t[1]), np.multiply(w2, w2, out=t[2])
+    # c = aP2 - aP1 + q1 r1 - q2 r2
+    np.subtract(AX2, AX1, out=t[3])
+    np.multiply(q1, r1x, out=t[4])
+    np.add(t[3], t[4], out=t[3])
+    np.multiply(q2, r2x, out=t[4])
+    cx = np.subtract(t[3], t[4], out=t[3])
+    np.subtract(AY2, AY1, out=t[4])
+    np.multiply(q1, r1y, out=t[5])
+    np.add(t[4], t[5], out=t[4])
+    np.multiply(q2, r2y, out=t[5])
+    cy = np.subtract(t[4], t[5], out=t[4])
+    als = []
+    for ux, uy, o in ((r2x, r2y, o1), (r1x, r1y, o2)):
+        np.multiply(cx, ux, out=t[5])
+        np.multiply(cy, uy, out=t[10])
+        np.add(t[5], t[10], out=t[5])
+        als.append(np.multiply(t[5], icr, out=o[4]))
+    al1, al2 = als
+    np.multiply(al1, r1y, out=t[5])
+    np.subtract(AX1, t[5], out=t[5])
+    np.multiply(q1, r1x, out=t[10])
+    AX = np.subtract(t[5], t[10], out=op[4])
+    np.multiply(al1, r1x, out=t[5])
+    np.add(AY1, t[5], out=t[5])
+    np.multiply(q1, r1y, out=t[10])
+    AY = np.subtract(t[5], t[10], out=op[5])
+    st[s.l1] = (o1[1], o1[2], w1, al1, s.p)
+    st[s.l2] = (o2[1], o2[2], w2, al2, s.p)
+    pts[s.p] = (X, Y, VX, VY, AX, AY)
+    return margin
 
 
 def _fill(dest, values) -> None:

@@ -13,47 +13,10 @@ import numpy as np
 
 from gearlever._validate import finite_array, positive_int
 from gearlever.errors import GearleverError
+from gearlever.loops.trig import sincos_half_angle
 from gearlever.zrdpm.parameters import ContourKinematics, TablesConstants, ZrdpmContour
 
-__all__ = ["fast_outputs", "sincos_half_angle"]
-
-
-def sincos_half_angle(phi: np.ndarray, sin_out: np.ndarray, cos_out: np.ndarray) -> None:
-    """Write ``sin(phi)`` and ``cos(phi)`` into the given arrays, from one tangent of the half angle.
-
-    With ``t = tan(phi / 2)``: ``cos(phi) = 2 / (1 + t**2) - 1`` and
-    ``sin(phi) = t (2 / (1 + t**2))``: one transcendental call instead of two,
-    then four multiply-adds.  ``sin_out`` serves as scratch for ``t``.  Within
-    3.4e-16 (absolute) of ``np.sin`` and ``np.cos`` for any finite angle
-    (measured on 10^6 angles per decade up to 1e300; tested).
-
-    Notes
-    -----
-    The tangent half-angle substitution (Weierstrass).  Why: numpy evaluates
-    float64 ``sin`` and ``cos`` one element at a time through the C library
-    (its SIMD versions are disabled for accuracy), but ``tan`` by a SIMD
-    kernel where the CPU has AVX-512 (numpy's SVML dispatch): on the 2-core
-    Intel Xeon (AVX-512) measured 4 ns a tangent against 11-19 ns a sine or
-    cosine.  Near ``phi = pi`` (``t`` large) both forms stay exact to rounding:
-    ``2 / (1 + t**2)`` tends to 0, never to an overflow for a finite float
-    angle (the closest a float comes to an odd multiple of pi gives ``|t|``
-    below 1e17).
-
-    Examples
-    --------
-    >>> s, c = np.empty(3), np.empty(3)
-    >>> sincos_half_angle(np.array([0.0, np.pi / 2, np.pi]), s, c)
-    >>> np.round(s, 15).tolist(), np.round(c, 15).tolist()
-    ([0.0, 1.0, 0.0], [1.0, 0.0, -1.0])
-    """
-    t = sin_out
-    np.multiply(phi, 0.5, out=t)
-    np.tan(t, out=t)
-    np.multiply(t, t, out=cos_out)
-    cos_out += 1.0
-    np.divide(2.0, cos_out, out=cos_out)
-    t *= cos_out  # sin = t * 2 / (1 + t^2)
-    cos_out -= 1.0
+__all__ = ["fast_outputs"]
 
 
 def _check_out(out, shape):
@@ -79,12 +42,13 @@ def fast_outputs(
     Tables model: one pass over the angles, block by block (``block``
     angles; ~32768 keeps the (3, block) buffer in a 1-2 MB L2 cache): ``sin``
     and ``cos`` of the block into the buffer (whose third row is ones), both
-    from one tangent of the half angle (:func:`sincos_half_angle`), then
-    the six outputs as one 6 x 3 matrix product, every output being
-    ``alpha sin + beta cos + gamma`` with the coefficients of eqs. 9, 11, 14
-    and 16.  Self-consistent
+    from one tangent of the half angle
+    (:func:`~gearlever.loops.trig.sincos_half_angle`), then the six outputs as
+    one 6 x 3 matrix product, every output being ``alpha sin + beta cos +
+    gamma`` with the coefficients of eqs. 9, 11, 14 and 16.  Self-consistent
     model: per block, in-place ufuncs, with a second sin/cos pair for the lever
-    angle (both pairs by :func:`sincos_half_angle`).  The six outputs are rows of one ``(6, *phi.shape)`` array, which
+    angle (both pairs from half-angle tangents).  The six outputs are rows of
+    one ``(6, *phi.shape)`` array, which
     may be given as ``out`` to reuse memory.
 
     Notes

@@ -1,11 +1,11 @@
-"""The half-angle sine and cosine of the ZRDPM fast path (gearlever.zrdpm.fast) against numpy's np.sin and np.cos."""
+"""The half-angle sine and cosine (gearlever.loops.trig) against numpy's np.sin and np.cos."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from gearlever.zrdpm.fast import sincos_half_angle
+from gearlever.loops.trig import sincos_half_angle
 
 #: Measured 3.4e-16 at most (SIMD tangent on an AVX-512 Xeon); a wrong branch or sign is off by O(1).
 TOL = 1e-15
