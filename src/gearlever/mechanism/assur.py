@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearlever.loops.trig import sincos_half_angle
 from gearlever.mechanism._constants import COARSE_STEP
 from gearlever.mechanism.model import GROUND, MechanismModel
 
@@ -170,7 +171,9 @@ class DyadPlan:
             if isinstance(step, _Driver):
                 a = dq[step.w]
                 o = dest[0].get(step.link, _NO_LINK) if dest is not None else _NO_LINK
-                C, S = np.cos(a, out=o[1]), np.sin(a, out=o[2])
+                C = np.empty_like(a) if o[1] is None else o[1]
+                S = np.empty_like(a) if o[2] is None else o[2]
+                sincos_half_angle(a, S, C)  # one tangent instead of a sine and a cosine
                 w = qd[step.w] if rates else None
                 al = qdd[step.w] if rates else None
                 phi[step.link] = a
