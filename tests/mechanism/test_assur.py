@@ -235,3 +235,34 @@ def test_plan_declines_what_is_not_a_chain_of_dyads():
     for name in ("whitworth", "geared_fivebar", "parallel_levers", "planetary"):
         m = gearlever.Mechanism.load(all_examples()[0].parent / f"{name}.toml")
         assert plan_dyads(m.system) is None
+
+
+@pytest.mark.parametrize("path", all_examples(), ids=lambda p: p.stem)
+def test_blocked_in_place_evaluation_gives_the_bits_of_one_pass_over_all_rows(path):
+    # DyadPlan.solve evaluates BLOCK rows at a time into scratch rows and its result arrays; DyadPlan.run
+    # without a destination evaluates the same formulas as plain expressions over all rows at once
+    from gearlever.mechanism.assur import BLOCK
+
+    m = gearlever.Mechanism.load(path)
+    plan = m.system.dyad_plan
+    if plan is None:
+        pytest.skip("not a chain of dyads")
+    q, qd = sweep(m, points=2 * BLOCK + 37)  # two whole blocks and a ragged one
+    q = q[: 2 * BLOCK + 37]
+    qdd = np.sin(np.arange(q.size)).reshape(q.shape)
+    got = plan.solve(q.T, qd.T, qdd.T)
+    if got is None:
+        pytest.skip("a row near a dead point: the general path answers")
+    x, xd, xdd, (C, S), points = got
+    phi, st, _, pts, _ = plan.run(q.T - m.system.q0[:, None], qd.T, qdd.T)
+    for k in m.model.moving:
+        i = m.system.idx[k]
+        for got_row, want in zip((C[i], S[i], xd[i], xdd[i]), st[k][:4]):
+            np.testing.assert_array_equal(got_row, np.broadcast_to(want, got_row.shape), err_msg=k)
+        # x: the wrapped rotation made continuous (whole turns added)
+        np.testing.assert_allclose(np.mod(x[i] - phi[k] + np.pi, 2 * np.pi) - np.pi, 0.0, atol=1e-12, err_msg=k)
+    assert points, "the dyads' points are kept"
+    for p, (P, V, A) in points.items():
+        X, Y, VX, VY, AX, AY = pts[p]
+        for arr, (a, b) in ((P, (X, Y)), (V, (VX, VY)), (A, (AX, AY))):
+            np.testing.assert_array_equal(arr, np.stack([a, b], axis=1), err_msg=p)

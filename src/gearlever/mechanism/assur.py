@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearlever.loops.trig import sincos_half_angle
 from gearlever.mechanism._constants import COARSE_STEP
 from gearlever.mechanism.model import GROUND, MechanismModel
 
@@ -39,6 +40,10 @@ __all__ = ["DYAD_MARGIN", "DyadPlan", "plan_dyads"]
 #: the link and the guide normal (RRP), for which the closed form answers; below it the
 #: general continuation decides (dead points, branch changes).
 DYAD_MARGIN = 0.1
+
+#: Rows evaluated together by :meth:`DyadPlan.solve`: the temporaries of one block
+#: (some 40 arrays of BLOCK floats) stay in a core's cache instead of going to memory.
+BLOCK = 8192
 
 TAU = 2.0 * math.pi
 
@@ -95,10 +100,16 @@ class DyadPlan:
         self.model = model
         self.ks = ks
         self.steps = steps
+        P = model.points
+        self._ground_points = {n: (*P[n], 0.0, 0.0, 0.0, 0.0) for n in P if GROUND in model.carriers(n)}
 
     # ---------------------------------------------------------------- evaluation
-    def _point(self, st, pts, link, name, keep=True):
-        """Kinematics ``(X, Y, VX, VY, AX, AY)`` of the sketch location ``name`` carried by the known ``link``."""
+    def _point(self, st, pts, link, name, keep=True, dest=None):
+        """Kinematics ``(X, Y, VX, VY, AX, AY)`` of the sketch location ``name`` carried by the known ``link``.
+
+        ``dest``: where :meth:`run` writes its results (see there); the point's
+        values go into its arrays when it has some.
+        """
         got = pts.get(name) if keep else None
         if got is not None:
             return got
@@ -106,22 +117,35 @@ class DyadPlan:
         P = self.model.points
         vx, vy = P[name][0] - P[ref][0], P[name][1] - P[ref][1]
         OX, OY, OVX, OVY, OAX, OAY = pts[ref]
+        o = dest[1].get(name, _NO_POINT) if dest is not None and keep and link != GROUND else _NO_POINT
+        if o[0] is not None and w is not None:
+            out = _point_in_place(C, S, w, al, vx, vy, pts[ref], o, dest[3])
+            pts[name] = out
+            return out
         rx = C * vx - S * vy
         ry = S * vx + C * vy
-        X, Y = OX + rx, OY + ry
+        if o[0] is None:
+            X, Y = OX + rx, OY + ry
+        else:
+            X, Y = np.add(OX, rx, out=o[0]), np.add(OY, ry, out=o[1])
         if w is None:
             out = (X, Y, None, None, None, None)
         else:
-            VX, VY = OVX - w * ry, OVY + w * rx
             w2 = w * w
-            AX = OAX - al * ry - w2 * rx
-            AY = OAY + al * rx - w2 * ry
+            if o[0] is None:
+                VX, VY = OVX - w * ry, OVY + w * rx
+                AX = OAX - al * ry - w2 * rx
+                AY = OAY + al * rx - w2 * ry
+            else:
+                VX, VY = np.subtract(OVX, w * ry, out=o[2]), np.add(OVY, w * rx, out=o[3])
+                AX = np.subtract(OAX - al * ry, w2 * rx, out=o[4])
+                AY = np.subtract(OAY + al * rx, w2 * ry, out=o[5])
             out = (X, Y, VX, VY, AX, AY)
         if keep and link != GROUND:
             pts[name] = out
         return out
 
-    def run(self, dq, qd=None, qdd=None):
+    def run(self, dq, qd=None, qdd=None, dest=None):
         """Closed-form kinematics at the input offsets ``dq`` (W, N) from the sketch.
 
         Returns ``(phi, state, slider, pts, margin)``: per moving link its
@@ -130,36 +154,47 @@ class DyadPlan:
         kinematics ``(X, Y, VX, VY, AX, AY)`` computed on the way; and the
         smallest dyad margin of each row (``(N,)``, NaN where a dyad does not
         assemble).  Without ``qd`` only positions are computed.
+
+        ``dest``, with ``qd``: three dicts of ``(N,)`` arrays to write the
+        results into (link -> ``(phi, cos, sin, omega, alpha)``, point ->
+        ``(X, Y, VX, VY, AX, AY)``, slider -> ``(s, sd, sdd)``): the last
+        operation of each value writes it there (``out=``) instead of into a
+        new array, so that no copy is needed.  Values it does not write (an
+        input's angle and rates) are returned as usual; the caller copies them.
         """
-        model, P = self.model, self.model.points
         rates = qd is not None
         st = {GROUND: (1.0, 0.0, 0.0 if rates else None, 0.0, None)}
-        pts = {}
-        for name in P:
-            if GROUND in model.carriers(name):
-                x, y = P[name]
-                pts[name] = (x, y, 0.0, 0.0, 0.0, 0.0)
+        pts = dict(self._ground_points)
         phi, slider = {}, {}
         margin = None
         for step in self.steps:
             if isinstance(step, _Driver):
                 a = dq[step.w]
-                C, S = np.cos(a), np.sin(a)
+                o = dest[0].get(step.link, _NO_LINK) if dest is not None else _NO_LINK
+                C = np.empty_like(a) if o[1] is None else o[1]
+                S = np.empty_like(a) if o[2] is None else o[2]
+                sincos_half_angle(a, S, C)  # one tangent instead of a sine and a cosine
                 w = qd[step.w] if rates else None
                 al = qdd[step.w] if rates else None
                 phi[step.link] = a
                 st[step.link] = (C, S, w, al, step.pivot)
                 continue
             if isinstance(step, _RRR):
-                m = self._rrr(step, st, pts, phi, rates)
+                m = self._rrr(step, st, pts, phi, rates, dest)
             else:
-                m = self._rrp(step, st, pts, phi, slider, rates)
+                m = self._rrp(step, st, pts, phi, slider, rates, dest)
             margin = m if margin is None else np.minimum(margin, m)  # NaN (no assembly) propagates
         return phi, st, slider, pts, margin
 
-    def _rrr(self, s: _RRR, st, pts, phi, rates):
-        X1, Y1, VX1, VY1, AX1, AY1 = self._point(st, pts, s.k1, s.p1)
-        X2, Y2, VX2, VY2, AX2, AY2 = self._point(st, pts, s.k2, s.p2)
+    def _rrr(self, s: _RRR, st, pts, phi, rates, dest=None):
+        P1 = self._point(st, pts, s.k1, s.p1, dest=dest)
+        P2 = self._point(st, pts, s.k2, s.p2, dest=dest)
+        if dest is not None and rates:
+            return _rrr_in_place(s, st, pts, phi, P1, P2, dest)
+        X1, Y1, VX1, VY1, AX1, AY1 = P1
+        X2, Y2, VX2, VY2, AX2, AY2 = P2
+        o1 = o2 = _NO_LINK
+        op = _NO_POINT
         dx, dy = X2 - X1, Y2 - Y1
         d2 = dx * dx + dy * dy
         a = 0.5 + (s.r1 * s.r1 - s.r2 * s.r2) * 0.5 / d2
@@ -170,16 +205,16 @@ class DyadPlan:
         sh = s.sigma * h
         r1x = a * dx - sh * dy  # P - P1
         r1y = a * dy + sh * dx
-        X, Y = X1 + r1x, Y1 + r1y
+        X, Y = np.add(X1, r1x, out=op[0]), np.add(Y1, r1y, out=op[1])
         r2x, r2y = X - X2, Y - Y2
         # rotations from the sketch: cos = e . e0, sin = e0 x e  (e = r / |r|, |r| = r_i)
         i1, i2 = 1.0 / s.r1, 1.0 / s.r2
-        C1 = (r1x * s.e1[0] + r1y * s.e1[1]) * i1
-        S1 = (r1y * s.e1[0] - r1x * s.e1[1]) * i1
-        C2 = (r2x * s.e2[0] + r2y * s.e2[1]) * i2
-        S2 = (r2y * s.e2[0] - r2x * s.e2[1]) * i2
-        phi[s.l1] = np.arctan2(S1, C1)
-        phi[s.l2] = np.arctan2(S2, C2)
+        C1 = np.multiply(r1x * s.e1[0] + r1y * s.e1[1], i1, out=o1[1])
+        S1 = np.multiply(r1y * s.e1[0] - r1x * s.e1[1], i1, out=o1[2])
+        C2 = np.multiply(r2x * s.e2[0] + r2y * s.e2[1], i2, out=o2[1])
+        S2 = np.multiply(r2y * s.e2[0] - r2x * s.e2[1], i2, out=o2[2])
+        phi[s.l1] = np.arctan2(S1, C1, out=o1[0])
+        phi[s.l2] = np.arctan2(S2, C2, out=o2[0])
         if not rates:
             st[s.l1] = (C1, S1, None, None, s.p)
             st[s.l2] = (C2, S2, None, None, s.p)
@@ -188,23 +223,23 @@ class DyadPlan:
         # w1 perp(r1) - w2 perp(r2) = vP2 - vP1 =: b;  w1 = b.r2 / (r1 x r2), w2 = b.r1 / (r1 x r2)
         icr = 1.0 / (r1x * r2y - r1y * r2x)
         bx, by = VX2 - VX1, VY2 - VY1
-        w1 = (bx * r2x + by * r2y) * icr
-        w2 = (bx * r1x + by * r1y) * icr
-        VX, VY = VX1 - w1 * r1y, VY1 + w1 * r1x
+        w1 = np.multiply(bx * r2x + by * r2y, icr, out=o1[3])
+        w2 = np.multiply(bx * r1x + by * r1y, icr, out=o2[3])
+        VX, VY = np.subtract(VX1, w1 * r1y, out=op[2]), np.add(VY1, w1 * r1x, out=op[3])
         q1, q2 = w1 * w1, w2 * w2
         cx = AX2 - AX1 + q1 * r1x - q2 * r2x
         cy = AY2 - AY1 + q1 * r1y - q2 * r2y
-        al1 = (cx * r2x + cy * r2y) * icr
-        al2 = (cx * r1x + cy * r1y) * icr
-        AX = AX1 - al1 * r1y - q1 * r1x
-        AY = AY1 + al1 * r1x - q1 * r1y
+        al1 = np.multiply(cx * r2x + cy * r2y, icr, out=o1[4])
+        al2 = np.multiply(cx * r1x + cy * r1y, icr, out=o2[4])
+        AX = np.subtract(AX1 - al1 * r1y, q1 * r1x, out=op[4])
+        AY = np.subtract(AY1 + al1 * r1x, q1 * r1y, out=op[5])
         st[s.l1] = (C1, S1, w1, al1, s.p)
         st[s.l2] = (C2, S2, w2, al2, s.p)
         pts[s.p] = (X, Y, VX, VY, AX, AY)
         return margin
 
-    def _rrp(self, s: _RRP, st, pts, phi, slider, rates):
-        X1, Y1, VX1, VY1, AX1, AY1 = self._point(st, pts, s.k1, s.p1)
+    def _rrp(self, s: _RRP, st, pts, phi, slider, rates, dest=None):
+        X1, Y1, VX1, VY1, AX1, AY1 = self._point(st, pts, s.k1, s.p1, dest=dest)
         CK, SK, wK, alK, _ = st[s.k2]
         ground = s.k2 == GROUND
         # Q: the sketch location of P carried by k2; the guide through Q turns with k2
@@ -215,6 +250,10 @@ class DyadPlan:
         else:
             QX, QY, QVX, QVY, QAX, QAY = self._point(st, pts, s.k2, s.p, keep=False)
             ux, uy = CK * s.u[0] - SK * s.u[1], SK * s.u[0] + CK * s.u[1]
+        if dest is not None and rates:
+            o1, op, osl = dest[0][s.l1], dest[1][s.p], dest[2][s.slider]
+        else:
+            o1, op, osl = _NO_LINK, _NO_POINT, _NO_LINK
         wx, wy = QX - X1, QY - Y1
         uw = ux * wx + uy * wy
         disc = uw * uw - (wx * wx + wy * wy - s.r1 * s.r1)
@@ -222,12 +261,12 @@ class DyadPlan:
             root = np.sqrt(disc)
         margin = root * (1.0 / s.r1)  # |u . e1|: the link is not normal to the guide
         t = s.sigma * root - uw
-        X, Y = QX + t * ux, QY + t * uy
+        X, Y = np.add(QX, t * ux, out=op[0]), np.add(QY, t * uy, out=op[1])
         r1x, r1y = X - X1, Y - Y1
         i1 = 1.0 / s.r1
-        C1 = (r1x * s.e1[0] + r1y * s.e1[1]) * i1
-        S1 = (r1y * s.e1[0] - r1x * s.e1[1]) * i1
-        phi[s.l1] = np.arctan2(S1, C1)
+        C1 = np.multiply(r1x * s.e1[0] + r1y * s.e1[1], i1, out=o1[1])
+        S1 = np.multiply(r1y * s.e1[0] - r1x * s.e1[1], i1, out=o1[2])
+        phi[s.l1] = np.arctan2(S1, C1, out=o1[0])
         phi[s.l2] = phi[s.k2] if not ground else np.zeros_like(t)
         if not rates:
             st[s.l1] = (C1, S1, None, None, s.p)
@@ -241,9 +280,9 @@ class DyadPlan:
         if not ground:
             bx = bx - t * wK * uy
             by = by + t * wK * ux
-        w1 = (by * ux - bx * uy) * iru  # b . perp(u) / (r1 . u)
+        w1 = np.multiply(by * ux - bx * uy, iru, out=o1[3])  # b . perp(u) / (r1 . u)
         td = -(bx * r1x + by * r1y) * iru
-        VX, VY = VX1 - w1 * r1y, VY1 + w1 * r1x
+        VX, VY = np.subtract(VX1, w1 * r1y, out=op[2]), np.add(VY1, w1 * r1x, out=op[3])
         q1 = w1 * w1
         # al1 perp(r1) - tdd u = aQ + 2 td wK perp(u) + t (alK perp(u) - wK^2 u) - aP1 + w1^2 r1 =: c
         cx = QAX - AX1 + q1 * r1x
@@ -253,14 +292,14 @@ class DyadPlan:
             wk2t = t * wK * wK
             cx = cx - k * uy - wk2t * ux
             cy = cy + k * ux - wk2t * uy
-        al1 = (cy * ux - cx * uy) * iru
+        al1 = np.multiply(cy * ux - cx * uy, iru, out=o1[4])
         tdd = -(cx * r1x + cy * r1y) * iru
-        AX = AX1 - al1 * r1y - q1 * r1x
-        AY = AY1 + al1 * r1x - q1 * r1y
+        AX = np.subtract(AX1 - al1 * r1y, q1 * r1x, out=op[4])
+        AY = np.subtract(AY1 + al1 * r1x, q1 * r1y, out=op[5])
         st[s.l1] = (C1, S1, w1, al1, s.p)
         st[s.l2] = (CK, SK, wK if not ground else np.zeros_like(t), alK if not ground else np.zeros_like(t), s.p)
         pts[s.p] = (X, Y, VX, VY, AX, AY)
-        slider[s.slider] = (s.sgn_s * t, s.sgn_s * td, s.sgn_s * tdd)
+        slider[s.slider] = tuple(np.multiply(s.sgn_s, v, out=o) for v, o in zip((t, td, tdd), osl))
         return margin
 
     # ---------------------------------------------------------------- solve
@@ -270,7 +309,9 @@ class DyadPlan:
         ``None`` (the general path must answer) when an input step exceeds
         :data:`~gearlever.mechanism.solve.COARSE_STEP`, or a dyad comes within
         :data:`DYAD_MARGIN` of a dead point at some row or on the way from the
-        sketch to the first row.
+        sketch to the first row.  The point kinematics: point -> ``(position,
+        velocity, acceleration)``, each ``(N, 2)``, for the points the dyads
+        compute on the way.
 
         Notes
         -----
@@ -278,59 +319,221 @@ class DyadPlan:
         sketch (rotation 0) through the straight path to the first row in
         steps of at most ``COARSE_STEP``, so that they equal the ones found
         by continuation.
+
+        The rows are evaluated :data:`BLOCK` at a time, each result written
+        by its last operation into its place in the returned arrays; every
+        value is the result of the same operations as in one pass over all
+        rows (the same bits).  The returned arrays are views of one
+        allocation (a large one gets huge pages: some 1 300 page faults
+        instead of 5 900 for the four-bar at 10^5 rows, 1.4x faster in
+        ``benchmarks/bench_mechanism.py``), so keeping any one of them keeps
+        the memory of all.
         """
         ks = self.ks
         Nn = q.shape[1]
-        dq = q - ks.q0[:, None]
-        # input steps: the rows must follow each other closely (the continuation's coarse step)
-        if Nn > 1:
-            step = np.max(np.abs(np.diff(dq, axis=1)), axis=0) if ks.W > 1 else np.abs(np.diff(dq[0]))
-            if not step.max() <= COARSE_STEP:
-                return None
+        q0 = ks.q0[:, None]
         # lead-in from the sketch to the first row
-        d0 = dq[:, 0]
+        d0 = q[:, 0] - ks.q0
         m = max(1, math.ceil(float(np.max(np.abs(d0))) / COARSE_STEP))
         lead = d0[:, None] * (np.arange(m + 1) / m)[None, :]
-        lphi, _, _, _, lmargin = self.run(lead)
+        lphi, _, _, lpts, lmargin = self.run(lead)
         if lmargin is not None and not np.all(lmargin >= DYAD_MARGIN):
             return None
-        phi, st, slider, pts, margin = self.run(dq, qd, qdd)
-        if margin is not None and not np.all(margin >= DYAD_MARGIN):
-            return None
-        n, model = ks.n, self.model
-        x = np.empty((ks.nx, Nn))
-        xd = np.empty((ks.nx, Nn))
-        xdd = np.empty((ks.nx, Nn))
-        C = np.empty((n, Nn))
-        S = np.empty((n, Nn))
+        n, model, idx = ks.n, self.model, ks.idx
+        names = [name for name in lpts if name not in self._ground_points]
+        # every result in one allocation: one large mapping, whose pages the kernel can give as huge
+        # pages (numpy advises it for arrays of 4 MB and more), instead of some 30 arrays faulted
+        # in 4 kB at a time (each solve returns fresh memory)
+        mem = np.empty(Nn * (3 * ks.nx + 2 * n + 6 * len(names)))
+        parts = np.split(mem, np.cumsum([Nn * ks.nx] * 3 + [Nn * n] * 2 + [2 * Nn] * (3 * len(names)))[:-1])
+        x, xd, xdd = (a.reshape(ks.nx, Nn) for a in parts[:3])
+        C, S = (a.reshape(n, Nn) for a in parts[3:5])
+        pts = {name: tuple(a.reshape(Nn, 2) for a in parts[5 + 3 * i : 8 + 3 * i]) for i, name in enumerate(names)}
         drivers = {s.link for s in self.steps if isinstance(s, _Driver)}
-        for k in model.moving:
-            i = ks.idx[k]
-            Ck, Sk, w, al, _ = st[k]
-            C[i], S[i], xd[i], xdd[i] = Ck, Sk, w, al
-            p = phi[k]
-            if k in drivers:
-                x[i] = p
-                continue
+        dyad_links = [k for k in model.moving if k not in drivers]
+        jumps = dict.fromkeys(dyad_links, False)  # a step of the wrapped rotation beyond pi
+        scratch = np.empty((_SCRATCH_ROWS, min(BLOCK, Nn)))  # the temporaries, reused block after block
+        for start in range(0, Nn, BLOCK):
+            stop = min(start + BLOCK, Nn)
+            b = slice(start, stop)
+            # input steps: the rows must follow each other closely (the continuation's coarse step)
+            lo = max(start - 1, 0)
+            dqb = q[:, lo:stop] - q0
+            if dqb.shape[1] > 1 and not np.abs(np.diff(dqb, axis=1)).max() <= COARSE_STEP:
+                return None
+            dq = dqb[:, start - lo :]
+            dest = (
+                {k: (x[idx[k], b], C[idx[k], b], S[idx[k], b], xd[idx[k], b], xdd[idx[k], b]) for k in model.moving},
+                {p: (P[b, 0], P[b, 1], V[b, 0], V[b, 1], A[b, 0], A[b, 1]) for p, (P, V, A) in pts.items()},
+                {j: (x[n + j, b], xd[n + j, b], xdd[n + j, b]) for j in range(ks.S)},
+                scratch[:, : stop - start],
+            )
+            phi, st, slider, bpts, margin = self.run(dq, qd[:, b], qdd[:, b], dest)
+            if margin is not None and not np.all(margin >= DYAD_MARGIN):
+                return None
+            # what the last operations did not write in place: the inputs' angles and rates
+            for k, o in dest[0].items():
+                _fill(o, (phi[k], *st[k][:4]))
+            for p, o in dest[1].items():
+                _fill(o, bpts[p])
+            for j, o in dest[2].items():
+                _fill(o, slider[j])
+            for k in dyad_links:
+                if jumps[k]:
+                    continue
+                p = x[idx[k], b]
+                if start and abs(float(p[0]) - float(x[idx[k], start - 1])) > math.pi:
+                    jumps[k] = True
+                elif p.size > 1 and float(p.max()) - float(p.min()) > math.pi:
+                    jumps[k] = bool(np.abs(np.diff(p)).max() > math.pi)
+        for k in dyad_links:
             lp = np.unwrap(lphi[k])
-            x[i] = _unwrap_from(p, float(lp[-1]))
-        for j in range(ks.S):
-            x[n + j], xd[n + j], xdd[n + j] = slider[j]
+            _unwrap_in_place(x[idx[k]], float(lp[-1]), jumps[k])
         return x, xd, xdd, (C, S), pts
 
 
-def _unwrap_from(p: np.ndarray, start: float) -> np.ndarray:
-    """``p`` (wrapped angles along the rows) made continuous, its first value the one nearest ``start``."""
+_NO_LINK = (None,) * 5
+_NO_POINT = (None,) * 6
+_SCRATCH_ROWS = 11
+
+# The in-place forms below do the operations of the expressions in DyadPlan._point and
+# DyadPlan._rrr, in the same order, into scratch rows (no temporary array is allocated: a
+# block's temporaries neither go through malloc nor fault their pages in again), so their
+# results are the same bits (tests/mechanism/test_assur.py checks it).
+
+
+def _point_in_place(C, S, w, al, vx, vy, ref, o, t):
+    """:meth:`DyadPlan._point` with rates, its six results written into ``o``, scratch rows ``t``."""
+    OX, OY, OVX, OVY, OAX, OAY = ref
+    np.multiply(C, vx, out=t[0])
+    np.multiply(S, vy, out=t[1])
+    rx = np.subtract(t[0], t[1], out=t[0])
+    np.multiply(S, vx, out=t[1])
+    np.multiply(C, vy, out=t[2])
+    ry = np.add(t[1], t[2], out=t[1])
+    X, Y = np.add(OX, rx, out=o[0]), np.add(OY, ry, out=o[1])
+    np.multiply(w, ry, out=t[2])
+    VX = np.subtract(OVX, t[2], out=o[2])
+    np.multiply(w, rx, out=t[2])
+    VY = np.add(OVY, t[2], out=o[3])
+    w2 = np.multiply(w, w, out=t[2])
+    np.multiply(al, ry, out=t[3])
+    np.subtract(OAX, t[3], out=t[3])
+    np.multiply(w2, rx, out=t[4])
+    AX = np.subtract(t[3], t[4], out=o[4])
+    np.multiply(al, rx, out=t[3])
+    np.add(OAY, t[3], out=t[3])
+    np.multiply(w2, ry, out=t[4])
+    AY = np.subtract(t[3], t[4], out=o[5])
+    return X, Y, VX, VY, AX, AY
+
+
+def _rrr_in_place(s: _RRR, st, pts, phi, P1, P2, dest):
+    """:meth:`DyadPlan._rrr` with rates, every result written into ``dest``, its scratch rows for the rest."""
+    X1, Y1, VX1, VY1, AX1, AY1 = P1
+    X2, Y2, VX2, VY2, AX2, AY2 = P2
+    o1, o2, op, t = dest[0][s.l1], dest[0][s.l2], dest[1][s.p], dest[3]
+    dx, dy = np.subtract(X2, X1, out=t[0]), np.subtract(Y2, Y1, out=t[1])
+    np.multiply(dx, dx, out=t[2])
+    np.multiply(dy, dy, out=t[3])
+    d2 = np.add(t[2], t[3], out=t[2])
+    a = np.divide((s.r1 * s.r1 - s.r2 * s.r2) * 0.5, d2, out=t[3])
+    np.add(0.5, a, out=a)
+    np.divide(s.r1 * s.r1, d2, out=t[4])
+    np.multiply(a, a, out=t[5])
+    np.subtract(t[4], t[5], out=t[4])
+    with np.errstate(invalid="ignore"):
+        h = np.sqrt(t[4], out=t[4])
+    margin = np.multiply(h, d2)
+    margin *= 1.0 / (s.r1 * s.r2)
+    sh = np.multiply(s.sigma, h, out=t[5])
+    np.multiply(a, dx, out=t[6])
+    np.multiply(sh, dy, out=t[7])
+    r1x = np.subtract(t[6], t[7], out=t[6])
+    np.multiply(a, dy, out=t[7])
+    np.multiply(sh, dx, out=t[8])
+    r1y = np.add(t[7], t[8], out=t[7])
+    X, Y = np.add(X1, r1x, out=op[0]), np.add(Y1, r1y, out=op[1])
+    r2x, r2y = np.subtract(X, X2, out=t[8]), np.subtract(Y, Y2, out=t[9])
+    # rotations from the sketch (t[0] to t[5] are free from here)
+    for (ux, uy), e, i, o, k in ((r1x, r1y), s.e1, 1.0 / s.r1, o1, s.l1), ((r2x, r2y), s.e2, 1.0 / s.r2, o2, s.l2):
+        np.multiply(ux, e[0], out=t[0])
+        np.multiply(uy, e[1], out=t[1])
+        np.add(t[0], t[1], out=t[0])
+        C = np.multiply(t[0], i, out=o[1])
+        np.multiply(uy, e[0], out=t[0])
+        np.multiply(ux, e[1], out=t[1])
+        np.subtract(t[0], t[1], out=t[0])
+        S = np.multiply(t[0], i, out=o[2])
+        phi[k] = np.arctan2(S, C, out=o[0])
+    # rates: w1 = b.r2 / (r1 x r2), w2 = b.r1 / (r1 x r2), b = vP2 - vP1
+    np.multiply(r1x, r2y, out=t[0])
+    np.multiply(r1y, r2x, out=t[1])
+    np.subtract(t[0], t[1], out=t[0])
+    icr = np.divide(1.0, t[0], out=t[0])
+    bx, by = np.subtract(VX2, VX1, out=t[1]), np.subtract(VY2, VY1, out=t[2])
+    ws = []
+    for ux, uy, o in ((r2x, r2y, o1), (r1x, r1y, o2)):
+        np.multiply(bx, ux, out=t[3])
+        np.multiply(by, uy, out=t[4])
+        np.add(t[3], t[4], out=t[3])
+        ws.append(np.multiply(t[3], icr, out=o[3]))
+    w1, w2 = ws
+    np.multiply(w1, r1y, out=t[3])
+    VX = np.subtract(VX1, t[3], out=op[2])
+    np.multiply(w1, r1x, out=t[3])
+    VY = np.add(VY1, t[3], out=op[3])
+    q1, q2 = np.multiply(w1, w1, out=t[1]), np.multiply(w2, w2, out=t[2])
+    # c = aP2 - aP1 + q1 r1 - q2 r2
+    np.subtract(AX2, AX1, out=t[3])
+    np.multiply(q1, r1x, out=t[4])
+    np.add(t[3], t[4], out=t[3])
+    np.multiply(q2, r2x, out=t[4])
+    cx = np.subtract(t[3], t[4], out=t[3])
+    np.subtract(AY2, AY1, out=t[4])
+    np.multiply(q1, r1y, out=t[5])
+    np.add(t[4], t[5], out=t[4])
+    np.multiply(q2, r2y, out=t[5])
+    cy = np.subtract(t[4], t[5], out=t[4])
+    als = []
+    for ux, uy, o in ((r2x, r2y, o1), (r1x, r1y, o2)):
+        np.multiply(cx, ux, out=t[5])
+        np.multiply(cy, uy, out=t[10])
+        np.add(t[5], t[10], out=t[5])
+        als.append(np.multiply(t[5], icr, out=o[4]))
+    al1, al2 = als
+    np.multiply(al1, r1y, out=t[5])
+    np.subtract(AX1, t[5], out=t[5])
+    np.multiply(q1, r1x, out=t[10])
+    AX = np.subtract(t[5], t[10], out=op[4])
+    np.multiply(al1, r1x, out=t[5])
+    np.add(AY1, t[5], out=t[5])
+    np.multiply(q1, r1y, out=t[10])
+    AY = np.subtract(t[5], t[10], out=op[5])
+    st[s.l1] = (o1[1], o1[2], w1, al1, s.p)
+    st[s.l2] = (o2[1], o2[2], w2, al2, s.p)
+    pts[s.p] = (X, Y, VX, VY, AX, AY)
+    return margin
+
+
+def _fill(dest, values) -> None:
+    """Copy each value into its array of ``dest`` unless it already is that array."""
+    for d, v in zip(dest, values):
+        if v is not d:
+            d[...] = v
+
+
+def _unwrap_in_place(p: np.ndarray, start: float, jumps: bool) -> None:
+    """``p`` (wrapped angles along the rows) made continuous, its first value the one nearest ``start``.
+
+    ``jumps``: some step between two rows exceeds pi (else the rows only get the whole turns of the start).
+    """
     k0 = round((start - float(p[0])) / TAU)
-    out = p
-    if p.size > 1:
+    if jumps and p.size > 1:
         d = np.diff(p)
-        if np.abs(d).max() > math.pi:
-            out = p.copy()
-            out[1:] -= TAU * np.cumsum(np.round(d / TAU))
+        p[1:] -= TAU * np.cumsum(np.round(d / TAU))
     if k0:
-        out = out + TAU * k0
-    return out
+        p += TAU * k0
 
 
 def plan_dyads(ks) -> DyadPlan | None:

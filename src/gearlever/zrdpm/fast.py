@@ -13,6 +13,7 @@ import numpy as np
 
 from gearlever._validate import finite_array, positive_int
 from gearlever.errors import GearleverError
+from gearlever.loops.trig import sincos_half_angle
 from gearlever.zrdpm.parameters import ContourKinematics, TablesConstants, ZrdpmContour
 
 __all__ = ["fast_outputs"]
@@ -40,12 +41,14 @@ def fast_outputs(
 
     Tables model: one pass over the angles, block by block (``block``
     angles; ~32768 keeps the (3, block) buffer in a 1-2 MB L2 cache): ``sin``
-    and ``cos`` of the block into the buffer (whose third row is ones), then
-    the six outputs as one 6 x 3 matrix product, every output being
-    ``alpha sin + beta cos + gamma`` with the coefficients of eqs. 9, 11, 14
-    and 16.  Self-consistent
+    and ``cos`` of the block into the buffer (whose third row is ones), both
+    from one tangent of the half angle
+    (:func:`~gearlever.loops.trig.sincos_half_angle`), then the six outputs as
+    one 6 x 3 matrix product, every output being ``alpha sin + beta cos +
+    gamma`` with the coefficients of eqs. 9, 11, 14 and 16.  Self-consistent
     model: per block, in-place ufuncs, with a second sin/cos pair for the lever
-    angle.  The six outputs are rows of one ``(6, *phi.shape)`` array, which
+    angle (both pairs from half-angle tangents).  The six outputs are rows of
+    one ``(6, *phi.shape)`` array, which
     may be given as ``out`` to reuse memory.
 
     Notes
@@ -94,8 +97,7 @@ def fast_outputs(
         for start in range(0, n, bs):
             stop = min(start + bs, n)
             xb = x[:, : stop - start]
-            np.sin(flat[start:stop], out=xb[0])
-            np.cos(flat[start:stop], out=xb[1])
+            sincos_half_angle(flat[start:stop], xb[0], xb[1])
             np.matmul(coef, xb, out=rows[:, start:stop])
         return ContourKinematics(*out)
     u_c, u_g, e_c, e_g, a_x, a_y = rows
@@ -106,8 +108,7 @@ def fast_outputs(
         stop = min(start + bs, n)
         m = stop - start
         S, C, T1, T2 = s[:m], co[:m], t1[:m], t2[:m]
-        np.sin(flat[start:stop], out=S)
-        np.cos(flat[start:stop], out=C)
+        sincos_half_angle(flat[start:stop], S, C)
         uc, ug, ec, eg, ax, ay = (
             u_c[start:stop],
             u_g[start:stop],
@@ -128,8 +129,7 @@ def fast_outputs(
         T1 += 1.0
         T1 *= c
         T1 += th0
-        np.cos(T1, out=C)
-        np.sin(T1, out=S)
+        sincos_half_angle(T1, S, C)
         np.multiply(uc, uc, out=T2)  # u**2
         # eq. 16: a_x = -l (cos u2 + sin e), a_y = l (cos e - sin u2)
         np.multiply(C, T2, out=ax)
