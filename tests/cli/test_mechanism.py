@@ -251,14 +251,22 @@ def test_rpm_per_input_of_a_two_input_model(capsys):
     assert "--rpm: unknown input 'lever2' (inputs: gear9, lever1)" in capsys.readouterr().err
 
 
-def test_slider_input_model_needs_a_range_and_says_so(tmp_path, capsys):
+def test_slider_input_oscillates_between_its_dead_points_or_takes_a_range(tmp_path, capsys):
+    """A piston driving a slider-crank stops at the crank's dead centres: one oscillation, as PMKS+ sweeps it."""
     text = (EXAMPLES / "slider_crank.toml").read_text()
     text = text.replace('[[inputs]]\nlink = "crank"', '[[inputs]]\nslider = "piston"')
     model = tmp_path / "sc.toml"
     model.write_text(text)
-    assert main(["mechanism", "analyze", str(model), "--points", "4"]) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "the first input of model 'offset slider-crank' (piston) is a slider" in err
+    assert main(["mechanism", "analyze", str(model), "--points", "40", "--format", "json"]) == 0
+    out, err = capsys.readouterr()
+    assert err.count("\n") == 1 and "piston rocks between" in err and "one oscillation" in err
+    rows = json.loads(out)["rows"]
+    x = [r["input_piston_mm"] for r in rows]
+    # closed form of the offset slider-crank (crank 10, rod 35, offset 5): x_B = sqrt((L +- r)^2 - e^2)
+    x0 = math.sqrt(35**2 - 5**2) + 10  # the sketch: crank along +x, B at x = 10 + sqrt(35^2 - 5^2)
+    lo, hi = math.sqrt(25**2 - 5**2) - x0, math.sqrt(45**2 - 5**2) - x0
+    assert min(x) >= lo - 1e-9 and max(x) <= hi + 1e-9 and min(x) < lo + 2 and max(x) > hi - 2
+    assert {r["direction"] for r in rows} == {1, -1}
     assert main(["mechanism", "analyze", str(model), "--points", "3", "--input", "0", "-10", "--format", "json"]) == 0
     rows = _rows(capsys)
     assert [r["input_piston_mm"] for r in rows] == [0.0, -5.0, -10.0]

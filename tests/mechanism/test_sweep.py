@@ -69,3 +69,28 @@ def test_too_many_points_and_a_slider_first_input_are_refused():
     with pytest.raises(GearleverError, match="--points"):
         sweep_rows(m, 10**6)
     assert math.isfinite(input_limits(m).upper)
+
+
+def test_a_slider_first_input_oscillates_between_dead_points_or_is_refused_without_them():
+    """PMKS+ sweeps a slider input between its limits; a slider nothing stops has no one cycle (refused)."""
+    free = Mechanism.from_dict(
+        {
+            "points": {"O2": [0.0, 0.0], "B": [1.0, 0.0]},
+            "links": {"ground": ["O2"], "block": ["B"]},
+            "sliders": [{"link": "block", "on": "ground", "point": "B", "direction": [1.0, 0.0]}],
+            "inputs": [{"slider": "block"}],
+        }
+    )
+    with pytest.raises(GearleverError, match="no dead point stops"):
+        sweep_rows(free, 8)
+    text = (
+        example_path("slider_crank.toml")
+        .read_text()
+        .replace('[[inputs]]\nlink = "crank"', '[[inputs]]\nslider = "piston"')
+    )
+    m = Mechanism.loads(text)
+    s = sweep_rows(m, 60)
+    lim = input_limits(m)
+    assert s.oscillates and set(s.direction.tolist()) == {1, -1}
+    assert s.q[:, 0].min() >= lim.lower - 1e-12 and s.q[:, 0].max() <= lim.upper + 1e-12
+    assert m.solve(s.q, s.qdot).closed.all()

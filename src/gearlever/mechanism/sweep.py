@@ -10,7 +10,9 @@
   instead: from the sketch up to the upper limit, back down to the lower
   limit, back up to the sketch (end excluded), evenly spaced along that
   path, with a :attr:`Sweep.direction` of +1 or -1 per row and rates with
-  the sign of the motion;
+  the sign of the motion.  A slider as the first input oscillates the same
+  way between its dead points; one that no dead point stops is refused
+  (give its range);
 - ranges ``(start, stop)`` once per input, in ``[[inputs]]`` order or named
   (degrees for a link, length for a slider): all inputs move together,
   linearly, from start to stop, the end included.  A range of the one
@@ -216,7 +218,8 @@ def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1, 
     ------
     GearleverError
         Too many points; ranges given for some inputs only; no ranges and the
-        first input is a slider (a slider has no full turn); a range of the
+        first input is a slider that no dead point stops (a slider between dead
+        points oscillates between them, as a rocking link); a range of the
         one moving input past its limits (the message names them); a first
         input that cannot move from the sketch (locked, naming the links).
 
@@ -247,12 +250,12 @@ def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1, 
     if ranges and any(len(r) == 3 for r in ranges):
         ranges = input_ranges(mech, ranges)
     if not ranges:
-        if m.inputs[0].kind == "slider":
-            raise GearleverError(
-                f"--input: the first input of model {m.name!r} ({labels}) is a slider, which has no full turn; "
-                "give --input START STOP once per input"
-            )
         lim = input_limits(mech, 0, branch=branch)
+        if m.inputs[0].kind == "slider" and not (math.isfinite(lim.lower) and math.isfinite(lim.upper)):
+            raise GearleverError(
+                f"--input: the first input of model {m.name!r} ({labels}) is a slider that no dead point "
+                "stops, so it has no one cycle; give --input START STOP once per input"
+            )
         q = np.broadcast_to(mech.sketch_inputs, (points, W)).copy()
         qdot = np.zeros((points, W))
         if lim.full_turn:

@@ -5,9 +5,7 @@ The builders of the synthesized linkages: :func:`fourbar_model`,
 :func:`stephenson_sixbar_model`.  The model file's writer is
 :mod:`gearlever.mechanism.modelfile` (:func:`~gearlever.mechanism.modelfile.model_toml`,
 :func:`~gearlever.mechanism.modelfile.mechanism_table`,
-:func:`~gearlever.mechanism.modelfile.xy_pair`); ``mechanism_table`` and
-``xy_pair`` are still importable from here while the law kinds
-(:mod:`gearlever.synthesis.law`) move to the writer's module.
+:func:`~gearlever.mechanism.modelfile.xy_pair`).
 
 The point and link names follow one convention for every synthesized
 four-bar: ``O2`` input (crank) pivot, ``O4`` output (rocker) ground pivot,
@@ -28,10 +26,8 @@ from gearlever.mechanism.modelfile import mechanism_table, xy_pair
 __all__ = [
     "fourbar_model",
     "geared_fivebar_model",
-    "mechanism_table",
     "slider_crank_model",
     "stephenson_sixbar_model",
-    "xy_pair",
 ]
 
 

@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
+from gearlever.mechanism.modelfile import mechanism_table, xy_pair
 from gearlever.synthesis.law._core import LawKind, atan2c, register
-from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["FourBarLaw", "crank_rocker", "fourbar_angles", "SIZE", "LENGTHS"]
 

@@ -47,10 +47,10 @@ import math
 import numpy as np
 
 from gearlever.errors import GearleverError
+from gearlever.mechanism.modelfile import mechanism_table, xy_pair
 from gearlever.synthesis.law._core import LawKind, atan2c, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, crank_rocker, fourbar_angles, transmission_range
 from gearlever.synthesis.law.geared_fourbar import teeth_for_ratio
-from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["GearLeverLaw", "SLIDE_RANGE", "ARM", "DYAD"]
 

@@ -32,9 +32,9 @@ from fractions import Fraction
 import numpy as np
 
 from gearlever.errors import GearleverError
+from gearlever.mechanism.modelfile import mechanism_table, xy_pair
 from gearlever.synthesis.law._core import DWELL, LawKind, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, FourBarLaw, crank_rocker, fourbar_angles, transmission_range
-from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["GearedFourBarLaw", "teeth_for_ratio"]
 

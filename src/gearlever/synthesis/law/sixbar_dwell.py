@@ -31,9 +31,9 @@ import math
 
 import numpy as np
 
+from gearlever.mechanism.modelfile import mechanism_table, xy_pair
 from gearlever.synthesis.law._core import DWELL, LawKind, atan2c, register
 from gearlever.synthesis.law.fourbar import LENGTHS, SIZE, crank_rocker, fourbar_angles, transmission_range
-from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["SixBarDwellLaw"]
 

@@ -19,8 +19,8 @@ import math
 
 import numpy as np
 
+from gearlever.mechanism.modelfile import mechanism_table, xy_pair
 from gearlever.synthesis.law._core import LIFT, LawKind, register
-from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["SliderCrankLaw"]
 

@@ -31,9 +31,9 @@ import math
 
 import numpy as np
 
+from gearlever.mechanism.modelfile import mechanism_table, xy_pair
 from gearlever.synthesis.law._core import LawKind, atan2c, register
 from gearlever.synthesis.law.fourbar import SIZE
-from gearlever.synthesis.model import mechanism_table, xy_pair
 
 __all__ = ["SlottedLeverLaw", "time_ratio"]
 
