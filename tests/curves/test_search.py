@@ -9,7 +9,7 @@ from gearlever.curves import library as L
 from gearlever.curves import search as S
 from gearlever.curves import topology as T
 from gearlever.curves.links import solve_plan
-from gearlever.curves.score import distance, material
+from gearlever.curves.score import closed, distance, material, material_scale
 from gearlever.curves.simulate import simulate
 from gearlever.curves.targets import known_mechanism
 from tests.curves import _designs
@@ -76,11 +76,12 @@ def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers_and_on_a_
     assert [lk.x0.tolist() for lk in on_cluster.designs] == [lk.x0.tolist() for lk in a.designs]
     assert [lk.x0.tolist() for lk in a.designs] == [lk.x0.tolist() for lk in b.designs]
     assert len(a.designs) >= 1 and a.hypervolume > 0
+    assert a.scoring == "relative" and a.material_scale == pytest.approx(material_scale(egg))
     for lk, d, m in zip(a.designs, a.distance, a.material):
         assert d < 0.75 and m < 10 and lk.n_joints <= 20
         x = simulate(lk.x0[None], solve_plan(lk))[:, lk.target_joint]
-        assert distance(x, egg)[0] == pytest.approx(d, rel=1e-12)
-        assert material(lk.x0[None], lk.edges)[0] == pytest.approx(m, rel=1e-12)
+        assert distance(x, closed(egg))[0] == pytest.approx(d, rel=1e-12)
+        assert material(lk.x0[None], lk.edges)[0] * a.material_scale == pytest.approx(m, rel=1e-12)
     assert np.all(np.diff(a.distance) > 0) and np.all(np.diff(a.material) < 0)  # a front
 
 

@@ -24,6 +24,21 @@ description:
 * the hypervolume of a set of designs is the area dominated by its feasible
   points and bounded by the reference point (0.75, 10).
 
+Two scorings (:data:`SCORINGS`) differ only in what the target's polyline
+and the material mean:
+
+* ``"challenge"``: the definitions above, exactly (the target is the open
+  polyline of its points, the material is absolute): for the challenge's own
+  targets, so that its published values come out;
+* ``"relative"`` (for a user's curve, the default of ``synthesize curve`` and
+  ``curve score``): the target is *closed* (:func:`closed`: the segment from
+  its last point back to the first counts, so a repeated first point changes
+  nothing and a sparse target is not read as missing a piece) and the
+  material is measured at the size of the challenge's targets,
+  ``material x REFERENCE_RMS / r`` with ``r`` the RMS radius of the target
+  (:func:`material_scale`): the same design drawn ten times larger scores the
+  same, and the bound 10 means ``10 r / REFERENCE_RMS`` in the target's units.
+
 >>> import numpy as np
 >>> t = np.linspace(0, 2 * np.pi, 200)
 >>> circle = np.stack([np.cos(t), np.sin(t)], -1)
@@ -44,13 +59,20 @@ __all__ = [
     "MAX_JOINTS",
     "MAX_MATERIAL",
     "REFERENCE",
+    "REFERENCE_RMS",
     "RESOLUTION",
+    "SCORINGS",
+    "check_scoring",
+    "closed",
     "distance",
     "feasible",
     "hypervolume",
     "material",
+    "material_scale",
     "normalise",
     "resample",
+    "rms_radius",
+    "scoring_target",
 ]
 
 #: Points of the resampled curves.
@@ -60,6 +82,71 @@ MAX_DISTANCE = 0.75
 MAX_MATERIAL = 10.0
 MAX_JOINTS = 20
 REFERENCE = (MAX_DISTANCE, MAX_MATERIAL)
+#: The scorings: the size-free one for a user's curve, the challenge's absolute one.
+SCORINGS = ("relative", "challenge")
+#: RMS radius at which the relative scoring measures material: that of the challenge's six targets (0.191).
+REFERENCE_RMS = 0.191
+
+
+def check_scoring(scoring: str) -> str:
+    """``scoring`` if it is one of :data:`SCORINGS`, else a :class:`~gearlever.errors.GearleverError` naming it.
+
+    >>> check_scoring("tight")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: scoring must be one of relative, challenge, got 'tight'
+    """
+    if scoring not in SCORINGS:
+        raise GearleverError(f"scoring must be one of {', '.join(SCORINGS)}, got {scoring!r}")
+    return scoring
+
+
+def closed(target) -> np.ndarray:
+    """The target's points with its first point repeated at the end (unless it is there already): a closed polyline.
+
+    Examples
+    --------
+    >>> closed([[0, 0], [1, 0], [0, 1]]).tolist()
+    [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]
+    >>> closed([[0, 0], [1, 0], [0, 1], [0, 0]]).shape
+    (4, 2)
+    """
+    t = np.asarray(target, dtype=float)
+    if t.shape[0] and np.array_equal(t[0], t[-1]):
+        return t
+    return np.concatenate([t, t[:1]])
+
+
+def scoring_target(target, scoring: str = "relative") -> np.ndarray:
+    """The polyline the distance is measured to: :func:`closed` in the relative scoring, as given in the challenge's."""
+    return closed(target) if check_scoring(scoring) == "relative" else np.asarray(target, dtype=float)
+
+
+def rms_radius(curve, n: int = RESOLUTION) -> float:
+    """RMS radius of a polyline resampled by arc length to ``n`` points about their mean (the distance's scale)."""
+    t = resample(np.asarray(curve, dtype=float)[None], n)[0]
+    t = t - t.mean(0)
+    return float(np.sqrt((t**2).sum(-1).mean()))
+
+
+def material_scale(target, scoring: str = "relative") -> float:
+    """Factor from material in the target's units to the scoring's material: ``REFERENCE_RMS / r`` or 1.
+
+    ``r`` is the RMS radius of the scoring's target polyline
+    (:func:`scoring_target`, :func:`rms_radius`); the challenge's scoring
+    counts material as it is (1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2 * np.pi, 200)
+    >>> circle = np.stack([np.cos(t), np.sin(t)], -1)
+    >>> round(material_scale(50 * circle) * 50, 4), material_scale(circle, "challenge")
+    (0.191, 1.0)
+    """
+    if check_scoring(scoring) == "challenge":
+        return 1.0
+    return REFERENCE_RMS / rms_radius(scoring_target(target, scoring))
 
 
 def resample(curves, n: int = RESOLUTION) -> np.ndarray:
