@@ -113,6 +113,8 @@ def test_synthesize_curve_writes_models_links_and_front_that_score_the_same(tmp_
     assert 1 <= len(rows) <= 4
     r = json.loads(rep.read_text())
     assert r["designs"] == len(rows) and r["budget"] == 1000
+    # the low-material end: a crank whose tip is traced (a circle is within distance 0.75 of the egg)
+    assert r["front"][-1]["joints"] == 2 and r["front"][-1]["links"] == 1
     links = [str(out / f"{row['design']}.links.json") for row in rows]
     assert main(["curve", "score", *links, "--target", str(tgt), "--format", "json"]) == 0
     scored = json.loads(capsys.readouterr().out)

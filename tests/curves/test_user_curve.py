@@ -21,6 +21,7 @@ from gearlever.curves.score import (
     material_scale,
     resample,
     rms_radius,
+    score_distance,
     scoring_target,
 )
 from gearlever.curves.simulate import crank_angles, simulate
@@ -119,7 +120,7 @@ def test_every_design_traces_the_target_where_it_was_drawn_within_its_score(d_mm
     rms = rms_radius(closed(target))
     for lk, d, tf in zip(r.designs, r.distance, r.transforms):
         x = simulate(lk.x0[None], solve_plan(lk))[0, lk.target_joint]
-        gap = _to_polyline(x, target)
+        gap = _to_polyline(resample(x[None])[0], target)  # along the path by arc length, as the score samples it
         # the score's mean gap in the target's units is d rms / (2 pi): the drawn path is no farther
         assert gap.mean() <= d * rms / (2 * np.pi) * 1.02
         # centred on the target: the means of both curves resampled by arc length (the score's centres)
@@ -140,3 +141,25 @@ def test_the_same_curve_in_millimetres_under_the_challenges_rules_has_an_empty_f
     s = r.summary()
     assert len(r.designs) == 0 and s["empty"] and s["best_distance"] is None and r.hypervolume == 0.0
 
+
+def test_cranks_whose_tip_is_traced_are_offered_with_their_circle_scored():
+    t = np.linspace(0, 2 * np.pi, 100, endpoint=False)
+    egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
+    tips = S._crank_tips(egg)
+    assert len(tips) == len(S.CRANK_TIP_RADII)
+    for tip in tips:
+        lk = linkage_from_dict({"x0": tip.x0, "edges": [[0, 1]], "fixed_joints": [0], "motor": [0, 1]})
+        x = simulate(lk.x0[None], solve_plan(lk))[:, 1]
+        assert tip.distance == pytest.approx(float(distance(x, egg)[0]), rel=1e-12)
+        assert tip.material == pytest.approx(2 * np.hypot(*lk.x0[1]), rel=1e-12)
+    # a circle is within the challenge's distance of the egg: the front's low-material end is never empty
+    assert min(tip.distance for tip in tips) < 0.75
+
+
+def test_a_closed_target_has_no_first_point_in_the_relative_scoring():
+    crank = _crank(25.0, (1.0, 2.0))
+    c60 = _polygon(60)
+    d = [float(score_distance(crank, np.roll(c60, k, axis=0))[0]) for k in (0, 7, 31)]
+    assert max(d) - min(d) < 1e-3  # any start of the same closed polyline
+    assert score_distance(crank, c60)[0] <= distance(crank, closed(c60))[0]
+    assert score_distance(crank, c60, "challenge")[0] == distance(crank, c60)[0]

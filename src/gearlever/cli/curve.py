@@ -75,7 +75,7 @@ def _score(args) -> int:
     import numpy as np
 
     from gearlever.curves.links import read_linkage, solve_plan
-    from gearlever.curves.score import distance, feasible, hypervolume, material, material_scale, scoring_target
+    from gearlever.curves.score import feasible, hypervolume, material, material_scale, score_distance
     from gearlever.curves.simulate import simulate
     from gearlever.curves.targets import read_target
     from gearlever.errors import GearleverError
@@ -84,11 +84,11 @@ def _score(args) -> int:
         raise GearleverError(f"DESIGN: at most {MAX_DESIGNS} designs, got {len(args.designs)}")
     target = read_target(args.target, "--target")
     links = [read_linkage(p) for p in args.designs]
-    scored, k = scoring_target(target, args.scoring), material_scale(target, args.scoring)
+    k = material_scale(target, args.scoring)
     dist, mat = [], []
     for lk in links:
         x = simulate(lk.x0[None], solve_plan(lk))
-        dist.append(float(distance(x[:, lk.target_joint], scored)[0]))
+        dist.append(float(score_distance(x[:, lk.target_joint], target, args.scoring)[0]))
         mat.append(float(material(lk.x0[None], lk.edges)[0]) * k)
     joints = [lk.n_joints for lk in links]
     ok = feasible(dist, mat, joints)

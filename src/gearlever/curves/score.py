@@ -33,8 +33,10 @@ and the material mean:
 * ``"relative"`` (for a user's curve, the default of ``synthesize curve`` and
   ``curve score``): the target is *closed* (:func:`closed`: the segment from
   its last point back to the first counts, so a repeated first point changes
-  nothing and a sparse target is not read as missing a piece) and the
-  material is measured at the size of the challenge's targets,
+  nothing and a sparse target is not read as missing a piece), a closed curve
+  has no first point (the distance is the least over :data:`RESTARTS` starts
+  of the target's resampling spread over one sample spacing:
+  :func:`score_distance`), and the material is measured at the size of the challenge's targets,
   ``material x REFERENCE_RMS / r`` with ``r`` the RMS radius of the target
   (:func:`material_scale`): the same design drawn ten times larger scores the
   same, and the bound 10 means ``10 r / REFERENCE_RMS`` in the target's units.
@@ -72,6 +74,7 @@ __all__ = [
     "normalise",
     "resample",
     "rms_radius",
+    "score_distance",
     "scoring_target",
 ]
 
@@ -86,6 +89,8 @@ REFERENCE = (MAX_DISTANCE, MAX_MATERIAL)
 SCORINGS = ("relative", "challenge")
 #: RMS radius at which the relative scoring measures material: that of the challenge's six targets (0.191).
 REFERENCE_RMS = 0.191
+#: Starts of a closed target's resampling (spread over one sample spacing) of the relative scoring.
+RESTARTS = 4
 
 
 def check_scoring(scoring: str) -> str:
@@ -120,6 +125,45 @@ def closed(target) -> np.ndarray:
 def scoring_target(target, scoring: str = "relative") -> np.ndarray:
     """The polyline the distance is measured to: :func:`closed` in the relative scoring, as given in the challenge's."""
     return closed(target) if check_scoring(scoring) == "relative" else np.asarray(target, dtype=float)
+
+
+def _restart(poly, s0: float) -> np.ndarray:
+    """The closed polyline ``poly`` (first point repeated last) started at arc length ``s0`` from its first point."""
+    seg = np.hypot(*np.diff(poly, axis=0).T)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    i = int(np.clip(np.searchsorted(cum, s0, side="right") - 1, 0, len(seg) - 1))
+    w = (s0 - cum[i]) / seg[i] if seg[i] > 0 else 0.0
+    p = poly[i] + w * (poly[i + 1] - poly[i])
+    return np.concatenate([[p], poly[i + 1 : -1], poly[: i + 1], [p]])
+
+
+def score_distance(curves, target, scoring: str = "relative") -> np.ndarray:
+    """The scoring's distance of traced curves to a target, shape (B,).
+
+    The challenge's scoring: :func:`distance` to the target as given.  The
+    relative scoring: the target is :func:`closed` and has no first point:
+    the least :func:`distance` over :data:`RESTARTS` starts of its
+    resampling, evenly over the first sample spacing (the challenge's
+    distance compares the samples of both curves one to one, so where a
+    closed target happens to start would otherwise count).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2 * np.pi, 200)
+    >>> circle = np.stack([np.cos(t), np.sin(t)], -1)
+    >>> float(score_distance(circle[None], circle)[0]) < 1e-9
+    True
+    """
+    t = scoring_target(target, scoring)
+    if scoring == "challenge":
+        return distance(curves, t)
+    total = float(np.hypot(*np.diff(t, axis=0).T).sum())
+    best = None
+    for j in range(RESTARTS):
+        d = distance(curves, _restart(t, total * j / (RESTARTS * (RESOLUTION - 1))))
+        best = d if best is None else np.minimum(best, d)
+    return best
 
 
 def rms_radius(curve, n: int = RESOLUTION) -> float:
