@@ -29,13 +29,21 @@ def test_score_rows_and_hypervolume(tmp_path, capsys):
     b.write_text(json.dumps(SIXBAR))
     tgt = tmp_path / "t.csv"
     _circle_csv(tgt)
-    assert main(["curve", "score", str(a), str(b), "--target", str(tgt), "--format", "json"]) == 0
+    argv = ["curve", "score", str(a), str(b), "--target", str(tgt), "--format", "json"]
+    assert main([*argv, "--scoring", "challenge"]) == 0
     r = json.loads(capsys.readouterr().out)
     rows = r["rows"]
     assert rows[0]["distance"] == pytest.approx(0.0, abs=0.05)  # target sampled differently: resampling only
     lk = linkage_from_dict(SIXBAR)
     mat = 2 * sum(np.hypot(*(lk.x0[i] - lk.x0[j])) for i, j in lk.edges)
     assert rows[1]["material"] == pytest.approx(mat, rel=1e-9)
+    assert r["scoring"] == "challenge" and r["material_scale"] == 1.0
+    # the default, relative: material at the size of the challenge's targets (RMS radius 0.191; this one's is r)
+    assert main(argv) == 0
+    rel = json.loads(capsys.readouterr().out)
+    assert rel["scoring"] == "relative"
+    assert rel["rows"][1]["material"] == pytest.approx(mat * 0.191 / 0.36055512754639896, rel=1e-3)
+    assert rel["rows"][0]["distance"] < rows[0]["distance"]  # the closing segment of the 120-point target counts
     assert rows[1]["joints"] == 7 and rows[1]["links"] == 8
     feas = [x for x in rows if x["feasible"]]
     expect = hypervolume([[x["distance"], x["material"]] for x in feas])
@@ -105,6 +113,8 @@ def test_synthesize_curve_writes_models_links_and_front_that_score_the_same(tmp_
     assert 1 <= len(rows) <= 4
     r = json.loads(rep.read_text())
     assert r["designs"] == len(rows) and r["budget"] == 1000
+    # the low-material end: a crank whose tip is traced (a circle is within distance 0.75 of the egg)
+    assert r["front"][-1]["joints"] == 2 and r["front"][-1]["links"] == 1
     links = [str(out / f"{row['design']}.links.json") for row in rows]
     assert main(["curve", "score", *links, "--target", str(tgt), "--format", "json"]) == 0
     scored = json.loads(capsys.readouterr().out)
@@ -153,3 +163,51 @@ def test_synthesize_curve_with_time_stops_on_the_clock(tmp_path, capsys, small):
     r = json.loads(rep.read_text())
     assert r["budget"] is None and r["designs"] >= 1
     assert (out / "pareto.csv").exists()
+
+
+def _d_mm_csv(path, n=60):
+    """A 50 mm D drawn in millimetres (issue 33), without a repeated first point."""
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    x = np.where(np.cos(t) > 0.3, 0.3, np.cos(t)) * 25 + 706
+    path.write_text("x,y\n" + "".join(f"{a},{b}\n" for a, b in zip(x, np.sin(t) * 25 + 400)))
+
+
+def test_synthesize_curve_writes_into_an_existing_empty_folder_and_says_time_and_real_evaluations(
+    tmp_path, capsys, small
+):
+    tgt, out, rep = tmp_path / "d.csv", tmp_path / "designs", tmp_path / "r.json"
+    _d_mm_csv(tgt)
+    out.mkdir()
+    argv = ["synthesize", "curve", str(tgt), "--out", str(out), "--time", "4", "--report", str(rep)]
+    assert main(argv) == 0
+    r = json.loads(rep.read_text())
+    assert r["scoring"] == "relative" and r["designs"] >= 1 and not r["empty"]
+    assert r["budget"] is None and r["time_limit"] == 4
+    # the real count of NSGA-II's evaluations (not a placeholder), and the refinements' beside it
+    assert 0 < r["evaluations"] < 10**6 and r["polish_evaluations"] > 0
+    header = (out / "0001.toml").read_text().splitlines()[0]
+    assert "time limit 4 s" in header and "budget" not in header and "relative scoring" in header
+    # the design is drawn where the target is (millimetres near (706, 400)), with its transform in the report
+    lk = json.loads((out / "0001.links.json").read_text())
+    x = simulate(np.array(lk["x0"])[None], solve_plan(linkage_from_dict(lk)))[0, lk["target_joint"]]
+    assert np.hypot(*(x.mean(0) - [701.4, 400])) < 5
+    tf = r["front"][0]["transform"]
+    assert set(tf) == {"rotation_deg", "scale", "translation"} and tf["scale"] > 50
+    # a folder that holds anything is refused, naming it, before any work
+    capsys.readouterr()
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "--out" in err and "not empty" in err and str(out) in err
+
+
+def test_synthesize_curve_says_when_the_front_is_empty(tmp_path, capsys, small):
+    tgt, out, rep, fig = tmp_path / "d.csv", tmp_path / "o", tmp_path / "r.json", tmp_path / "f.png"
+    _d_mm_csv(tgt)
+    argv = ["synthesize", "curve", str(tgt), "--out", str(out), "--budget", "1000", "--scoring", "challenge"]
+    assert main([*argv, "--report", str(rep), "--figure", str(fig)]) == 0
+    cap = capsys.readouterr()
+    assert "0 designs on the front" in cap.out
+    err = cap.err.strip()
+    assert "\n" not in err and "warning: no design on the front" in err and "--scoring relative" in err
+    r = json.loads(rep.read_text())
+    assert r["empty"] and r["designs"] == 0 and r["scoring"] == "challenge" and fig.stat().st_size > 0

@@ -9,7 +9,7 @@ from gearlever.curves import library as L
 from gearlever.curves import search as S
 from gearlever.curves import topology as T
 from gearlever.curves.links import solve_plan
-from gearlever.curves.score import distance, material
+from gearlever.curves.score import distance, material, material_scale, score_distance
 from gearlever.curves.simulate import simulate
 from gearlever.curves.targets import known_mechanism
 from tests.curves import _designs
@@ -58,7 +58,9 @@ def test_prune_keeps_only_the_joints_the_traced_joint_needs():
 def test_synthesis_recovers_the_suites_known_nine_joint_linkage_exactly():
     topo, _, curve = known_mechanism(6, 12)  # benchmarks/bench_curves.py's 9-joint linkage (7 joints after pruning)
     assert topo.n == 9
-    r = S.synthesize_curve(curve, budget=1000, seed=0, workers=1)
+    # the challenge's scoring: its designs are translated, never turned (a turned linkage is sampled at other
+    # phases of its crank's absolute angles, which costs an exact recovery 0.01 to 0.07)
+    r = S.synthesize_curve(curve, budget=1000, seed=0, workers=1, scoring="challenge")
     assert r.distance[0] < 0.01  # 0.066 before issue 27 (budget 20 000)
     assert r.material[0] < 10 and r.hypervolume > 6
 
@@ -76,11 +78,12 @@ def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers_and_on_a_
     assert [lk.x0.tolist() for lk in on_cluster.designs] == [lk.x0.tolist() for lk in a.designs]
     assert [lk.x0.tolist() for lk in a.designs] == [lk.x0.tolist() for lk in b.designs]
     assert len(a.designs) >= 1 and a.hypervolume > 0
+    assert a.scoring == "relative" and a.material_scale == pytest.approx(material_scale(egg))
     for lk, d, m in zip(a.designs, a.distance, a.material):
         assert d < 0.75 and m < 10 and lk.n_joints <= 20
         x = simulate(lk.x0[None], solve_plan(lk))[:, lk.target_joint]
-        assert distance(x, egg)[0] == pytest.approx(d, rel=1e-12)
-        assert material(lk.x0[None], lk.edges)[0] == pytest.approx(m, rel=1e-12)
+        assert score_distance(x, egg)[0] == pytest.approx(d, rel=1e-12)
+        assert material(lk.x0[None], lk.edges)[0] * a.material_scale == pytest.approx(m, rel=1e-12)
     assert np.all(np.diff(a.distance) > 0) and np.all(np.diff(a.material) < 0)  # a front
 
 

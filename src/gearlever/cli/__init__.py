@@ -260,7 +260,7 @@ def _main(argv) -> int:
         reader_gone = False
         with output_set():
             out = getattr(args, "out", None)
-            if isinstance(out, str):
+            if isinstance(out, str) and not getattr(args, "out_is_folder", False):  # a folder is checked by its command
                 check_output(out, "--out")
             with warnings.catch_warnings():
                 # numeric warnings (overflow, invalid value) would be extra lines on

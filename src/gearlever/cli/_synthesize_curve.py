@@ -2,12 +2,19 @@
 
 Registered on the ``synthesize`` sub-parsers by :func:`register_curve`::
 
-    gearlever synthesize curve TARGET.csv --out DIR [--max-joints 20] [--designs 1000]
-        [--budget EVALS | --time SECONDS] [--seed N] [--workers N | --scheduler ADDRESS]
+    gearlever synthesize curve TARGET.csv --out DIR [--scoring relative|challenge] [--max-joints 20]
+        [--designs 1000] [--budget EVALS | --time SECONDS] [--seed N] [--workers N | --scheduler ADDRESS]
         [--library-size N] [--library-seed S] [--report R.json] [--figure F.png]
 
-TARGET.csv holds ``x,y`` rows of a closed curve (header optional).  DIR
-receives, per design on the distance-material front (at most ``--designs``):
+TARGET.csv holds ``x,y`` rows of a closed curve (header optional), in any
+units.  ``--scoring relative`` (default) scores it in its own size (closed,
+material measured at the size of the challenge's targets);
+``--scoring challenge`` keeps the MIT 2.156 challenge's absolute rules, for
+its own targets (:mod:`gearlever.curves.score`).  Every design is written in
+the target's frame: its traced point ``P`` runs on the curve where it was
+drawn (the transform of each is in the report).  DIR (new, or an existing
+empty folder) receives, per design on the distance-material front (at most
+``--designs``):
 ``NNNN.toml`` (a gearlever model, traced point ``P``) and ``NNNN.links.json``
 (the MIT 2.156 challenge's form), then ``pareto.csv`` (design, distance,
 material, joints, links).  Scores and search: :mod:`gearlever.curves`.
@@ -16,7 +23,9 @@ machine and any number of workers; ``--time`` stops on the clock and is not
 reproducible.  The retrieval library (``--library-size`` mechanisms, seed
 ``--library-seed``) is loaded from the cache folder when ``gearlever curve
 library build`` stored it there, else built in memory: the same designs
-either way.
+either way.  An empty front (no design within distance 0.75 and material 10)
+is said on stderr and in the report (``"empty": true``); the exit status is
+still 0 (the run itself succeeded).
 """
 
 from __future__ import annotations
@@ -44,7 +53,19 @@ def register_curve(ss) -> None:
         "2.156 challenge",
     )
     p.add_argument("target", metavar="TARGET.csv", help="closed target curve: x,y rows")
-    p.add_argument("--out", required=True, metavar="DIR", help="folder for NNNN.toml, NNNN.links.json, pareto.csv")
+    p.add_argument(
+        "--out",
+        required=True,
+        metavar="DIR",
+        help="folder for NNNN.toml, NNNN.links.json, pareto.csv: new, or an existing empty folder",
+    )
+    p.add_argument(
+        "--scoring",
+        choices=("relative", "challenge"),
+        default="relative",
+        help="relative (default): the closed target in its own size, material at the size of the challenge's "
+        "targets; challenge: the MIT 2.156 challenge's absolute rules, for its own targets",
+    )
     p.add_argument("--max-joints", type=capped_int(1000), default=20, help="most joints of a design (4 to 20)")
     p.add_argument("--designs", type=capped_int(1000), default=1000, help="most designs written (default 1000)")
     g = p.add_mutually_exclusive_group()
@@ -73,7 +94,7 @@ def register_curve(ss) -> None:
     p.add_argument("--library-seed", type=capped_int(2**31 - 1, low=0), default=0, metavar="S")
     p.add_argument("--report", default=None, metavar="R.json", help="write a JSON report")
     p.add_argument("--figure", default=None, metavar="F.png", help="write a figure (front, curves, best linkage)")
-    p.set_defaults(func=_run)
+    p.set_defaults(func=_run, out_is_folder=True)
 
 
 def _run(args) -> int:
@@ -86,6 +107,7 @@ def _run(args) -> int:
     from gearlever.curves.targets import read_target
 
     check_output_folder(args.out, "--out")
+    _check_empty_folder(args.out)
     for flag, path in (("--report", args.report), ("--figure", args.figure)):
         if path is not None:
             check_output(path, flag)
@@ -113,6 +135,7 @@ def _run(args) -> int:
             progress=bar,
             library_size=args.library_size,
             library_seed=args.library_seed,
+            scoring=args.scoring,
         )
     except GearleverError as exc:
         from gearlever.cli._common import flagged
@@ -131,11 +154,17 @@ def _run(args) -> int:
         bar.close()
     out = Path(args.out)
     names = []
+    spent = f"budget {budget}" if budget is not None else f"time limit {args.time:g} s"
     for n, (lk, d, m) in enumerate(zip(res.designs, res.distance, res.material), 1):
         name = f"{n:04d}"
         comment = (
-            f"Synthesized by gearlever synthesize curve (seed {args.seed}, budget {budget}); "
-            f"distance {d:.6g}, material {m:.6g} (MIT 2.156 challenge definitions)"
+            f"Synthesized by gearlever synthesize curve (seed {args.seed}, {spent}, {args.scoring} scoring); "
+            f"distance {d:.6g}, material {m:.6g} (MIT 2.156 challenge definitions"
+            + (
+                f", material x {res.material_scale:.6g}: at the size of the challenge's targets)"
+                if args.scoring == "relative"
+                else ")"
+            )
         )
         write_text_atomic(out / f"{name}.toml", linkage_toml(lk, comment), mkdir=True)
         write_text_atomic(out / f"{name}.links.json", strict_json(lk.as_dict(), indent=None) + "\n", mkdir=True)
@@ -151,6 +180,7 @@ def _run(args) -> int:
     rep = res.summary()
     rep["seconds"] = round(float(res.seconds), 2)
     rep["budget"] = budget
+    rep["time_limit"] = args.time
     rep["out"] = str(out)
     if args.report is not None:
         emit(to_json(rep), args.report, "--report")
@@ -162,4 +192,27 @@ def _run(args) -> int:
         save(fig, args.figure)
     best = f"best distance {res.distance[0]:.4g}, least material {res.material.min():.4g}" if names else "none"
     emit(f"{len(names)} designs on the front (hypervolume {res.hypervolume:.4f}; {best}) in {out}")
+    if not names:
+        import sys
+
+        hint = ", or --scoring relative for a curve not at the challenge's size"
+        print(
+            "gearlever synthesize curve: warning: no design on the front: none is within distance 0.75 and "
+            f"material 10 ({args.scoring} scoring); try a larger --budget or --time"
+            + (hint if args.scoring == "challenge" else ""),
+            file=sys.stderr,
+        )
     return 0
+
+
+def _check_empty_folder(folder) -> None:
+    """Refuse an existing ``--out`` folder that holds anything (the designs would mix with its files)."""
+    import os
+
+    if os.path.isdir(folder):
+        with os.scandir(folder) as it:
+            first = next(it, None)
+        if first is not None:
+            raise GearleverError(
+                f"--out {str(folder)!r}: the folder is not empty (holds {first.name!r}); give a new or an empty folder"
+            )

@@ -1,6 +1,7 @@
 """``gearlever curve``: score linkages in the challenge's form against a target curve; the retrieval library.
 
-    gearlever curve score DESIGNS... --target TARGET.csv [--format csv|json] [--out FILE]
+    gearlever curve score DESIGNS... --target TARGET.csv [--scoring relative|challenge] [--format csv|json]
+        [--out FILE]
     gearlever curve library build [--size N] [--seed S]
     gearlever curve library info
 
@@ -10,6 +11,10 @@ design: distance and material as the MIT 2.156 linkage challenge defines them
 (:mod:`gearlever.curves.score`), joints, links and whether it is feasible;
 the JSON form adds the hypervolume of the feasible designs against the
 reference point (0.75, 10).  At most :data:`MAX_DESIGNS` designs.
+``--scoring relative`` (default, as ``synthesize curve``) closes the target
+and measures material at the size of the challenge's targets;
+``--scoring challenge`` applies the challenge's rules as they are
+(:mod:`gearlever.curves.score`).
 
 ``library build`` simulates the retrieval library of ``gearlever synthesize
 curve`` (``--size`` mechanisms, default the synthesis' 14400, at most
@@ -37,6 +42,13 @@ def register(sub) -> None:
     s = cs.add_parser("score", help="distance, material and feasibility of .links.json designs, and hypervolume")
     s.add_argument("designs", nargs="+", metavar="DESIGN", help=".links.json files")
     s.add_argument("--target", required=True, help="CSV of the target curve: x,y rows")
+    s.add_argument(
+        "--scoring",
+        choices=("relative", "challenge"),
+        default="relative",
+        help="relative (default): closed target, material at the size of the challenge's targets; challenge: the "
+        "MIT 2.156 challenge's absolute rules",
+    )
     s.add_argument("--format", choices=("csv", "json"), default="csv")
     s.add_argument("--out", help="file to write (default stdout)")
     s.set_defaults(func=_score)
@@ -63,7 +75,7 @@ def _score(args) -> int:
     import numpy as np
 
     from gearlever.curves.links import read_linkage, solve_plan
-    from gearlever.curves.score import distance, feasible, hypervolume, material
+    from gearlever.curves.score import feasible, hypervolume, material, material_scale, score_distance
     from gearlever.curves.simulate import simulate
     from gearlever.curves.targets import read_target
     from gearlever.errors import GearleverError
@@ -72,11 +84,12 @@ def _score(args) -> int:
         raise GearleverError(f"DESIGN: at most {MAX_DESIGNS} designs, got {len(args.designs)}")
     target = read_target(args.target, "--target")
     links = [read_linkage(p) for p in args.designs]
+    k = material_scale(target, args.scoring)
     dist, mat = [], []
     for lk in links:
         x = simulate(lk.x0[None], solve_plan(lk))
-        dist.append(float(distance(x[:, lk.target_joint], target)[0]))
-        mat.append(float(material(lk.x0[None], lk.edges)[0]))
+        dist.append(float(score_distance(x[:, lk.target_joint], target, args.scoring)[0]))
+        mat.append(float(material(lk.x0[None], lk.edges)[0]) * k)
     joints = [lk.n_joints for lk in links]
     ok = feasible(dist, mat, joints)
     cols = {
@@ -88,7 +101,13 @@ def _score(args) -> int:
         "feasible": [bool(v) for v in ok],
     }
     hv = hypervolume(np.column_stack([dist, mat])[ok]) if ok.any() else 0.0
-    meta = {"target": args.target, "reference": [0.75, 10.0], "hypervolume": hv}
+    meta = {
+        "target": args.target,
+        "scoring": args.scoring,
+        "material_scale": k,
+        "reference": [0.75, 10.0],
+        "hypervolume": hv,
+    }
     emit(table_text(cols, args.format, meta=meta), args.out)
     return 0
 

@@ -24,6 +24,23 @@ description:
 * the hypervolume of a set of designs is the area dominated by its feasible
   points and bounded by the reference point (0.75, 10).
 
+Two scorings (:data:`SCORINGS`) differ only in what the target's polyline
+and the material mean:
+
+* ``"challenge"``: the definitions above, exactly (the target is the open
+  polyline of its points, the material is absolute): for the challenge's own
+  targets, so that its published values come out;
+* ``"relative"`` (for a user's curve, the default of ``synthesize curve`` and
+  ``curve score``): the target is *closed* (:func:`closed`: the segment from
+  its last point back to the first counts, so a repeated first point changes
+  nothing and a sparse target is not read as missing a piece), a closed curve
+  has no first point (the distance is the least over :data:`RESTARTS` starts
+  of the target's resampling spread over one sample spacing:
+  :func:`score_distance`), and the material is measured at the size of the challenge's targets,
+  ``material x REFERENCE_RMS / r`` with ``r`` the RMS radius of the target
+  (:func:`material_scale`): the same design drawn ten times larger scores the
+  same, and the bound 10 means ``10 r / REFERENCE_RMS`` in the target's units.
+
 >>> import numpy as np
 >>> t = np.linspace(0, 2 * np.pi, 200)
 >>> circle = np.stack([np.cos(t), np.sin(t)], -1)
@@ -44,13 +61,21 @@ __all__ = [
     "MAX_JOINTS",
     "MAX_MATERIAL",
     "REFERENCE",
+    "REFERENCE_RMS",
     "RESOLUTION",
+    "SCORINGS",
+    "check_scoring",
+    "closed",
     "distance",
     "feasible",
     "hypervolume",
     "material",
+    "material_scale",
     "normalise",
     "resample",
+    "rms_radius",
+    "score_distance",
+    "scoring_target",
 ]
 
 #: Points of the resampled curves.
@@ -60,6 +85,112 @@ MAX_DISTANCE = 0.75
 MAX_MATERIAL = 10.0
 MAX_JOINTS = 20
 REFERENCE = (MAX_DISTANCE, MAX_MATERIAL)
+#: The scorings: the size-free one for a user's curve, the challenge's absolute one.
+SCORINGS = ("relative", "challenge")
+#: RMS radius at which the relative scoring measures material: that of the challenge's six targets (0.191).
+REFERENCE_RMS = 0.191
+#: Starts of a closed target's resampling (spread over one sample spacing) of the relative scoring.
+RESTARTS = 4
+
+
+def check_scoring(scoring: str) -> str:
+    """``scoring`` if it is one of :data:`SCORINGS`, else a :class:`~gearlever.errors.GearleverError` naming it.
+
+    >>> check_scoring("tight")
+    Traceback (most recent call last):
+    ...
+    gearlever.errors.GearleverError: scoring must be one of relative, challenge, got 'tight'
+    """
+    if scoring not in SCORINGS:
+        raise GearleverError(f"scoring must be one of {', '.join(SCORINGS)}, got {scoring!r}")
+    return scoring
+
+
+def closed(target) -> np.ndarray:
+    """The target's points with its first point repeated at the end (unless it is there already): a closed polyline.
+
+    Examples
+    --------
+    >>> closed([[0, 0], [1, 0], [0, 1]]).tolist()
+    [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]
+    >>> closed([[0, 0], [1, 0], [0, 1], [0, 0]]).shape
+    (4, 2)
+    """
+    t = np.asarray(target, dtype=float)
+    if t.shape[0] and np.array_equal(t[0], t[-1]):
+        return t
+    return np.concatenate([t, t[:1]])
+
+
+def scoring_target(target, scoring: str = "relative") -> np.ndarray:
+    """The polyline the distance is measured to: :func:`closed` in the relative scoring, as given in the challenge's."""
+    return closed(target) if check_scoring(scoring) == "relative" else np.asarray(target, dtype=float)
+
+
+def _restart(poly, s0: float) -> np.ndarray:
+    """The closed polyline ``poly`` (first point repeated last) started at arc length ``s0`` from its first point."""
+    seg = np.hypot(*np.diff(poly, axis=0).T)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    i = int(np.clip(np.searchsorted(cum, s0, side="right") - 1, 0, len(seg) - 1))
+    w = (s0 - cum[i]) / seg[i] if seg[i] > 0 else 0.0
+    p = poly[i] + w * (poly[i + 1] - poly[i])
+    return np.concatenate([[p], poly[i + 1 : -1], poly[: i + 1], [p]])
+
+
+def score_distance(curves, target, scoring: str = "relative") -> np.ndarray:
+    """The scoring's distance of traced curves to a target, shape (B,).
+
+    The challenge's scoring: :func:`distance` to the target as given.  The
+    relative scoring: the target is :func:`closed` and has no first point:
+    the least :func:`distance` over :data:`RESTARTS` starts of its
+    resampling, evenly over the first sample spacing (the challenge's
+    distance compares the samples of both curves one to one, so where a
+    closed target happens to start would otherwise count).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2 * np.pi, 200)
+    >>> circle = np.stack([np.cos(t), np.sin(t)], -1)
+    >>> float(score_distance(circle[None], circle)[0]) < 1e-9
+    True
+    """
+    t = scoring_target(target, scoring)
+    if scoring == "challenge":
+        return distance(curves, t)
+    total = float(np.hypot(*np.diff(t, axis=0).T).sum())
+    best = None
+    for j in range(RESTARTS):
+        d = distance(curves, _restart(t, total * j / (RESTARTS * (RESOLUTION - 1))))
+        best = d if best is None else np.minimum(best, d)
+    return best
+
+
+def rms_radius(curve, n: int = RESOLUTION) -> float:
+    """RMS radius of a polyline resampled by arc length to ``n`` points about their mean (the distance's scale)."""
+    t = resample(np.asarray(curve, dtype=float)[None], n)[0]
+    t = t - t.mean(0)
+    return float(np.sqrt((t**2).sum(-1).mean()))
+
+
+def material_scale(target, scoring: str = "relative") -> float:
+    """Factor from material in the target's units to the scoring's material: ``REFERENCE_RMS / r`` or 1.
+
+    ``r`` is the RMS radius of the scoring's target polyline
+    (:func:`scoring_target`, :func:`rms_radius`); the challenge's scoring
+    counts material as it is (1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2 * np.pi, 200)
+    >>> circle = np.stack([np.cos(t), np.sin(t)], -1)
+    >>> round(material_scale(50 * circle) * 50, 4), material_scale(circle, "challenge")
+    (0.191, 1.0)
+    """
+    if check_scoring(scoring) == "challenge":
+        return 1.0
+    return REFERENCE_RMS / rms_radius(scoring_target(target, scoring))
 
 
 def resample(curves, n: int = RESOLUTION) -> np.ndarray:

@@ -61,7 +61,20 @@ from gearlever._result import Result
 from gearlever.curves import library as _library
 from gearlever.curves.library import Library, build_library, cached_library, descriptor
 from gearlever.curves.links import linkage_from_dict
-from gearlever.curves.score import MAX_DISTANCE, MAX_MATERIAL, RESOLUTION, distance, hypervolume, material, resample
+from gearlever.curves.score import (
+    MAX_DISTANCE,
+    MAX_MATERIAL,
+    REFERENCE_RMS,
+    RESOLUTION,
+    check_scoring,
+    distance,
+    hypervolume,
+    material,
+    normalise,
+    resample,
+    rms_radius,
+    scoring_target,
+)
 from gearlever.curves.simulate import simulate, simulate_jacobian
 from gearlever.curves.targets import check_target
 from gearlever.curves.topology import Topology, _topology
@@ -417,7 +430,7 @@ def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
         term = TerminationCollection(term, TimeBasedTermination(max(1e-3, deadline - time.monotonic())))
     res = minimize(_P(lo, hi), algo, term, seed=int(seed % (2**31)), verbose=False, save_history=False)
     pop = res.pop
-    return pop.get("X").reshape(-1, N, 2), pop.get("F")
+    return pop.get("X").reshape(-1, N, 2), pop.get("F"), int(res.algorithm.evaluator.n_eval)
 
 
 class Design(NamedTuple):
@@ -431,6 +444,11 @@ class Design(NamedTuple):
 
 def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list[Design]:
     """One start: refine, topology moves, NSGA-II, refine the front, scaled copies; its :class:`Design` list."""
+    return _run_start(spec, seed, k, evals, deadline)[0]
+
+
+def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tuple[list[Design], int, int]:
+    """:func:`run_start` and what it spent: (designs, NSGA-II evaluations, the refinements' and scorings' ones)."""
     rng = np.random.default_rng([seed, k])
     target = np.asarray(spec["target"], dtype=float)
     tc = _target(target)
@@ -460,20 +478,25 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list[
         used += e
         if math.isfinite(dl):
             chain.append(x)
-    X, F = _nsga(topo, np.array(chain), target, max(POPULATION, evals - used), int(rng.integers(2**31)), deadline)
+    X, F, n_nsga = _nsga(
+        topo, np.array(chain), target, max(POPULATION, evals - used), int(rng.integers(2**31)), deadline
+    )
     Xall = np.concatenate([X, np.array(chain)])
     d, m = evaluate(topo, Xall, target, keep=None)
+    used += len(Xall)
     front = _nondominated(d, m)
     # polish the closest designs: more rounds of the distance-only refinement
     polished = []
     for i in front[:POLISH]:
         if deadline is not None and time.monotonic() > deadline:
             break
-        xp, dp, mp, _ = refine(topo, Xall[i], tc, rounds=8, nfev=60)
+        xp, dp, mp, e = refine(topo, Xall[i], tc, rounds=8, nfev=60)
+        used += e
         polished.append(xp)
     if polished:
         Xall = np.concatenate([Xall, np.array(polished)])
         d, m = evaluate(topo, Xall, target, keep=None)
+        used += len(Xall)
         front = _nondominated(d, m)
     # members spread over material, refined with a material-weighted objective for a few weights: fill the front
     spread = front[np.unique(np.round(np.linspace(0, front.size - 1, min(SPREAD, front.size))).astype(int))]
@@ -482,18 +505,21 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list[
         for w in SPREAD_WEIGHTS:
             if deadline is not None and time.monotonic() > deadline:
                 break
-            xw, dw, mw, _ = refine(topo, Xall[i], tc, rounds=2, material_weight=w)
+            xw, dw, mw, e = refine(topo, Xall[i], tc, rounds=2, material_weight=w)
+            used += e
             if math.isfinite(dw):
                 extra.append(xw)
     if extra:
         Xall = np.concatenate([Xall, np.array(extra)])
         d, m = evaluate(topo, Xall, target, keep=None)
+        used += len(Xall)
         front = _nondominated(d, m)
     for i in front:
         designs.append((float(d[i]), float(m[i]), Xall[i]))
         for sc in SCALES:
             xs = Xall[i] * sc
             ds, ms = evaluate(topo, xs[None], target, keep=None)
+            used += 1
             designs.append((float(ds[0]), float(ms[0]), xs))
     td = {
         "n": topo.n,
@@ -502,7 +528,7 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list[
         "motor": list(topo.motor),
         "target": topo.target,
     }
-    return [Design(dd, mm, td, xx.tolist()) for dd, mm, xx in designs if math.isfinite(dd)]
+    return [Design(dd, mm, td, xx.tolist()) for dd, mm, xx in designs if math.isfinite(dd)], n_nsga, used
 
 
 def _pick_starts(refined, count: int) -> list:
@@ -538,17 +564,22 @@ def curve_start(make, seed: int, k: int, evals: int, method: str = "nsga2") -> S
 
     ``make()`` gives the spec; the start's designs are in ``info["designs"]``,
     its objective the smallest distance among them; ``evaluations`` is the
-    start's share of the budget (the refinements' function calls are not counted).
+    count of NSGA-II's evaluations (at most the start's share of the budget;
+    fewer when the clock stops it), ``polish_evaluations`` that of the
+    refinements (function and Jacobian calls) and of the scorings of front
+    members and their scaled copies: each one simulation of one sketch over a
+    crank turn.
     """
     spec = make()
-    designs = run_start(spec, seed, k, evals, spec.get("deadline"))
+    designs, n_nsga, n_polish = _run_start(spec, seed, k, evals, spec.get("deadline"))
     best = min(designs, key=lambda d: d.distance, default=None)
     return Start(
         index=k,
         x=None if best is None else np.asarray(best.x0, dtype=float),
         objective=math.inf if best is None else best.distance,
         feasible=any(d.distance < MAX_DISTANCE and d.material < MAX_MATERIAL for d in designs),
-        evaluations=int(evals),
+        evaluations=int(n_nsga),
+        polish_evaluations=int(n_polish),
         info={"designs": designs},
     )
 
@@ -567,9 +598,24 @@ class CurveSynthesis(Result):
         Of the front against the reference (:data:`~gearlever.curves.score.MAX_DISTANCE`,
         :data:`~gearlever.curves.score.MAX_MATERIAL`).
     evaluations : int
-        The budget of the search after retrieval (the refinements' calls are not counted).
+        NSGA-II's evaluations, all starts together: at most the budget, the
+        real count when the clock stops the search.
     seed, starts, library_size : int
     seconds : float
+    scoring : str
+        ``"relative"`` or ``"challenge"`` (:mod:`gearlever.curves.score`).
+    material_scale : float
+        The scoring's material per unit of material in the target's units
+        (``REFERENCE_RMS / r`` in the relative scoring, 1 in the challenge's):
+        ``material / material_scale`` is the designs' material in the target's units.
+    transforms : ndarray, shape (D, 4)
+        Per design, ``(rotation, scale, tx, ty)``: the similarity that moved
+        the sketch the search found onto the target where it was drawn,
+        ``x = scale R(rotation) x_found + (tx, ty)`` (rotation in radians);
+        ``designs`` are the moved sketches.
+    polish_evaluations : int
+        Evaluations of the refinements and of the scorings of front members,
+        outside the budget.
     """
 
     designs: tuple
@@ -581,22 +627,51 @@ class CurveSynthesis(Result):
     starts: int
     library_size: int
     seconds: float = field(default=0.0)
+    scoring: str = "challenge"
+    material_scale: float = 1.0
+    transforms: np.ndarray | None = None
+    polish_evaluations: int = 0
 
     def summary(self) -> dict:
-        """Strict-JSON-ready summary: hypervolume, reference, counts and the front."""
+        """Strict-JSON-ready summary: hypervolume, reference, scoring, counts and the front (with each transform)."""
+        tf = np.zeros((len(self.designs), 4)) if self.transforms is None else np.asarray(self.transforms)
+        if self.scoring == "relative":
+            rule = (
+                f"relative: distance to the closed target; material x {REFERENCE_RMS:g} / (the target's RMS "
+                f"radius), that is x {self.material_scale:.6g} (material measured at the size of the MIT 2.156 "
+                "challenge's targets)"
+            )
+        else:
+            rule = "challenge: distance to the open polyline of the target's points; material as it is (absolute)"
         return {
             "hypervolume": self.hypervolume,
             "reference": [MAX_DISTANCE, MAX_MATERIAL],
+            "scoring": self.scoring,
+            "scoring_rule": rule,
+            "material_scale": self.material_scale,
             "designs": len(self.designs),
+            "empty": not len(self.designs),
             "evaluations": self.evaluations,
+            "polish_evaluations": self.polish_evaluations,
             "seed": self.seed,
             "starts": self.starts,
             "library_size": self.library_size,
             "best_distance": float(self.distance[0]) if len(self.designs) else None,
             "least_material": float(self.material.min()) if len(self.designs) else None,
             "front": [
-                {"distance": float(d), "material": float(m), "joints": lk.n_joints, "links": len(lk.edges)}
-                for d, m, lk in zip(self.distance, self.material, self.designs)
+                {
+                    "distance": float(d),
+                    "material": float(m),
+                    "material_in_target_units": float(m) / self.material_scale,
+                    "joints": lk.n_joints,
+                    "links": len(lk.edges),
+                    "transform": {
+                        "rotation_deg": math.degrees(t[0]),
+                        "scale": float(t[1]),
+                        "translation": [float(t[2]), float(t[3])],
+                    },
+                }
+                for d, m, lk, t in zip(self.distance, self.material, self.designs, tf)
             ],
         }
 
@@ -615,6 +690,7 @@ def synthesize_curve(
     library_size: int | None = None,
     library_seed: int = 0,
     use_cache: bool = True,
+    scoring: str = "relative",
 ) -> CurveSynthesis:
     """Linkages (topology and dimensions) whose traced joint follows ``target``, on the distance-material front.
 
@@ -648,17 +724,34 @@ def synthesize_curve(
         seed and format is stored there (:mod:`gearlever.curves.library`);
         otherwise, or if False, build it in memory.  The designs are the same
         either way.
+    scoring : {"relative", "challenge"}
+        ``"relative"`` (default, for a user's curve): the target is closed and
+        material is measured at the size of the challenge's targets (the
+        search runs on the target moved to its centre and scaled to RMS radius
+        :data:`~gearlever.curves.score.REFERENCE_RMS`); ``"challenge"``: the
+        MIT 2.156 challenge's rules as they are, for its own targets
+        (:mod:`gearlever.curves.score`).
 
     Returns
     -------
     CurveSynthesis
+        Every design moved (rotated, translated and, in the relative scoring,
+        scaled) so that its traced joint runs on the target where it was drawn.
 
     Notes
     -----
     The steps and their sources are in the module docstring.
     """
     t0 = time.monotonic()
-    target = check_target(target)
+    target = user_target = check_target(target)
+    scoring = check_scoring(scoring)
+    scored = scoring_target(target, scoring)  # the polyline the distance is measured to, in the user's frame
+    if scoring == "relative":
+        centre = resample(scored[None], RESOLUTION)[0].mean(0)
+        k = REFERENCE_RMS / rms_radius(scored)
+        target = (scored - centre) * k
+    else:
+        centre, k, target = np.zeros(2), 1.0, scored
     if not 4 <= int(max_joints) <= 20:
         raise GearleverError(f"max_joints must be 4 to 20, got {max_joints}")
     if not 1 <= int(designs) <= MAX_DESIGNS:
@@ -722,44 +815,131 @@ def synthesize_curve(
     # every design of every start (in start order), by exact distance then start
     runs = sorted(runs, key=lambda r: r.index)
     res = order([(d, r.index) for r in runs for d in r.info["designs"]], lambda t: t[0].distance, lambda t: t[1])
-    res = [d for d, _ in res]
-    # the non-dominated feasible ones, evenly thinned to `designs`
+    res = [d for d, _ in res] + _crank_tips(target)
+    # the non-dominated feasible ones, moved onto the target's frame (where they are scored again: the crank's
+    # angles are absolute, so a moved linkage is sampled at other phases of its motion), evenly thinned to `designs`
     dd = np.array([r.distance for r in res])
     mm = np.array([r.material for r in res])
     feas = (dd < MAX_DISTANCE) & (mm < MAX_MATERIAL)
     idx = np.flatnonzero(feas)
     front = idx[_nondominated(dd[idx], mm[idx])] if idx.size else idx
+    moved, transforms, dist, mat = [], [], [], []
+    for i in front:
+        td, xx = res[i].topology, res[i].x0
+        lk = linkage_from_dict(
+            {
+                "x0": xx,
+                "edges": td["edges"],
+                "fixed_joints": td["fixed"],
+                "motor": td["motor"],
+                "target_joint": td["target"],
+            }
+        )
+        lk2, tf = _to_target_frame(lk, target, centre, k, rotate=scoring == "relative")
+        d, m = _score_linkage(lk2, user_target, scoring, k)
+        moved.append(lk2)
+        transforms.append(tf)
+        dist.append(d)
+        mat.append(m)
+    dist, mat = np.array(dist, dtype=float), np.array(mat, dtype=float)
+    idx = np.flatnonzero((dist < MAX_DISTANCE) & (mat < MAX_MATERIAL))
+    front = idx[_nondominated(dist[idx], mat[idx])] if idx.size else idx
     if front.size > designs:
         pick = np.unique(np.round(np.linspace(0, front.size - 1, designs)).astype(int))
         front = front[pick]
-    out = []
-    for i in front:
-        td, xx = res[i].topology, res[i].x0
-        out.append(
-            linkage_from_dict(
-                {
-                    "x0": xx,
-                    "edges": td["edges"],
-                    "fixed_joints": td["fixed"],
-                    "motor": td["motor"],
-                    "target_joint": td["target"],
-                }
-            )
-        )
-    dist = dd[front]
-    mat = mm[front]
+    moved = [moved[i] for i in front]
+    transforms = [transforms[i] for i in front]
+    dist, mat = dist[front], mat[front]
     hv = hypervolume(np.column_stack([dist, mat])) if front.size else 0.0
     return CurveSynthesis(
-        tuple(out),
+        tuple(moved),
         dist,
         mat,
         hv,
-        int(total),
+        int(sum(r.evaluations for r in runs)),
         int(seed),
         len(starts),
         int(lib.descriptors.shape[0]),
         time.monotonic() - t0,
+        scoring,
+        float(k),
+        np.array(transforms, dtype=float).reshape(-1, 4),
+        int(sum(r.polish_evaluations for r in runs)),
     )
+
+
+#: Radii of the crank-tip designs, in RMS radii of the target.
+CRANK_TIP_RADII = np.geomspace(0.05, 2.0, 80)
+
+
+def _crank_tips(target) -> list[Design]:
+    """Two-joint designs (a crank whose tip is traced: a circle) of :data:`CRANK_TIP_RADII`, scored.
+
+    A circle is often close enough to a closed target, at the least material
+    of any design (twice the radius): these seed the low-material end of the
+    front so that it is never empty when a circle is feasible.
+    """
+    rms = _target_rms(target)
+    r = CRANK_TIP_RADII * rms
+    x0 = np.zeros((r.size, 2, 2))
+    x0[:, 1, 0] = r
+    topo = _topology(2, [[0, 1]], [0], (0, 1), 1)
+    d, m = evaluate(topo, x0, target, keep=None)
+    td = {"n": 2, "edges": [[0, 1]], "fixed": [0], "motor": [0, 1], "target": 1}
+    return [Design(float(a), float(b), td, x.tolist()) for a, b, x in zip(d, m, x0) if math.isfinite(a)]
+
+
+def _score_linkage(lk, user_target, scoring: str, k: float) -> tuple[float, float]:
+    """The scoring's distance to the user's target and material (``k`` x the material) of a linkage."""
+    from gearlever.curves.links import solve_plan
+    from gearlever.curves.score import score_distance
+
+    x = simulate(lk.x0[None], solve_plan(lk))[:, lk.target_joint]
+    return float(score_distance(x, user_target, scoring)[0]), float(material(lk.x0[None], lk.edges)[0]) * k
+
+
+def _to_target_frame(lk, target, centre, k: float, rotate: bool = True):
+    """The linkage moved onto the target's frame, and its transform ``(rotation, scale, tx, ty)``.
+
+    ``target`` is the search's target (the user's moved by ``-centre`` and
+    scaled by ``k``); the best alignment of the distance (cyclic shift,
+    direction, least-squares rotation ``R`` about the curves' means ``c`` and
+    ``t``) maps a sketch point ``p`` to ``t + R (p - c)`` there, so to
+    ``centre + (t + R (p - c)) / k`` in the user's frame.  Without
+    ``rotate`` (the challenge's scoring) ``R`` is the identity: the crank's
+    angles are absolute, so a turned linkage is sampled at other phases of its
+    motion and scores differently (0.01 to 0.11 worse for exact recoveries
+    turned by 0.3 to 2 rad); a translated or scaled one scores the same.
+    """
+    from gearlever.curves.links import solve_plan
+    from gearlever.curves.score import _alignment_indices
+
+    curve = simulate(lk.x0[None], solve_plan(lk))[0, lk.target_joint]
+    theta = 0.0
+    if rotate:
+        cz, tz = normalise(curve[None], target)
+        n = tz.shape[0]
+        C = cz[0][_alignment_indices(n)]
+        z = (tz * np.conj(C)).sum(-1)
+        rot = np.exp(1j * np.angle(z))
+        a = int(np.argmin(np.abs(tz - rot[:, None] * C).mean(-1)))
+        theta = float(np.angle(z[a]))
+    c = resample(curve[None], RESOLUTION)[0].mean(0)
+    t = resample(np.asarray(target, dtype=float)[None], RESOLUTION)[0].mean(0)
+    R = np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
+    scale = 1.0 / k
+    shift = np.asarray(centre, dtype=float) + scale * (t - R @ c)
+    x = scale * (lk.x0 @ R.T) + shift
+    moved = linkage_from_dict(
+        {
+            "x0": x.tolist(),
+            "edges": lk.edges.tolist(),
+            "fixed_joints": lk.fixed_joints.tolist(),
+            "motor": list(lk.motor),
+            "target_joint": lk.target_joint,
+        }
+    )
+    return moved, (theta, scale, float(shift[0]), float(shift[1]))
 
 
 def _example() -> tuple:

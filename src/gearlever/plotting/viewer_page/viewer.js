@@ -538,8 +538,9 @@
   });
   const qsel = $("quantity");
   quantities.forEach((q) => { const o = document.createElement("option"); o.value = q.id; o.textContent = q.label; qsel.appendChild(o); });
-  // default: the angle of the last link (the output, usually)
+  // default: the traced point P of a synthesized linkage, else the angle of the last link (the output, usually)
   if (D.sliders.length) qsel.value = "s:" + D.sliders[D.sliders.length - 1].name;
+  else if (movingPoints.includes("P")) qsel.value = "y:P";
   else if (D.links.length) qsel.value = "phi:" + D.links[D.links.length - 1].name;
   const plot = $("plot");
   let plotState = null;
