@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from gearlever.cli import main
-from gearlever.curves.links import linkage_from_dict, solve_plan
 from gearlever.curves.model import linkage_toml
 from gearlever.curves.score import hypervolume
 from gearlever.curves.simulate import simulate
+from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
 from tests.curves import _designs
 from tests.curves._designs import SIXBAR
 

@@ -8,10 +8,10 @@ import pytest
 from gearlever.curves import library as L
 from gearlever.curves import search as S
 from gearlever.curves import topology as T
-from gearlever.curves.links import solve_plan
 from gearlever.curves.score import distance, material, material_scale, score_distance
 from gearlever.curves.simulate import simulate
 from gearlever.curves.targets import known_mechanism
+from gearlever.mechanism.linkage import solve_plan
 from tests.curves import _designs
 
 small = _designs.small  # fixture

@@ -12,7 +12,6 @@ import pytest
 
 from gearlever.curves import library as L
 from gearlever.curves import search as S
-from gearlever.curves.links import linkage_from_dict, solve_plan
 from gearlever.curves.score import (
     REFERENCE_RMS,
     closed,
@@ -26,6 +25,7 @@ from gearlever.curves.score import (
 )
 from gearlever.curves.simulate import crank_angles, simulate
 from gearlever.errors import GearleverError
+from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
 from tests.curves._designs import SIXBAR
 
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import json
 
-from gearlever.curves.links import linkage_from_dict
 from gearlever.curves.model import linkage_toml
 from gearlever.mechanism import Mechanism
+from gearlever.mechanism.linkage import linkage_from_dict
 from gearlever.plotting.viewer import viewer_html
 from tests.curves._designs import SIXBAR
 from tests.plotting import _browser

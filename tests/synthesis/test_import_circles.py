@@ -93,5 +93,5 @@ def test_the_dask_backend_and_the_curves_leaves_import_no_driver():
     assert not {m for m in graph["gearlever.synthesis._dask"] if m.startswith("gearlever.synthesis.")} - {
         "gearlever.synthesis._search"
     }
-    assert graph["gearlever.curves.topology"] <= {"gearlever.curves.links", "gearlever.errors"}
+    assert graph["gearlever.curves.topology"] <= {"gearlever.mechanism.linkage", "gearlever.errors"}
     assert "gearlever.curves.search" not in graph["gearlever.curves.library"] | graph["gearlever.curves.targets"]

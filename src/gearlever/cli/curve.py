@@ -6,7 +6,7 @@
     gearlever curve library info
 
 Each DESIGN is a ``.links.json`` file (``x0``, ``edges``, ``fixed_joints``,
-``motor``, ``target_joint``; see :mod:`gearlever.curves.links`).  One row per
+``motor``, ``target_joint``; see :mod:`gearlever.mechanism.linkage`).  One row per
 design: distance and material as the MIT 2.156 linkage challenge defines them
 (:mod:`gearlever.curves.score`), joints, links and whether it is feasible;
 the JSON form adds the hypervolume of the feasible designs against the
@@ -74,11 +74,11 @@ def register(sub) -> None:
 def _score(args) -> int:
     import numpy as np
 
-    from gearlever.curves.links import read_linkage, solve_plan
     from gearlever.curves.score import feasible, hypervolume, material, material_scale, score_distance
     from gearlever.curves.simulate import simulate
     from gearlever.curves.targets import read_target
     from gearlever.errors import GearleverError
+    from gearlever.mechanism.linkage import read_linkage, solve_plan
 
     if len(args.designs) > MAX_DESIGNS:
         raise GearleverError(f"DESIGN: at most {MAX_DESIGNS} designs, got {len(args.designs)}")

@@ -2,10 +2,11 @@
 
 What lives here:
 
-* :mod:`~gearlever.curves.links`: the challenge's form of a planar revolute
-  linkage (``x0``, ``edges``, ``fixed_joints``, ``motor``, ``target_joint``),
-  read and validated from ``.links.json``, and its dyadic solve plan (a model
-  file format, defined in :mod:`gearlever.mechanism.linkage`).
+* (in :mod:`gearlever.mechanism.linkage`, a model file format): the
+  challenge's form of a planar revolute linkage (``x0``, ``edges``,
+  ``fixed_joints``, ``motor``, ``target_joint``), read and validated from
+  ``.links.json``, and its dyadic solve plan; re-exported here as
+  ``Linkage``, ``linkage_from_dict``, ``read_linkage``, ``solve_plan``.
 * :mod:`~gearlever.curves.simulate`: a batched simulator of many dyadic
   linkages over a crank turn in one array pass, with the analytic Jacobian of
   the joint paths with respect to the sketch positions.
@@ -25,9 +26,9 @@ gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
 matplotlib, pandas or the CLI.  Figures are in :mod:`gearlever.plotting.curves`.
 """
 
-from gearlever.curves.links import Linkage, linkage_from_dict, read_linkage, solve_plan
 from gearlever.curves.score import distance, feasible, hypervolume, material
 from gearlever.curves.simulate import simulate, simulate_jacobian
+from gearlever.mechanism.linkage import Linkage, linkage_from_dict, read_linkage, solve_plan
 
 __all__ = [
     "Linkage",

@@ -4,7 +4,7 @@ The conversion is part of the model file formats
 (:func:`gearlever.mechanism.linkage.linkage_model`); :func:`linkage_toml`
 writes it with the one model writer.
 
->>> from gearlever.curves.links import linkage_from_dict
+>>> from gearlever.mechanism.linkage import linkage_from_dict
 >>> lk = linkage_from_dict({"x0": [[0, 0], [0, 1], [3, 0], [2, 2]],
 ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]})
 >>> sorted(linkage_model(lk)["links"])

@@ -60,7 +60,6 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.curves import library as _library
 from gearlever.curves.library import Library, build_library, cached_library, descriptor
-from gearlever.curves.links import linkage_from_dict
 from gearlever.curves.score import (
     MAX_DISTANCE,
     MAX_MATERIAL,
@@ -79,6 +78,7 @@ from gearlever.curves.simulate import simulate, simulate_jacobian
 from gearlever.curves.targets import check_target
 from gearlever.curves.topology import Topology, _topology
 from gearlever.errors import GearleverError
+from gearlever.mechanism.linkage import linkage_from_dict
 from gearlever.synthesis.driver import Start, check_budget, multistart, order
 from gearlever.synthesis.registry import Kind, register
 
@@ -286,7 +286,7 @@ def refine(
 
     Examples
     --------
-    >>> from gearlever.curves.links import linkage_from_dict
+    >>> from gearlever.mechanism.linkage import linkage_from_dict
     >>> from gearlever.curves.simulate import simulate
     >>> lk = linkage_from_dict({"x0": [[0, 0], [0.3, 0], [1, 0], [0.8, 0.8], [0.5, 1.0]],
     ...     "edges": [[0, 1], [1, 3], [2, 3], [1, 4], [3, 4]], "fixed_joints": [0, 2], "motor": [0, 1]})
@@ -590,7 +590,7 @@ class CurveSynthesis(Result):
 
     Attributes
     ----------
-    designs : tuple of gearlever.curves.links.Linkage
+    designs : tuple of gearlever.mechanism.linkage.Linkage
         The front, distance ascending.
     distance, material : ndarray
         Their challenge distance and material (:mod:`gearlever.curves.score`).
@@ -891,8 +891,8 @@ def _crank_tips(target) -> list[Design]:
 
 def _score_linkage(lk, user_target, scoring: str, k: float) -> tuple[float, float]:
     """The scoring's distance to the user's target and material (``k`` x the material) of a linkage."""
-    from gearlever.curves.links import solve_plan
     from gearlever.curves.score import score_distance
+    from gearlever.mechanism.linkage import solve_plan
 
     x = simulate(lk.x0[None], solve_plan(lk))[:, lk.target_joint]
     return float(score_distance(x, user_target, scoring)[0]), float(material(lk.x0[None], lk.edges)[0]) * k
@@ -911,8 +911,8 @@ def _to_target_frame(lk, target, centre, k: float, rotate: bool = True):
     motion and scores differently (0.01 to 0.11 worse for exact recoveries
     turned by 0.3 to 2 rad); a translated or scaled one scores the same.
     """
-    from gearlever.curves.links import solve_plan
     from gearlever.curves.score import _alignment_indices
+    from gearlever.mechanism.linkage import solve_plan
 
     curve = simulate(lk.x0[None], solve_plan(lk))[0, lk.target_joint]
     theta = 0.0

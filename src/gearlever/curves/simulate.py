@@ -1,6 +1,6 @@
 """Batched simulation of dyadic linkages over a crank turn, with the analytic Jacobian.
 
-Many candidates of one topology (a :class:`~gearlever.curves.links.SolvePlan`)
+Many candidates of one topology (a :class:`~gearlever.mechanism.linkage.SolvePlan`)
 are solved at once: every candidate and every crank step in one array pass
 per dyad, no solver per point.
 
@@ -19,7 +19,7 @@ the sketch).  Where ``alpha^2 > a^2/|d|^2`` the dyad cannot close: the
 linkage locks and its positions are NaN from there on.
 
 >>> import numpy as np
->>> from gearlever.curves.links import linkage_from_dict, solve_plan
+>>> from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
 >>> lk = linkage_from_dict({"x0": [[0, 0], [1, 0], [4, 0], [3, 3]],
 ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]})
 >>> x = simulate(lk.x0[None], solve_plan(lk))
@@ -77,7 +77,7 @@ def simulate(x0s, plan, steps: int = STEPS, thetas=None) -> np.ndarray:
     Examples
     --------
     >>> import numpy as np
-    >>> from gearlever.curves.links import linkage_from_dict, solve_plan
+    >>> from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
     >>> lk = linkage_from_dict({"x0": [[0, 0], [1, 0], [4, 0], [3, 3]],
     ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]})
     >>> x = simulate(lk.x0[None], solve_plan(lk), steps=5)
@@ -136,7 +136,7 @@ def simulate_jacobian(x0s, plan, steps: int = STEPS, thetas=None, joints=None):
 
     Examples
     --------
-    >>> from gearlever.curves.links import linkage_from_dict, solve_plan
+    >>> from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
     >>> lk = linkage_from_dict({"x0": [[0, 0], [1, 0], [4, 0], [3, 3]],
     ...     "edges": [[0, 1], [1, 3], [2, 3]], "fixed_joints": [0, 2], "motor": [0, 1]})
     >>> x, J = simulate_jacobian(lk.x0[None], solve_plan(lk), steps=10, joints=[3])

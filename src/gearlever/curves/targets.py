@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearlever.curves.links import MAX_COORDINATE
 from gearlever.errors import GearleverError
+from gearlever.mechanism.linkage import MAX_COORDINATE
 
 __all__ = ["MAX_TARGET_ROWS", "MIN_DISTINCT", "SUITE_RMS", "check_target", "known_mechanism", "read_target"]
 

@@ -4,7 +4,7 @@ A leaf of :mod:`gearlever.curves`: the library (:mod:`gearlever.curves.library`)
 the targets (:mod:`gearlever.curves.targets`) and the search
 (:mod:`gearlever.curves.search`) all build on it.
 
-Imports numpy, :mod:`gearlever.curves.links` and :mod:`gearlever.errors`.
+Imports numpy, :mod:`gearlever.mechanism.linkage` and :mod:`gearlever.errors`.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearlever.curves.links import Linkage, SolvePlan, _plan
+from gearlever.mechanism.linkage import Linkage, SolvePlan, _plan
 
 __all__ = ["Topology", "prune", "random_sketches", "random_topology"]
 

@@ -13,9 +13,9 @@ def curve_synthesis_plot(result, target, fig=None, best: int = 3):
     target's frame: the curves and the linkage are drawn where they run, over
     the target (closed in the relative scoring).  Returns the Figure.
     """
-    from gearlever.curves.links import solve_plan
     from gearlever.curves.score import REFERENCE, closed
     from gearlever.curves.simulate import simulate
+    from gearlever.mechanism.linkage import solve_plan
 
     fig = fig or plt.figure(figsize=(13.0, 4.3))
     a1, a2, a3 = fig.subplots(1, 3)

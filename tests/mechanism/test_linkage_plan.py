@@ -5,8 +5,8 @@ import re
 
 import pytest
 
-from gearlever.curves.links import linkage_from_dict, read_linkage, solve_plan
 from gearlever.errors import GearleverError
+from gearlever.mechanism.linkage import linkage_from_dict, read_linkage, solve_plan
 
 FOURBAR = {
     "x0": [[0, 0], [0, 1], [3, 0], [2, 2]],
