@@ -29,3 +29,18 @@ def example_text(name: str) -> str:
     from gearlever.data import example_path
 
     return Path(example_path(f"{name}.toml")).read_text(encoding="utf-8")
+
+
+def ok(r, status: int = 200):
+    """The JSON answer of a request that must succeed with ``status``."""
+    assert r.status_code == status, r.text
+    return r.json()
+
+
+def error_line(r, status: int) -> str:
+    """The one-line ``{"error": ...}`` of a refused request: the status, one line, no traceback."""
+    assert r.status_code == status, r.text
+    body = r.json()
+    assert set(body) >= {"error"} and isinstance(body["error"], str) and "\n" not in body["error"]
+    assert "Traceback" not in r.text
+    return body["error"]

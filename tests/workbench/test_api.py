@@ -16,7 +16,7 @@ import time
 import numpy as np
 import pytest
 
-from tests.workbench._client import api_client, example_text
+from tests.workbench._client import api_client, error_line, example_text, ok
 
 FOURBAR = example_text("fourbar")
 
@@ -27,30 +27,17 @@ def client(tmp_path_factory):
         yield c
 
 
-def _ok(r, status=200):
-    assert r.status_code == status, r.text
-    return r.json()
-
-
-def _err(r, status):
-    assert r.status_code == status, r.text
-    body = r.json()
-    assert set(body) >= {"error"} and isinstance(body["error"], str) and "\n" not in body["error"]
-    assert "Traceback" not in r.text
-    return body["error"]
-
-
 # --------------------------------------------------------------------------- examples, openapi
 def test_examples_list_the_shipped_models_with_links_and_each_opens(client):
-    names = [e["name"] for e in _ok(client.get("/api/examples"))["examples"]]
+    names = [e["name"] for e in ok(client.get("/api/examples"))["examples"]]
     assert {"fourbar", "watt_sixbar", "zrdpm_gear_contour", "slider_crank"} <= set(names)
     assert "law_lift" not in names  # a law, not a model
-    assert _ok(client.get("/api/examples/fourbar"))["model"] == FOURBAR
-    assert "unknown example" in _err(client.get("/api/examples/nope"), 404)
+    assert ok(client.get("/api/examples/fourbar"))["model"] == FOURBAR
+    assert "unknown example" in error_line(client.get("/api/examples/nope"), 404)
 
 
 def test_openapi_document_names_every_api_route(client):
-    doc = _ok(client.get("/api/openapi.json"))
+    doc = ok(client.get("/api/openapi.json"))
     assert doc["openapi"].startswith("3.")
     for path in (
         "/api/parse",
@@ -71,13 +58,13 @@ def test_openapi_document_names_every_api_route(client):
 
 
 def test_unknown_route_and_method_answer_json_errors(client):
-    assert "no route" in _err(client.get("/api/nothing"), 404)
-    assert "not allowed" in _err(client.delete("/api/solve"), 405)
+    assert "no route" in error_line(client.get("/api/nothing"), 404)
+    assert "not allowed" in error_line(client.delete("/api/solve"), 405)
 
 
 # --------------------------------------------------------------------------- parse, dump
 def test_parse_answers_the_model_its_dof_and_inputs(client):
-    d = _ok(client.post("/api/parse", json={"model": FOURBAR}))
+    d = ok(client.post("/api/parse", json={"model": FOURBAR}))
     assert d["dof"] == 1 and d["inputs"] == ["crank"]
     assert d["model"]["links"]["coupler"] == ["A", "B", "P"]
 
@@ -85,34 +72,34 @@ def test_parse_answers_the_model_its_dof_and_inputs(client):
 def test_parse_error_names_the_toml_line(client):
     text = '[points]\nO = [0, 0]\nA = [1, 0\n[links]\nground = ["O"]\n'
     r = client.post("/api/parse", json={"model": text})
-    assert "TOML syntax error" in _err(r, 400)
+    assert "TOML syntax error" in error_line(r, 400)
     assert r.json()["line"] in (3, 4)
 
 
 def test_parse_refusal_names_the_element(client):
     text = FOURBAR.replace('rocker  = ["O4", "B"]', 'rocker  = ["O4", "Q"]')
-    assert "Q" in _err(client.post("/api/parse", json={"model": text}), 400)
+    assert "Q" in error_line(client.post("/api/parse", json={"model": text}), 400)
 
 
 @pytest.mark.parametrize("name", ["fourbar", "watt_sixbar", "zrdpm_gear_contour", "slider_crank", "whitworth"])
 def test_dump_round_trips_parse(client, name):
-    parsed = _ok(client.post("/api/parse", json={"model": example_text(name)}))
-    text = _ok(client.post("/api/dump", json={"model": parsed["model"]}))["model"]
-    again = _ok(client.post("/api/parse", json={"model": text}))
+    parsed = ok(client.post("/api/parse", json={"model": example_text(name)}))
+    text = ok(client.post("/api/dump", json={"model": parsed["model"]}))["model"]
+    again = ok(client.post("/api/parse", json={"model": text}))
     assert again["model"] == parsed["model"]
 
 
 def test_dump_refuses_a_non_object_and_a_bad_model(client):
-    assert "JSON object" in _err(client.post("/api/dump", json={"model": "text"}), 400)
-    assert "links" in _err(client.post("/api/dump", json={"model": {"points": {"A": [0, 0]}}}), 400)
+    assert "JSON object" in error_line(client.post("/api/dump", json={"model": "text"}), 400)
+    assert "links" in error_line(client.post("/api/dump", json={"model": {"points": {"A": [0, 0]}}}), 400)
 
 
 # --------------------------------------------------------------------------- solve
 def test_solve_answers_the_library_positions_for_every_frame(client):
     from gearlever.mechanism import Mechanism
 
-    d = _ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 72}))
-    mech = Mechanism.from_dict(_ok(client.post("/api/parse", json={"model": FOURBAR}))["model"])
+    d = ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 72}))
+    mech = Mechanism.from_dict(ok(client.post("/api/parse", json={"model": FOURBAR}))["model"])
     q = mech.sketch_inputs[0] + 2 * np.pi * np.arange(72) / 72
     r = mech.solve(q)
     for p in ("A", "B", "P"):
@@ -126,7 +113,7 @@ def test_solve_answers_the_library_positions_for_every_frame(client):
 
 
 def test_solve_velocity_is_the_derivative_of_position_per_radian_of_the_input(client):
-    d = _ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 360}))
+    d = ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 360}))
     P = np.array(d["point"]["P"], dtype=float)
     V = np.array(d["velocity"]["P"], dtype=float)
     A = np.array(d["acceleration"]["P"], dtype=float)
@@ -143,7 +130,7 @@ def test_solve_velocity_is_the_derivative_of_position_per_radian_of_the_input(cl
 
 
 def test_solve_transmission_angle_is_the_law_of_cosines_angle_at_the_rocker_pin(client):
-    d = _ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 36}))
+    d = ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 36}))
     A, B = np.array(d["point"]["A"]), np.array(d["point"]["B"])
     O4 = np.array([40.0, 0.0])
     b, c = np.hypot(*(B - A).T), np.hypot(*(B - O4).T)  # coupler A-B, rocker O4-B
@@ -153,14 +140,14 @@ def test_solve_transmission_angle_is_the_law_of_cosines_angle_at_the_rocker_pin(
 
 
 def test_solve_gives_instant_centres_and_gear_pitch_circles(client):
-    d = _ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 8}))
+    d = ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 8}))
     assert d["centres"] is not None and all(len(v) == 8 for v in d["centres"].values())
-    g = _ok(client.post("/api/solve", json={"model": example_text("geared_fivebar"), "frames": 8}))
+    g = ok(client.post("/api/solve", json={"model": example_text("geared_fivebar"), "frames": 8}))
     assert g["gears"] and all(x["radius"] > 0 for x in g["gears"])
 
 
 def test_solve_with_two_inputs_turns_the_first_and_holds_the_second_at_its_start(client):
-    d = _ok(
+    d = ok(
         client.post(
             "/api/solve", json={"model": example_text("fivebar_two_inputs"), "frames": 12, "inputs": {"right": 80}}
         )
@@ -176,7 +163,7 @@ def test_solve_of_a_model_that_does_not_assemble_says_where_and_why(client):
         '[links]\nground = ["O2", "O4"]\ncrank = ["O2", "A"]\ncoupler = ["A", "B"]\nrocker = ["O4", "B"]\n'
         '[[inputs]]\nlink = "crank"\n'
     )
-    d = _ok(client.post("/api/solve", json={"model": text, "frames": 36}))
+    d = ok(client.post("/api/solve", json={"model": text, "frames": 36}))
     assert not all(d["closed"])
     first = d["closed"].index(False)
     assert d["message"].startswith(f"crank at {d['input_deg'][first]:.4g} deg")
@@ -204,15 +191,15 @@ def test_solve_of_a_model_that_does_not_assemble_says_where_and_why(client):
     ],
 )
 def test_solve_refusals_name_the_field(client, body, word):
-    assert word in _err(client.post("/api/solve", json=body), 400)
+    assert word in error_line(client.post("/api/solve", json=body), 400)
 
 
 def test_solve_refuses_bodies_that_are_not_json_objects(client):
-    assert "not JSON" in _err(
+    assert "not JSON" in error_line(
         client.post("/api/solve", content=b"{", headers={"content-type": "application/json"}), 400
     )
-    assert "JSON object" in _err(client.post("/api/solve", json=[1, 2]), 400)
-    assert "NaN" in _err(client.post("/api/solve", content=b'{"model": NaN}'), 400)
+    assert "JSON object" in error_line(client.post("/api/solve", json=[1, 2]), 400)
+    assert "NaN" in error_line(client.post("/api/solve", content=b'{"model": NaN}'), 400)
 
 
 def test_caps_on_links_and_link_frames_are_named(client):
@@ -222,41 +209,43 @@ def test_caps_on_links_and_link_frames_are_named(client):
     pts = "\n".join(f"P{i} = [{i}, 0]" for i in range(n + 1))
     links = "\n".join(f'l{i} = ["P{i}", "P{i + 1}"]' for i in range(n))
     text = f'[points]\n{pts}\n[links]\nground = ["P0"]\n{links}\n[[inputs]]\nlink = "l0"\n'
-    assert str(MAX_LINKS) in _err(client.post("/api/solve", json={"model": text}), 400)
+    assert str(MAX_LINKS) in error_line(client.post("/api/solve", json={"model": text}), 400)
     n = 80
     pts = "\n".join(f"P{i} = [{i}, 0]" for i in range(n + 1))
     links = "\n".join(f'l{i} = ["P{i}", "P{i + 1}"]' for i in range(n))
     text = f'[points]\n{pts}\n[links]\nground = ["P0"]\n{links}\n' + "".join(
         f'[[inputs]]\nlink = "l{i}"\n' for i in range(n)
     )
-    assert str(MAX_WORK) in _err(client.post("/api/solve", json={"model": text, "frames": 3600}), 400)
+    assert str(MAX_WORK) in error_line(client.post("/api/solve", json={"model": text, "frames": 3600}), 400)
 
 
 def test_body_over_the_cap_is_413_naming_the_cap(client):
     from gearlever.workbench.app import MAX_BODY_BYTES
 
     big = json.dumps({"model": "#" * (MAX_BODY_BYTES + 10)})
-    assert str(MAX_BODY_BYTES) in _err(client.post("/api/solve", content=big), 413)
+    assert str(MAX_BODY_BYTES) in error_line(client.post("/api/solve", content=big), 413)
 
 
 def test_model_text_over_the_character_cap_is_named(client):
     from gearlever.workbench.engine import MAX_MODEL_CHARS
 
-    assert str(MAX_MODEL_CHARS) in _err(client.post("/api/parse", json={"model": "#" * (MAX_MODEL_CHARS + 1)}), 400)
+    assert str(MAX_MODEL_CHARS) in error_line(
+        client.post("/api/parse", json={"model": "#" * (MAX_MODEL_CHARS + 1)}), 400
+    )
 
 
 def test_a_solve_past_its_time_cap_is_stopped_and_the_bench_goes_on(tmp_path):
     with api_client(tmp_path, solve_seconds=0.001, workers=1) as c:
         time.sleep(0.5)
-        msg = _err(c.post("/api/solve", json={"model": FOURBAR, "frames": 3600}), 400)
+        msg = error_line(c.post("/api/solve", json={"model": FOURBAR, "frames": 3600}), 400)
         assert "cap of 0.001 s" in msg
     with api_client(tmp_path, workers=1) as c:
-        assert _ok(c.post("/api/solve", json={"model": FOURBAR, "frames": 10}))["frames"] == 10
+        assert ok(c.post("/api/solve", json={"model": FOURBAR, "frames": 10}))["frames"] == 10
 
 
 # --------------------------------------------------------------------------- structure, forces, export
 def test_structure_answers_mobility_and_says_when_inputs_do_not_match(client):
-    d = _ok(client.post("/api/structure", json={"model": FOURBAR}))
+    d = ok(client.post("/api/structure", json={"model": FOURBAR}))
     assert (d["dof"], d["redundant"], d["inputs"], d["message"]) == (1, 0, ["crank"], "")
     assert {"point": "A", "links": ["crank", "coupler"]} in d["joints"]
     two = FOURBAR + '\n[[inputs]]\nlink = "rocker"\n'
@@ -266,12 +255,12 @@ def test_structure_answers_mobility_and_says_when_inputs_do_not_match(client):
 
 def test_forces_torque_does_the_work_of_the_loads_over_a_turn(client):
     """Virtual work over a turn at constant speed: the input torque's work is the loads' (gravity: 0)."""
-    d = _ok(client.post("/api/forces", json={"model": example_text("engine"), "frames": 360, "rpm": {"crank": 60}}))
+    d = ok(client.post("/api/forces", json={"model": example_text("engine"), "frames": 360, "rpm": {"crank": 60}}))
     tau = np.array(d["torque"]["crank"], dtype=float)
     assert len(tau) == 360 and np.isfinite(tau).all()
     assert d["pin"] and d["units"]["torque"].startswith("N")
-    assert "rpm" in _err(client.post("/api/forces", json={"model": FOURBAR, "rpm": {"nope": 1}}), 400)
-    assert "rpm" in _err(client.post("/api/forces", json={"model": FOURBAR, "rpm": {"crank": 0}}), 400)
+    assert "rpm" in error_line(client.post("/api/forces", json={"model": FOURBAR, "rpm": {"nope": 1}}), 400)
+    assert "rpm" in error_line(client.post("/api/forces", json={"model": FOURBAR, "rpm": {"crank": 0}}), 400)
 
 
 @pytest.mark.parametrize(
@@ -302,14 +291,14 @@ def test_export_csv_rows_are_the_frames(client):
 
 
 def test_export_unknown_format_is_404(client):
-    assert "format" in _err(client.post("/api/export/docx", json={"model": FOURBAR}), 404)
+    assert "format" in error_line(client.post("/api/export/docx", json={"model": FOURBAR}), 404)
 
 
 # --------------------------------------------------------------------------- jobs
 def _wait(client, job_id, timeout=120):
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
-        j = _ok(client.get(f"/api/jobs/{job_id}"))
+        j = ok(client.get(f"/api/jobs/{job_id}"))
         if j["state"] != "running":
             return j
         time.sleep(0.2)
@@ -322,12 +311,12 @@ MOTION = {"kind": "motion", "poses": [[0, 0, 0], [1, 0.5, 20], [2, 0.5, 45]], "f
 def test_motion_job_answers_a_model_that_passes_through_the_poses(client):
     from gearlever.mechanism import Mechanism
 
-    job_id = _ok(client.post("/api/jobs", json=MOTION), 202)["id"]
+    job_id = ok(client.post("/api/jobs", json=MOTION), 202)["id"]
     j = _wait(client, job_id)
     assert j["state"] == "done", j
     best = j["results"][0]
     assert best["rank"] == 1 and best["score"]["residual"] < 1e-9
-    m = Mechanism.from_dict(_ok(client.post("/api/parse", json={"model": best["model"]}))["model"])
+    m = Mechanism.from_dict(ok(client.post("/api/parse", json={"model": best["model"]}))["model"])
     assert m.structure().dof == 1
     assert m.model.points["P"] == (0.0, 0.0)  # the coupler point at the first pose
 
@@ -341,27 +330,27 @@ def test_function_job_answers_a_four_bar(client):
         "output_range_deg": [135, 225],
         "points": 3,
     }
-    j = _wait(client, _ok(client.post("/api/jobs", json=body), 202)["id"])
+    j = _wait(client, ok(client.post("/api/jobs", json=body), 202)["id"])
     assert j["state"] == "done", j
     assert "[links]" in j["results"][0]["model"]
 
 
 def test_second_job_while_one_runs_is_409_with_the_running_id_and_cancel_stops_it(client):
     body = {"kind": "curve", "target": [[math.cos(t), math.sin(t)] for t in np.linspace(0, 6.2, 40)], "time": 600}
-    first = _ok(client.post("/api/jobs", json=body), 202)["id"]
+    first = ok(client.post("/api/jobs", json=body), 202)["id"]
     r = client.post("/api/jobs", json=MOTION)
     assert r.status_code == 409 and r.json()["id"] == first
-    assert _ok(client.delete(f"/api/jobs/{first}"))["state"] == "cancelled"
-    j = _ok(client.get(f"/api/jobs/{first}"))
+    assert ok(client.delete(f"/api/jobs/{first}"))["state"] == "cancelled"
+    j = ok(client.get(f"/api/jobs/{first}"))
     assert j["state"] == "cancelled"
     proc = client.app.state.jobs.get(first).process
     assert not proc.is_alive()  # the job's process is stopped, not left running
     # the bench takes the next job
-    assert _wait(client, _ok(client.post("/api/jobs", json=MOTION), 202)["id"])["state"] == "done"
+    assert _wait(client, ok(client.post("/api/jobs", json=MOTION), 202)["id"])["state"] == "done"
 
 
 def test_job_events_stream_progress_until_the_end(client):
-    job_id = _ok(client.post("/api/jobs", json=MOTION), 202)["id"]
+    job_id = ok(client.post("/api/jobs", json=MOTION), 202)["id"]
     events = []
     with client.stream("GET", f"/api/jobs/{job_id}/events") as s:
         assert s.headers["content-type"].startswith("text/event-stream")
@@ -388,47 +377,49 @@ def test_job_events_stream_progress_until_the_end(client):
     ],
 )
 def test_job_refusals_name_the_field_before_anything_starts(client, body, word):
-    assert word in _err(client.post("/api/jobs", json=body), 400)
+    assert word in error_line(client.post("/api/jobs", json=body), 400)
 
 
 def test_unknown_job_is_404(client):
-    assert "job" in _err(client.get("/api/jobs/abc"), 404)
-    assert "job" in _err(client.delete("/api/jobs/abc"), 404)
-    assert "job" in _err(client.get("/api/jobs/abc/events"), 404)
+    assert "job" in error_line(client.get("/api/jobs/abc"), 404)
+    assert "job" in error_line(client.delete("/api/jobs/abc"), 404)
+    assert "job" in error_line(client.get("/api/jobs/abc/events"), 404)
 
 
 # --------------------------------------------------------------------------- files
 def test_files_put_get_list_with_etags(client):
     r = client.put("/api/files/new.toml", json={"model": FOURBAR})
-    created = _ok(r, 201)
+    created = ok(r, 201)
     assert r.headers["etag"] == created["etag"]
     r = client.get("/api/files/new.toml")
-    assert _ok(r)["model"] == FOURBAR and r.headers["etag"] == created["etag"]
-    names = [f["name"] for f in _ok(client.get("/api/files"))["files"]]
+    assert ok(r)["model"] == FOURBAR and r.headers["etag"] == created["etag"]
+    names = [f["name"] for f in ok(client.get("/api/files"))["files"]]
     assert "new.toml" in names
     # overwrite: If-Match required (428), stale refused (412), current accepted (200)
     edited = FOURBAR.replace("45.0]", "46.0]")
-    assert "If-Match" in _err(client.put("/api/files/new.toml", json={"model": edited}), 428)
+    assert "If-Match" in error_line(client.put("/api/files/new.toml", json={"model": edited}), 428)
     stale = client.put("/api/files/new.toml", json={"model": edited}, headers={"If-Match": '"0000"'})
-    assert "changed" in _err(stale, 412)
+    assert "changed" in error_line(stale, 412)
     r = client.put("/api/files/new.toml", json={"model": edited}, headers={"If-Match": created["etag"]})
-    assert _ok(r)["etag"] != created["etag"]
+    assert ok(r)["etag"] != created["etag"]
     # the old ETag is stale now
-    assert _err(client.put("/api/files/new.toml", json={"model": FOURBAR}, headers={"If-Match": created["etag"]}), 412)
-    assert _ok(client.get("/api/files/new.toml"))["model"] == edited
+    assert error_line(
+        client.put("/api/files/new.toml", json={"model": FOURBAR}, headers={"If-Match": created["etag"]}), 412
+    )
+    assert ok(client.get("/api/files/new.toml"))["model"] == edited
 
 
 def test_files_write_leaves_no_temporary_file(client):
     ws = client.app.state.files.root
-    _ok(client.put("/api/files/clean.toml", json={"model": FOURBAR}), 201)
+    ok(client.put("/api/files/clean.toml", json={"model": FOURBAR}), 201)
     assert not [p for p in ws.iterdir() if p.name.startswith(".")]
 
 
 def test_files_refuse_what_is_not_a_model(client):
-    assert "TOML" in _err(client.put("/api/files/bad.toml", json={"model": "[a\n"}), 400)
-    assert "JSON object" in _err(client.put("/api/files/bad.links.json", json={"model": "[1]"}), 400)
-    assert _err(client.get("/api/files/missing.toml"), 404)
-    assert ".toml" in _err(client.get("/api/files/notes.txt"), 400)
+    assert "TOML" in error_line(client.put("/api/files/bad.toml", json={"model": "[a\n"}), 400)
+    assert "JSON object" in error_line(client.put("/api/files/bad.links.json", json={"model": "[1]"}), 400)
+    assert error_line(client.get("/api/files/missing.toml"), 404)
+    assert ".toml" in error_line(client.get("/api/files/notes.txt"), 400)
 
 
 def test_a_call_whose_request_went_away_does_not_answer_the_next_call():

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.workbench._client import api_client, example_text
+from tests.workbench._client import api_client, error_line, example_text, ok
 
 FOURBAR = example_text("fourbar")
 
@@ -22,22 +22,10 @@ def client(tmp_path_factory):
         yield c
 
 
-def _ok(r, status=200):
-    assert r.status_code == status, r.text
-    return r.json()
-
-
-def _err(r, status):
-    assert r.status_code == status, r.text
-    body = r.json()
-    assert isinstance(body["error"], str) and "\n" not in body["error"] and "Traceback" not in r.text
-    return body["error"]
-
-
 # --------------------------------------------------------------------------- Kennedy's lines
 @pytest.mark.parametrize("name", ["fourbar", "slider_crank", "watt_sixbar"])
 def test_kennedy_triples_name_three_centres_on_one_line_uicker_pennock_shigley_ch3(client, name):
-    d = _ok(client.post("/api/solve", json={"model": example_text(name), "frames": 36}))
+    d = ok(client.post("/api/solve", json={"model": example_text(name), "frames": 36}))
     bodies = ["ground"] + list(d["angle_deg"])
     n = len(bodies)
     assert len(d["kennedy"]) == n * (n - 1) * (n - 2) // 6
@@ -70,7 +58,7 @@ def test_kennedy_triples_name_three_centres_on_one_line_uicker_pennock_shigley_c
 
 
 def test_centre_direction_of_a_slider_is_normal_to_its_guide(client):
-    d = _ok(client.post("/api/solve", json={"model": example_text("slider_crank"), "frames": 12}))
+    d = ok(client.post("/api/solve", json={"model": example_text("slider_crank"), "frames": 12}))
     # the piston translates on a horizontal guide: its centre with the ground is at infinity, straight up or down
     key = next(k for k in d["centre_direction"] if set(k.split("/")) == {"ground", "piston"})
     rows = d["centre_direction"][key]
@@ -79,7 +67,7 @@ def test_centre_direction_of_a_slider_is_normal_to_its_guide(client):
 
 
 def test_no_kennedy_lines_past_the_centre_cap(client):
-    d = _ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 8, "centres": False}))
+    d = ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 8, "centres": False}))
     assert d["centres"] is None and d["kennedy"] is None and d["centre_direction"] is None
 
 
@@ -87,11 +75,11 @@ def test_no_kennedy_lines_past_the_centre_cap(client):
 def test_branch_moves_the_dyad_joint_to_the_mirror_of_the_line_of_its_pins_and_back(client):
     import tomllib
 
-    d = _ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 8}))
+    d = ok(client.post("/api/solve", json={"model": FOURBAR, "frames": 8}))
     assert d["branches"] == [
         {"joint": "B", "links": ["coupler", "rocker"], "kind": "RRR", "about": ["A", "O4"], "sigma": 1.0}
     ]
-    flipped = _ok(client.post("/api/branch", json={"model": FOURBAR, "joint": "B"}))["model"]
+    flipped = ok(client.post("/api/branch", json={"model": FOURBAR, "joint": "B"}))["model"]
     p0, p1 = tomllib.loads(FOURBAR)["points"], tomllib.loads(flipped)["points"]
     A, O4, B, B1 = (np.array(p, dtype=float) for p in (p0["A"], p0["O4"], p0["B"], p1["B"]))
     # B mirrored about the line A-O4 (the second intersection of the circles about A and O4)
@@ -104,17 +92,19 @@ def test_branch_moves_the_dyad_joint_to_the_mirror_of_the_line_of_its_pins_and_b
     cross = lambda a, b, c: (b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0]  # noqa: E731
     assert np.sign(cross(A, B, P)) == np.sign(cross(A, B1, P1))
     assert p1["O2"] == p0["O2"] and p1["O4"] == p0["O4"] and p1["A"] == p0["A"]
-    s = _ok(client.post("/api/solve", json={"model": flipped, "frames": 36}))
+    s = ok(client.post("/api/solve", json={"model": flipped, "frames": 36}))
     assert s["branches"][0]["sigma"] == -1.0 and all(s["closed"])
-    back = _ok(client.post("/api/branch", json={"model": flipped, "joint": "B"}))["model"]
+    back = ok(client.post("/api/branch", json={"model": flipped, "joint": "B"}))["model"]
     assert tomllib.loads(back)["points"] == {k: [float(c) for c in v] for k, v in p0.items()}
 
 
 def test_branch_refusals_name_the_joint(client):
-    assert "'A' is not placed by a dyad" in _err(client.post("/api/branch", json={"model": FOURBAR, "joint": "A"}), 400)
-    assert "joint: missing" in _err(client.post("/api/branch", json={"model": FOURBAR}), 400)
+    assert "'A' is not placed by a dyad" in error_line(
+        client.post("/api/branch", json={"model": FOURBAR, "joint": "A"}), 400
+    )
+    assert "joint: missing" in error_line(client.post("/api/branch", json={"model": FOURBAR}), 400)
     geared = example_text("geared_fivebar")
-    assert "no assembly branch" in _err(client.post("/api/branch", json={"model": geared, "joint": "C"}), 400)
+    assert "no assembly branch" in error_line(client.post("/api/branch", json={"model": geared, "joint": "C"}), 400)
 
 
 # --------------------------------------------------------------------------- export
@@ -145,10 +135,10 @@ def test_export_svg_outline_is_the_library_drawing_at_the_pose_asked(client):
 
 
 def test_export_pose_refusals(client):
-    assert "inputs: a pose is for" in _err(
+    assert "inputs: a pose is for" in error_line(
         client.post("/api/export/csv", json={"model": FOURBAR, "frames": 36, "inputs": {"crank": 90}}), 400
     )
-    assert "unknown input" in _err(
+    assert "unknown input" in error_line(
         client.post("/api/export/dxf", json={"model": FOURBAR, "frames": 36, "inputs": {"nope": 90}}), 400
     )
 
@@ -159,8 +149,8 @@ LOADED = FOURBAR + '\n[[loads]]\nlink = "coupler"\npoint = "P"\nforce = [3.0, -1
 
 def test_input_torque_of_a_load_alone_is_its_virtual_work_per_crank_turn(client):
     # no mass: T w + F . v_P = 0 at every frame, v_P per unit crank rate from the solve (virtual work)
-    f = _ok(client.post("/api/forces", json={"model": LOADED, "frames": 36, "rpm": {"crank": 60}}))
-    s = _ok(client.post("/api/solve", json={"model": LOADED, "frames": 36}))
+    f = ok(client.post("/api/forces", json={"model": LOADED, "frames": 36, "rpm": {"crank": 60}}))
+    s = ok(client.post("/api/solve", json={"model": LOADED, "frames": 36}))
     assert np.allclose(f["input_deg"], s["input_deg"])
     v = np.array(s["velocity"]["P"])
     expected = -(3.0 * v[:, 0] - 10.0 * v[:, 1])
@@ -171,10 +161,10 @@ def test_input_torque_of_a_load_alone_is_its_virtual_work_per_crank_turn(client)
 
 # --------------------------------------------------------------------------- the page's edit in one round trip
 def test_solve_of_a_model_object_answers_its_toml_and_the_same_cycle_as_dump_then_solve(client):
-    obj = _ok(client.post("/api/parse", json={"model": FOURBAR}))["model"]
+    obj = ok(client.post("/api/parse", json={"model": FOURBAR}))["model"]
     obj["points"]["P"] = [31.0, 44.0]
-    one = _ok(client.post("/api/solve", json={"model": obj, "frames": 36}))
-    text = _ok(client.post("/api/dump", json={"model": obj}))["model"]
-    two = _ok(client.post("/api/solve", json={"model": text, "frames": 36}))
+    one = ok(client.post("/api/solve", json={"model": obj, "frames": 36}))
+    text = ok(client.post("/api/dump", json={"model": obj}))["model"]
+    two = ok(client.post("/api/solve", json={"model": text, "frames": 36}))
     assert one.pop("toml") == text and one == two
-    assert "points" in _err(client.post("/api/solve", json={"model": {"links": {}}, "frames": 36}), 400)
+    assert "points" in error_line(client.post("/api/solve", json={"model": {"links": {}}, "frames": 36}), 400)

@@ -7,7 +7,7 @@ import os
 
 import pytest
 
-from tests.workbench._client import PORT, TOKEN, api_client, example_text
+from tests.workbench._client import PORT, TOKEN, api_client, error_line, example_text
 
 
 @pytest.fixture(scope="module")
@@ -26,12 +26,6 @@ def ws(tmp_path_factory):
 def client(ws):
     with api_client(ws, workers=1) as c:
         yield c
-
-
-def _err(r, status):
-    assert r.status_code == status, r.text
-    assert "Traceback" not in r.text and "error" in r.json()
-    return r.json()["error"]
 
 
 ROUTES = [
@@ -53,7 +47,7 @@ ROUTES = [
 @pytest.mark.parametrize(("method", "path"), ROUTES)
 def test_every_route_needs_the_token(client, method, path):
     r = client.request(method, path, headers={"Authorization": ""})
-    assert "token" in _err(r, 401)
+    assert "token" in error_line(r, 401)
     assert r.headers.get("www-authenticate") == "Bearer"
 
 
@@ -62,7 +56,7 @@ def test_every_route_needs_the_token(client, method, path):
     ["Bearer " + TOKEN[:-1] + "x", "Bearer " + TOKEN + "x", "Bearer", "Basic " + TOKEN, TOKEN, "Bearer  "],
 )
 def test_a_wrong_token_is_refused(client, auth):
-    assert _err(client.get("/api/files", headers={"Authorization": auth}), 401)
+    assert error_line(client.get("/api/files", headers={"Authorization": auth}), 401)
 
 
 def test_the_token_in_the_query_or_the_cookie_is_accepted(client):
@@ -103,7 +97,7 @@ def test_the_token_has_128_random_bits():
 )
 def test_a_host_that_is_not_the_bound_address_is_refused(client, host):
     r = client.get("/api/files", headers={"Host": host})
-    assert "Host" in _err(r, 400)
+    assert "Host" in error_line(r, 400)
 
 
 @pytest.mark.parametrize("host", [f"127.0.0.1:{PORT}", f"localhost:{PORT}", f"[::1]:{PORT}", f"LOCALHOST:{PORT}"])
@@ -113,7 +107,7 @@ def test_the_bound_address_is_accepted(client, host):
 
 def test_a_cross_site_origin_is_refused_and_no_cors_header_is_ever_sent(client):
     r = client.post("/api/solve", json={"model": "x"}, headers={"Origin": "http://evil.example"})
-    assert "Origin" in _err(r, 403)
+    assert "Origin" in error_line(r, 403)
     r = client.options("/api/solve", headers={"Origin": "http://evil.example", "Access-Control-Request-Method": "POST"})
     assert r.status_code in (403, 405)
     assert not [h for h in r.headers if h.lower().startswith("access-control-")]
@@ -145,9 +139,9 @@ def test_names_out_of_the_workspace_are_refused(client, name):
 
 
 def test_a_symlink_out_of_the_workspace_is_never_followed(client, ws):
-    assert "symbolic link" in _err(client.get("/api/files/out.toml"), 400)
+    assert "symbolic link" in error_line(client.get("/api/files/out.toml"), 400)
     r = client.put("/api/files/out.toml", json={"model": 'x = "overwritten"\n'})
-    assert "symbolic link" in _err(r, 400)
+    assert "symbolic link" in error_line(r, 400)
     assert (ws.parent / "secret.toml").read_text() == 'secret = "outside"\n'
     names = [f["name"] for f in client.get("/api/files").json()["files"]]
     assert "out.toml" not in names and "model.toml" in names
@@ -168,7 +162,7 @@ def test_a_declared_oversize_body_is_refused_before_it_is_read(client):
     from gearlever.workbench.app import MAX_BODY_BYTES
 
     r = client.post("/api/solve", content=b"{}", headers={"Content-Length": str(MAX_BODY_BYTES + 1)})
-    assert str(MAX_BODY_BYTES) in _err(r, 413)
+    assert str(MAX_BODY_BYTES) in error_line(r, 413)
 
 
 def test_hostile_names_in_a_model_come_back_as_json_text(client):
