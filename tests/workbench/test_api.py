@@ -163,7 +163,16 @@ def test_solve_of_a_model_that_does_not_assemble_says_where_and_why(client):
         '[links]\nground = ["O2", "O4"]\ncrank = ["O2", "A"]\ncoupler = ["A", "B"]\nrocker = ["O4", "B"]\n'
         '[[inputs]]\nlink = "crank"\n'
     )
+    # from the sketch the crank rocks between its dead points (+-21.9049 deg: |A O4| = sqrt(85) + 10), one oscillation
     d = ok(client.post("/api/solve", json={"model": text, "frames": 36}))
+    dead = math.degrees(math.acos((25**2 + 40**2 - (math.sqrt(85) + 10) ** 2) / (2 * 25 * 40)))
+    assert all(d["closed"]) and abs(max(d["input_deg"]) - dead) < 1e-3 and abs(min(d["input_deg"]) + dead) < 1e-3
+    assert (
+        d["message"]
+        == f"crank rocks between {-dead:.4f} and {dead:.4f} deg (dead points: links coupler, rocker): one oscillation"
+    )
+    # started at 120 deg, where it cannot assemble: where and why
+    d = ok(client.post("/api/solve", json={"model": text, "frames": 36, "inputs": {"crank": 120}}))
     assert not all(d["closed"])
     first = d["closed"].index(False)
     assert d["message"].startswith(f"crank at {d['input_deg'][first]:.4g} deg")
@@ -442,3 +451,22 @@ def test_a_call_whose_request_went_away_does_not_answer_the_next_call():
 
     d = asyncio.run(run())
     assert d["dof"] == 1 and "model" in d and "point" not in d
+
+
+def test_a_rocking_input_is_drawn_and_loaded_over_one_oscillation_as_analyze_sweeps_it(client):
+    """PMKS+'s Watt I six-bar rocks between 67.3 and 78.3 deg: before, 118 of 120 frames did not assemble."""
+    import numpy as np
+
+    from gearlever.mechanism import Mechanism, sweep_rows
+
+    text = example_text("watt_i")
+    d = ok(client.post("/api/solve", json={"model": text, "frames": 120}))
+    m = Mechanism.loads(text)
+    s = sweep_rows(m, 120)
+    assert s.oscillates and all(d["closed"]) and d["direction"] == s.direction.tolist()
+    np.testing.assert_allclose(d["input_deg"], np.degrees(s.q[:, 0]), atol=1e-4)  # the answer's 6 digits
+    assert d["message"].startswith("AB rocks between 67.2")
+    f = ok(client.post("/api/forces", json={"model": text, "frames": 120}))
+    want = m.inverse_dynamics(s.q, s.qdot, np.zeros_like(s.q)).input_force[:, 0]
+    got = np.array(f["torque"]["AB"], dtype=float)
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-5 * np.abs(want).max())  # 6 digits of the largest

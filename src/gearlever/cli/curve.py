@@ -1,5 +1,7 @@
 """``gearlever curve``: score linkages in the challenge's form against a target curve; the retrieval library.
 
+Usage::
+
     gearlever curve score DESIGNS... --target TARGET.csv [--scoring relative|challenge] [--format csv|json]
         [--out FILE]
     gearlever curve library build [--size N] [--seed S]

@@ -325,6 +325,61 @@ def _cycle(mech, frames: int, start: np.ndarray):
     return q, qd, direction
 
 
+def _oscillation(mech, frames: int, start: np.ndarray):
+    """Rows of one oscillation of the first input between its dead points (the library's sweep rule), or None.
+
+    None when the first input turns fully, cannot move, has no dead point on
+    one side, or the start does not assemble (the answer's message says so).
+    """
+    from gearlever.mechanism.limits import input_limits
+    from gearlever.mechanism.sweep import oscillation
+
+    try:
+        lim = input_limits(mech, 0, start=start)
+    except GearleverError:
+        return None
+    if lim.full_turn or lim.locked or not lim.rocks:
+        return None
+    v, d = oscillation(lim.start, lim.lower, lim.upper, frames, 1)
+    q = np.tile(start, (frames, 1))
+    qd = np.zeros_like(q)
+    q[:, 0] = v
+    qd[:, 0] = d
+    return q, qd, d.astype(int), lim
+
+
+def _cycle_solved(mech, frames: int, start: np.ndarray):
+    """``(q, qd, direction, result)`` of one cycle: a full turn (a slider: its stroke), or one oscillation.
+
+    The full turn is solved first; only when some frame does not assemble are
+    the first input's limits found (:func:`gearlever.mechanism.limits.input_limits`)
+    and, if it rocks between two dead points, the cycle is one oscillation
+    from the start to one limit, back to the other and back (the sweep rule
+    of :mod:`gearlever.mechanism.sweep`, as ``gearlever mechanism analyze``
+    sweeps it), with ``direction`` -1 on the way back.
+    """
+    q, qd, direction = _cycle(mech, frames, start)
+    r = _solve(mech, q, qd)
+    lim = None
+    if not r.closed.all():
+        osc = _oscillation(mech, frames, start)
+        if osc is not None:
+            q, qd, direction, lim = osc
+            r = _solve(mech, q, qd)
+    return q, qd, direction, r, lim
+
+
+def _rocks_message(mech, lim) -> str:
+    """The one line of a rocking first input, as ``gearlever mechanism analyze`` prints it, with the binding links."""
+    unit = mech.model.units
+    if lim.kind == "link":
+        span = f"{math.degrees(lim.lower):.4f} and {math.degrees(lim.upper):.4f} deg"
+    else:
+        span = f"{lim.lower:.6g} and {lim.upper:.6g}{' ' + unit if unit else ''}"
+    links = ", ".join(dict.fromkeys(lim.binding_lower + lim.binding_upper))
+    return f"{lim.input} rocks between {span} (dead points: links {links}): one oscillation"
+
+
 def _rounded(a, scale=None) -> tuple:
     """``a`` at :data:`DIGITS` significant digits of ``scale`` (default: its largest finite size); finite mask."""
     a = np.asarray(a, dtype=float)
@@ -612,7 +667,7 @@ def _tidy(v: float, scale: float) -> float:
 
 
 def solve_frames(text, frames: int = 360, inputs=None, centres=None, plain: bool = True) -> dict:
-    """One cycle of the model: every point, link, slider over a full turn of the first input.
+    """One cycle of the model: every point, link, slider over a full turn of the first input, or one oscillation.
 
     Parameters
     ----------
@@ -621,7 +676,10 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None, plain: bool
     frames : int
         Frames of the cycle, 2 to :data:`MAX_FRAMES`; frame ``k`` at the
         first input's start ``+ 360 k / frames`` deg (a slider input: the
-        start ``+ L/2 sin(2 pi k / frames)``, ``L`` the model's size).
+        start ``+ L/2 sin(2 pi k / frames)``, ``L`` the model's size).  An
+        input that rocks between two dead points (a frame of the full turn
+        does not assemble) sweeps one oscillation instead, as ``gearlever
+        mechanism analyze`` does: ``direction`` is -1 on the way back.
     inputs : dict, optional
         ``{input: start}`` in degrees (length for a slider): the first
         input's start and the held value of the others (default: the sketch).
@@ -674,8 +732,7 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None, plain: bool
     m = mech.model
     labels = _inputs(mech)
     start = _start(mech, inputs)
-    q, qd, direction = _cycle(mech, frames, start)
-    r = _solve(mech, q, qd)
+    q, qd, direction, r, rocking = _cycle_solved(mech, frames, start)
     L = m.length_scale
     s = mech.structure()
     kinds = {lab: ("angle" if sp.kind == "link" else "slider") for lab, sp in zip(labels, m.inputs)}
@@ -716,7 +773,7 @@ def solve_frames(text, frames: int = 360, inputs=None, centres=None, plain: bool
         "centre_direction": None,
         "kennedy": None,
         "transmission_deg": _transmission(mech, r),
-        "message": _message(mech, r, labels),
+        "message": _message(mech, r, labels) or (_rocks_message(mech, rocking) if rocking is not None else ""),
         "ground_points": list(m.links[GROUND].points),
         "branches": branches(mech),
         "links": {k: list(m.links[k].points) for k in m.moving},
@@ -840,7 +897,11 @@ def structure(text) -> dict:
 
 
 def forces(text, frames: int = 360, rpm=None) -> dict:
-    """Input torques and pin forces over one turn at constant input speeds (:meth:`Mechanism.inverse_dynamics`).
+    """Input torques and pin forces over one cycle at constant input speeds (:meth:`Mechanism.inverse_dynamics`).
+
+    One turn of the inputs, or for a single input that rocks between two dead
+    points, one oscillation as :func:`solve_frames` draws it (the speed's sign
+    that of the motion).
 
     Masses, loads and gravity come from the model's ``[masses]``,
     ``[[loads]]`` and ``[mechanism] gravity``, as for ``gearlever mechanism
@@ -878,8 +939,15 @@ def forces(text, frames: int = 360, rpm=None) -> dict:
     period = 2 * math.pi / abs(w[turning[0]])
     t = np.linspace(0.0, period, frames, endpoint=False)
     q = mech.sketch_inputs[None, :] + t[:, None] * w[None, :]
+    qdot = np.broadcast_to(w, q.shape)
+    if len(labels) == 1 and not _solve(mech, q, qdot).closed.all():
+        osc = _oscillation(mech, frames, mech.sketch_inputs.astype(float))
+        if osc is not None:  # a rocking input: one oscillation at the speed given, as the cycle drawn
+            q, _, direction, _ = osc
+            qdot = abs(w[0]) * direction[:, None].astype(float)
+            t = np.cumsum(np.abs(np.diff(q[:, 0], prepend=q[0, 0]))) / abs(w[0])
     try:
-        d = mech.inverse_dynamics(q, np.broadcast_to(w, q.shape), np.zeros_like(q))
+        d = mech.inverse_dynamics(q, qdot, np.zeros_like(q))
     except GearleverError as exc:
         raise WorkbenchError(f"model: {exc}") from None
     F, T = force_units(m)
@@ -900,8 +968,7 @@ def forces(text, frames: int = 360, rpm=None) -> dict:
 
 # --------------------------------------------------------------------------- export
 def _sweep_result(mech, frames: int):
-    q, qd, _ = _cycle(mech, frames, mech.sketch_inputs.astype(float))
-    return _solve(mech, q, qd)
+    return _cycle_solved(mech, frames, mech.sketch_inputs.astype(float))[3]
 
 
 def _safe_name(name: str) -> str:
