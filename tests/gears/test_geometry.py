@@ -272,24 +272,39 @@ def test_centre_distance_sheet_22_118_unverified():
     assert gm.center_distance == pytest.approx(e["center_distance"], abs=0.5e-4)
 
 
-def test_shigley_interference_numbers_unverified():
-    """UNVERIFIED (entered from Shigley 9th ed. without a readable copy): sec. 13-7 and Example 13-2 (eq. 13-10 to
-    13-12, 20 deg full depth): smallest pinion 13 (1:1), 13-tooth pinion meshes at most 16 teeth, 16 (4:1), 16-tooth
-    pinion meshes at most 101, rack needs 18. Exact."""
-    for e in _published()["interference"]:
-        assert not e["verified"]
-        if "ratio" in e:
-            assert g.min_pinion_teeth(e["ratio"]) == e["min_pinion_teeth"], e["name"]
-        if "pinion_teeth" in e:
-            assert g.max_mating_teeth(e["pinion_teeth"]) == e["max_gear_teeth"], e["name"]
-        if "rack_min_pinion_teeth" in e:
-            assert g.min_pinion_teeth(math.inf) == e["rack_min_pinion_teeth"]
-            assert g.max_mating_teeth(e["rack_min_pinion_teeth"]) is None
-            assert g.max_mating_teeth(e["rack_min_pinion_teeth"] - 1) is not None
+def test_shigley_interference_numbers_to_the_printed_teeth():
+    """Budynas and Nisbett, Shigley's Mechanical Engineering Design, 8th ed., sec. 13-7 (20 deg full depth), as
+    transcribed in the tests of kmmohaimenulhaque-code/BERKELIUM-NEURAL-RENDERING-AND-SCIENCES (verified):
+    eq. 13-11, fewest pinion teeth 14.16, 14.64, 14.98, 15.44, 15.74 for ratios 2, 2.5, 3, 4, 5 (rounded up: 15, 15,
+    15, 16, 16); eq. 13-12, largest gear 16, 26, 45, 101, 1309 for pinions of 13 to 17 teeth; eq. 13-13, 17.097 teeth
+    with a rack (18; an 18-tooth pinion meshes with any gear). Exact integers."""
+    e = _entry("interference", "shigley-eq-13-11-fewest-pinion-teeth")
+    assert e["verified"]
+    for ratio, printed, teeth in zip(e["ratios"], e["printed"], e["min_pinion_teeth"], strict=True):
+        assert teeth == math.ceil(printed)
+        assert g.min_pinion_teeth(ratio) == teeth, ratio
+    e = _entry("interference", "shigley-eq-13-12-largest-gear")
+    assert e["verified"]
+    for zp, zg in zip(e["pinion_teeth"], e["max_gear_teeth"], strict=True):
+        assert g.max_mating_teeth(zp) == zg, zp
+    e = _entry("interference", "shigley-eq-13-13-rack")
+    assert e["verified"]
+    assert e["rack_min_pinion_teeth"] == math.ceil(e["printed"])
+    assert g.min_pinion_teeth(math.inf) == e["rack_min_pinion_teeth"]
+    assert g.max_mating_teeth(e["rack_min_pinion_teeth"]) is None
+    assert g.max_mating_teeth(e["rack_min_pinion_teeth"] - 1) is not None
+
+
+def test_shigley_equal_gears_smallest_pinion_unverified():
+    """UNVERIFIED (no copy found): Shigley 9th ed., sec. 13-7, eq. 13-10, equal gears of 20 deg full depth need at
+    least 13 teeth (12.3 rounded up). Exact."""
+    e = _entry("interference", "shigley-smallest-pinion-1to1")
+    assert not e["verified"]
+    assert g.min_pinion_teeth(e["ratio"]) == e["min_pinion_teeth"]
 
 
 def test_interference_formula_agrees_with_the_mesh_check():
-    """The largest mating gear of eq. 13-11 is the last gear whose tip stays inside the pinion's interference point."""
+    """The largest mating gear of eq. 13-12 is the last gear whose tip stays inside the pinion's interference point."""
     for zp in (13, 14, 15, 16, 17):
         zg = g.max_mating_teeth(zp)
         assert not g.mesh(1.0, zp, zg, check=False).interference[0]

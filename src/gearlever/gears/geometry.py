@@ -1332,8 +1332,8 @@ def max_mating_teeth(teeth: int, *, pressure_angle: float = _DEG20, addendum: fl
     The gear's tip must not pass the pinion's interference point:
     ``N_G <= (N_P^2 sin^2 phi - 4 k^2)/(4 k - 2 N_P sin^2 phi)`` (k the addendum
     in modules), R. G. Budynas and J. K. Nisbett, *Shigley's Mechanical
-    Engineering Design*, 9th ed., 2011, eq. (13-11).  When ``N_P >= 2k/sin^2
-    phi`` every gear and the rack fit (eq. 13-12 with an infinite gear).
+    Engineering Design*, 9th ed., 2011, eq. (13-12).  When ``N_P >= 2k/sin^2
+    phi`` every gear and the rack fit (eq. 13-13).
 
     Examples
     --------
@@ -1357,8 +1357,8 @@ def min_pinion_teeth(ratio: float = 1.0, *, pressure_angle: float = _DEG20, adde
     Notes
     -----
     ``N_P = 2k/((1 + 2m) sin^2 phi) (m + sqrt(m^2 + (1 + 2m) sin^2 phi))``,
-    rounded up (Budynas and Nisbett, *Shigley's*, 9th ed., eq. 13-10; for
-    ``m = 1`` eq. 13-11... the rack ``N_P = 2k/sin^2 phi``, eq. 13-12).
+    rounded up (Budynas and Nisbett, *Shigley's*, 9th ed., eq. 13-11; eq.
+    13-10 is its ``m = 1`` case; the rack ``N_P = 2k/sin^2 phi``, eq. 13-13).
 
     Examples
     --------

@@ -14,7 +14,12 @@ stresses ``(N,)``):
   ``J`` are inputs (``J`` from Shigley's Fig. 14-6 / AGMA 908-B89); the pitting
   geometry factor ``I`` is computed (eq. 14-23), ``K_v`` can be computed from
   the quality number (eq. 14-27), ``K_s`` from Shigley's fit (sec. 14-10) and
-  ``K_m`` by AGMA's empirical method (eq. 14-30), in inch units.
+  ``K_m`` by AGMA's empirical method (eq. 14-30), in inch units.  The
+  strength side gives the allowables the stresses are compared with: the
+  stress numbers ``S_t, S_c`` of through-hardened steel (Fig. 14-2, 14-5), the
+  stress-cycle factors ``Y_N, Z_N`` (Fig. 14-14, 14-15), ``K_R`` (Table 14-10,
+  eq. 14-38) and ``C_H`` (eq. 14-36, 14-37), combined by
+  :func:`agma_allowable_stress` (eq. 14-17, 14-18).
 
 :func:`mesh_stresses` turns the tooth forces that
 :meth:`~gearlever.mechanism.Mechanism.inverse_dynamics` gives for every mesh
@@ -56,6 +61,13 @@ __all__ = [
     "agma_load_distribution_factor",
     "agma_bending_stress",
     "agma_contact_stress",
+    "AGMA_THROUGH_HARDENED",
+    "AGMA_RELIABILITY",
+    "agma_strength_number",
+    "agma_stress_cycle_factor",
+    "agma_reliability_factor",
+    "agma_hardness_ratio_factor",
+    "agma_allowable_stress",
     "safety_factor",
     "MeshStress",
     "mesh_stresses",
@@ -505,6 +517,178 @@ def agma_contact_stress(
     k = positive("overload", overload) * positive("size", size) * positive("load_distribution", load_distribution)
     k *= positive("surface_condition", surface_condition)
     return cp * np.sqrt(np.abs(w) * kv * k / (d * b * i))
+
+
+#: AGMA allowable stress numbers of through-hardened steel, ``S = a H_B + b`` by metallurgical grade:
+#: ``{kind: {grade: ((a, b) in psi, (a, b) in MPa)}}`` (Shigley 9th ed. Fig. 14-2 bending, Fig. 14-5 contact).
+AGMA_THROUGH_HARDENED = {
+    "bending": {1: ((77.3, 12800.0), (0.533, 88.3)), 2: ((102.0, 16400.0), (0.703, 113.0))},
+    "contact": {1: ((322.0, 29100.0), (2.22, 200.0)), 2: ((349.0, 34300.0), (2.41, 237.0))},
+}
+
+#: AGMA reliability factor ``K_R`` at the reliabilities of Shigley 9th ed. Table 14-10.
+AGMA_RELIABILITY = {0.9999: 1.50, 0.999: 1.25, 0.99: 1.00, 0.90: 0.85, 0.50: 0.70}
+
+
+def _choice(name: str, value, options) -> None:
+    if value not in options:
+        raise GearleverError(f"{name} must be one of {', '.join(map(str, options))}, got {value!r}")
+
+
+def agma_strength_number(hardness: float, *, kind: str = "bending", grade: int = 1, units: str = "psi") -> float:
+    """AGMA allowable bending (``S_t``) or contact (``S_c``) stress number of through-hardened steel.
+
+    Parameters
+    ----------
+    hardness : the Brinell hardness ``H_B`` of the tooth (core for bending, surface for contact), 150 to 450.
+    kind : ``"bending"`` (``S_t``) or ``"contact"`` (``S_c``).
+    grade : the AGMA metallurgical grade, 1 or 2.
+    units : ``"psi"`` or ``"MPa"``.
+
+    Notes
+    -----
+    AGMA 2001-D04 Figures 3 and 4 as in Budynas and Nisbett, *Shigley's*, 9th
+    ed., Fig. 14-2 (``S_t = 77.3 H_B + 12 800`` psi grade 1, ``102 H_B + 16 400``
+    grade 2) and Fig. 14-5 (``S_c = 322 H_B + 29 100`` psi grade 1, ``349 H_B +
+    34 300`` grade 2), with their MPa forms; for 10^7 cycles and 99 % reliability.
+
+    Examples
+    --------
+    >>> round(agma_strength_number(240)), round(agma_strength_number(240, kind="contact"))
+    (31352, 106380)
+    """
+    _choice("kind", kind, AGMA_THROUGH_HARDENED)
+    _choice("grade", grade, (1, 2))
+    _choice("units", units, ("psi", "MPa"))
+    hb = finite("hardness", hardness)
+    if not 150.0 <= hb <= 450.0:
+        raise GearleverError(f"hardness must be a Brinell hardness from 150 to 450 (AGMA's line), got {hb!r}")
+    a, b = AGMA_THROUGH_HARDENED[kind][grade][0 if units == "psi" else 1]
+    return a * hb + b
+
+
+def agma_stress_cycle_factor(cycles: float, *, kind: str = "bending", curve: str = "upper") -> float:
+    """AGMA stress-cycle factor ``Y_N`` (bending) or ``Z_N`` (pitting) beyond 10^7 load cycles.
+
+    Parameters
+    ----------
+    cycles : the number of load cycles ``N`` of the tooth, at least 10^7 (where the curves of every hardness
+        merge).
+    kind : ``"bending"`` (``Y_N``) or ``"contact"`` (``Z_N``).
+    curve : bending only: ``"upper"`` (``1.3558 N^-0.0178``, general use) or ``"lower"`` (``1.6831
+        N^-0.0323``, critical service).
+
+    Notes
+    -----
+    AGMA 2001-D04 Figures 18 and 19 as in Budynas and Nisbett, *Shigley's*, 9th
+    ed., Fig. 14-14 (``Y_N``) and Fig. 14-15 (``Z_N = 1.4488 N^-0.023``).  Below
+    10^7 cycles the curves depend on the hardness and the heat treatment; they
+    are not modelled (refused).
+
+    Examples
+    --------
+    >>> round(agma_stress_cycle_factor(1e8), 3), round(agma_stress_cycle_factor(1e8, kind="contact"), 3)
+    (0.977, 0.948)
+    """
+    _choice("kind", kind, AGMA_THROUGH_HARDENED)
+    _choice("curve", curve, ("upper", "lower"))
+    n = finite("cycles", cycles)
+    if n < 1e7:
+        raise GearleverError(f"cycles must be at least 1e7 (the curves below depend on the material), got {n!r}")
+    if kind == "contact":
+        if curve != "upper":
+            raise GearleverError("curve must be 'upper' for the contact factor Z_N (one curve beyond 1e7 cycles)")
+        return 1.4488 * n**-0.023
+    return 1.3558 * n**-0.0178 if curve == "upper" else 1.6831 * n**-0.0323
+
+
+def agma_reliability_factor(reliability: float) -> float:
+    """AGMA reliability factor ``K_R`` for a reliability ``R`` in [0.5, 0.9999].
+
+    Notes
+    -----
+    Budynas and Nisbett, *Shigley's*, 9th ed.: at the reliabilities of Table
+    14-10 (0.9999, 0.999, 0.99, 0.90, 0.50) the table's value (1.50, 1.25,
+    1.00, 0.85, 0.70), as the book's examples use it; between them the fit of
+    eq. 14-38, ``K_R = 0.658 - 0.0759 ln(1 - R)`` (0.5 < R < 0.99) and ``0.50 -
+    0.109 ln(1 - R)`` (0.99 <= R <= 0.9999).
+
+    Examples
+    --------
+    >>> agma_reliability_factor(0.9), round(agma_reliability_factor(0.95), 4)
+    (0.85, 0.8854)
+    """
+    r = finite("reliability", reliability)
+    if not 0.5 <= r <= 0.9999:
+        raise GearleverError(f"reliability must be in [0.5, 0.9999], got {r!r}")
+    if r in AGMA_RELIABILITY:
+        return AGMA_RELIABILITY[r]
+    return 0.658 - 0.0759 * math.log(1 - r) if r < 0.99 else 0.50 - 0.109 * math.log(1 - r)
+
+
+def agma_hardness_ratio_factor(hardness_pinion: float, hardness_gear: float, ratio: float) -> float:
+    """AGMA hardness-ratio factor ``C_H = 1 + A' (m_G - 1)`` of the gear of a through-hardened pair.
+
+    Parameters
+    ----------
+    hardness_pinion, hardness_gear : Brinell hardnesses ``H_BP``, ``H_BG``.
+    ratio : ``m_G = N_G / N_P``.
+
+    Notes
+    -----
+    Budynas and Nisbett, *Shigley's*, 9th ed., eq. 14-36 and 14-37:
+    ``A' = 8.98e-3 (H_BP/H_BG) - 8.29e-3`` for ``1.2 <= H_BP/H_BG <= 1.7``, 0
+    below, 0.00698 above.  The pinion's ``C_H`` is 1.
+
+    Examples
+    --------
+    >>> round(agma_hardness_ratio_factor(240, 200, 52 / 17), 4)
+    1.0051
+    """
+    h = positive("hardness_pinion", hardness_pinion) / positive("hardness_gear", hardness_gear)
+    mg = positive("ratio", ratio)
+    if h < 1.2:
+        a = 0.0
+    elif h <= 1.7:
+        a = 8.98e-3 * h - 8.29e-3
+    else:
+        a = 0.00698
+    return 1.0 + a * (mg - 1.0)
+
+
+def agma_allowable_stress(
+    strength: float,
+    cycle_factor: float = 1.0,
+    *,
+    hardness_ratio: float = 1.0,
+    temperature: float = 1.0,
+    reliability: float = 1.0,
+) -> float:
+    """AGMA allowable stress ``S Y_N C_H / (K_T K_R)`` (the safety factor is then allowable / stress).
+
+    Parameters
+    ----------
+    strength : the stress number ``S_t`` or ``S_c`` (:func:`agma_strength_number`).
+    cycle_factor : ``Y_N`` or ``Z_N`` (:func:`agma_stress_cycle_factor`).
+    hardness_ratio : ``C_H`` for a contact allowable (:func:`agma_hardness_ratio_factor`; 1 for bending).
+    temperature : ``K_T`` (1 below 250 F).
+    reliability : ``K_R`` (:func:`agma_reliability_factor`).
+
+    Notes
+    -----
+    AGMA 2001-D04 as in Budynas and Nisbett, *Shigley's*, 9th ed., eq. 14-17
+    (``S_t Y_N / (S_F K_T K_R)``) and eq. 14-18 (``S_c Z_N C_H / (S_H K_T K_R)``)
+    with ``S_F = S_H = 1``: :func:`safety_factor` divides it by the stress
+    (eq. 14-41, 14-42).
+
+    Examples
+    --------
+    >>> round(agma_allowable_stress(31350.0, 0.977, reliability=0.85))
+    36034
+    """
+    s = positive("strength", strength) * positive("cycle_factor", cycle_factor)
+    s *= positive("hardness_ratio", hardness_ratio)
+    return s / (positive("temperature", temperature) * positive("reliability", reliability))
 
 
 def safety_factor(allowable: float, stress):
