@@ -99,7 +99,7 @@ def _entry(section, name):
     return next(e for e in _published()[section] if e["name"] == name)
 
 
-SECTIONS = ("mesh", "interference", "lewis", "agma")
+SECTIONS = ("mesh", "interference", "lewis", "agma", "chordal")
 
 
 def test_every_published_entry_names_its_source_and_whether_it_was_read():
@@ -270,6 +270,54 @@ def test_centre_distance_sheet_22_118_unverified():
     gm = g.mesh(e["module"], *e["teeth"], *e["shift"], kind=e["kind"], check=False)
     assert math.degrees(gm.working_pressure_angle) == pytest.approx(e["working_pressure_angle_deg"], abs=0.5e-4)
     assert gm.center_distance == pytest.approx(e["center_distance"], abs=0.5e-4)
+
+
+def test_sdp_chordal_thickness_tables_to_printed_digits():
+    """Stock Drive Products / Sterling Instrument, Elements of Metric Gear Technology (D785), sec. 10.1 (KHK's
+    tables; verified, read in the fdocuments.us and scribd 8050T081 copies): Table 10-1 spur m 10, z 12, x +0.3 ->
+    s 17.8918, theta 8.54270 deg, s_j 17.8256, h_j 13.6657; Table 10-3 helical normal system m_n 5, beta 25 deg,
+    z 16, x_n +0.2 -> s_n 8.5819, z_v 21.4928, theta_v 4.57556 deg, s_j 8.5728, h_j 6.1712; Table 10-4 transverse
+    system m_t 4, alpha_t 20 deg, beta 22 deg 30', z 20, x_t +0.3 -> s_n 6.6119, z_v 25.3620, theta_v 4.04196 deg,
+    converted to the normal section by gearlever's rule (m_n = m_t cos beta, tan alpha_n = tan alpha_t cos beta,
+    x_n m_n = x_t m_t).  Each to half a unit of its printed last digit; the addendum h_a is the table's input."""
+
+    decimals = {  # as printed: lengths to 4 decimals, the angle to 5
+        "circular_thickness": 4,
+        "virtual_teeth": 4,
+        "half_angle_deg": 5,
+        "chordal_thickness": 4,
+        "chordal_addendum": 4,
+    }
+    for e in _published()["chordal"]:
+        assert e["verified"]
+        beta = math.radians(e["helix_deg"])
+        if "transverse_module" in e:
+            mn = e["transverse_module"] * math.cos(beta)
+            an = math.atan(math.tan(math.radians(e["transverse_pressure_angle_deg"])) * math.cos(beta))
+            xn = e["transverse_shift"] * e["transverse_module"] / mn
+        else:
+            mn, an, xn = e["module"], math.radians(e["pressure_angle_deg"]), e["shift"]
+        k = 1.0 + xn - e["addendum_height"] / mn  # the table's h_a as a tip shortening
+        c = g.chordal_thickness(mn, e["teeth"], xn, pressure_angle=an, helix=beta, tip_shortening=k)
+        got = {**c.as_dict(), "half_angle_deg": math.degrees(c.half_angle)}
+        checked = [key for key in decimals if key in e]
+        assert len(checked) >= 3, e["name"]
+        for key in checked:
+            assert got[key] == pytest.approx(e[key], abs=0.5 * 10.0 ** -decimals[key]), (e["name"], key)
+
+
+def test_chordal_thickness_identities_and_refusals():
+    """The chord of the arc: s_j < s and s_j -> s as the teeth grow (the arc flattens), h_j - h_a is the arc's
+    height z_v m (1 - cos theta)/2; a shift that leaves no tooth and bad teeth are refused by name."""
+    c = g.chordal_thickness(2.0, 20, 0.1)
+    assert c.chordal_thickness < c.circular_thickness
+    big = g.chordal_thickness(2.0, 2000)
+    assert big.chordal_thickness == pytest.approx(math.pi, rel=1e-6)
+    assert c.chordal_addendum - 2.0 * 1.1 == pytest.approx(20 * 2.0 * (1 - math.cos(c.half_angle)) / 2, rel=1e-14)
+    with pytest.raises(GearleverError, match="shift"):
+        g.chordal_thickness(1.0, 20, -3.0)
+    with pytest.raises(GearleverError, match="teeth"):
+        g.chordal_thickness(1.0, 0)
 
 
 def test_shigley_interference_numbers_to_the_printed_teeth():

@@ -34,6 +34,8 @@ __all__ = [
     "ToothProfile",
     "max_shift_for_tip",
     "tip_thickness",
+    "ChordalThickness",
+    "chordal_thickness",
     "tooth_profile",
     "tooth_outline",
     "KINDS",
@@ -701,6 +703,86 @@ def _tip_thickness_at(m: float, z: int, x: float, a_n: float, beta: float, da: f
     sat = da * (st / d + sign * (involute(at) - involute(a_a)))
     beta_a = math.atan(math.tan(beta) * da / d)
     return sat * math.cos(beta_a)
+
+
+@dataclass(frozen=True)
+class ChordalThickness(Result):
+    """Chordal tooth thickness of an external gear at its reference circle, as a gear-tooth caliper reads it.
+
+    ``circular_thickness`` ``s_n`` (normal section, arc on the reference circle), ``virtual_teeth`` ``z_v``,
+    ``half_angle`` ``theta_v`` (radians, half the tooth's angle on the virtual gear's reference circle),
+    ``chordal_thickness`` ``s_j`` and ``chordal_addendum`` ``h_j`` (the caliper's depth from the tip), lengths
+    in the unit of the module.
+
+    Examples
+    --------
+    >>> round(chordal_thickness(10.0, 12, 0.3).chordal_thickness, 4)
+    17.8256
+    """
+
+    circular_thickness: float
+    virtual_teeth: float
+    half_angle: float
+    chordal_thickness: float
+    chordal_addendum: float
+
+
+def chordal_thickness(
+    module: float,
+    teeth: int,
+    shift: float = 0.0,
+    *,
+    pressure_angle: float = _DEG20,
+    helix: float = 0.0,
+    addendum: float = 1.0,
+    tip_shortening: float = 0.0,
+) -> ChordalThickness:
+    """Chordal thickness and chordal addendum of an external spur or helical gear (normal section).
+
+    Parameters
+    ----------
+    module, pressure_angle, shift : the normal module, pressure angle (radians) and profile shift ``x_n``.
+    teeth : the number of teeth ``z``.
+    helix : the helix angle ``beta`` (radians).
+    addendum, tip_shortening : ``h_a*`` and ``k`` (modules): the addendum ``h_a = (h_a* + x_n - k) m_n`` from
+        which the caliper is set.
+
+    Notes
+    -----
+    Stock Drive Products / Sterling Instrument, *Elements of Metric Gear
+    Technology* (D785), sec. 10.1, Tables 10-1 (spur), 10-3 (helical, normal
+    system) and 10-4 (transverse system), the tables of KHK's *Gear Technical
+    Reference*: ``s_n = (pi/2 + 2 x_n tan alpha_n) m_n``, ``z_v = z /
+    cos^3 beta``, ``theta_v = pi/(2 z_v) + 2 x_n tan alpha_n / z_v``, ``s_j =
+    z_v m_n sin theta_v``, ``h_j = z_v m_n (1 - cos theta_v)/2 + h_a``.  A
+    transverse-system gear (``m_t, alpha_t, x_t``) is the same gear with ``m_n
+    = m_t cos beta``, ``tan alpha_n = tan alpha_t cos beta`` and ``x_n m_n =
+    x_t m_t`` (its ``theta_v`` term ``x_t tan alpha_t`` equals ``x_n tan
+    alpha_n m_n / (m_t cos beta)``).
+
+    Examples
+    --------
+    >>> c = chordal_thickness(10.0, 12, 0.3)
+    >>> round(c.circular_thickness, 4), round(math.degrees(c.half_angle), 5), round(c.chordal_addendum, 4)
+    (17.8918, 8.5427, 13.6657)
+    """
+    m = positive("module", module)
+    z = _teeth("teeth", teeth)
+    x = finite("shift", shift)
+    a_n, beta = _pressure(pressure_angle), _helix(helix)
+    ha = (finite("addendum", addendum) + x - finite("tip_shortening", tip_shortening)) * m
+    s_n = (math.pi / 2 + 2 * x * math.tan(a_n)) * m
+    if s_n <= 0:
+        raise GearleverError(f"shift {x!r} leaves no tooth at the reference circle (thickness {s_n:.6g})")
+    zv = z / math.cos(beta) ** 3
+    theta = math.pi / (2 * zv) + 2 * x * math.tan(a_n) / zv
+    return ChordalThickness(
+        circular_thickness=s_n,
+        virtual_teeth=zv,
+        half_angle=theta,
+        chordal_thickness=zv * m * math.sin(theta),
+        chordal_addendum=zv * m * (1 - math.cos(theta)) / 2 + ha,
+    )
 
 
 # --------------------------------------------------------------------------- meshes

@@ -575,8 +575,8 @@ def agma_stress_cycle_factor(cycles: float, *, kind: str = "bending", curve: str
     cycles : the number of load cycles ``N`` of the tooth, at least 10^7 (where the curves of every hardness
         merge).
     kind : ``"bending"`` (``Y_N``) or ``"contact"`` (``Z_N``).
-    curve : bending only: ``"upper"`` (``1.3558 N^-0.0178``, general use) or ``"lower"`` (``1.6831
-        N^-0.0323``, critical service).
+    curve : bending only: ``"upper"`` (``1.3558 N^-0.0178``, general use) or ``"lower"``
+        (``1.6831 N^-0.0323``, critical service).
 
     Notes
     -----
