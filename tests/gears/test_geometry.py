@@ -99,7 +99,7 @@ def _entry(section, name):
     return next(e for e in _published()[section] if e["name"] == name)
 
 
-SECTIONS = ("mesh", "interference", "lewis", "agma", "chordal")
+SECTIONS = ("mesh", "interference", "lewis", "agma", "chordal", "iso6336")
 
 
 def test_every_published_entry_names_its_source_and_whether_it_was_read():

@@ -192,6 +192,60 @@ def test_agma_strength_side_pieces_and_refusals():
             call()
 
 
+def test_iso_tr_6336_30_example_1_geometry_factors():
+    """ISO/TR 6336-30:2017, Example 1 (single helical case carburized gear pair: m_n 8, alpha_n 20 deg, beta
+    15.8 deg, z 17/103, b 100, a 500, T_1 9000 N m at 360 rpm), its Annex A values as transcribed in
+    gfsReboucas/Drivetrain's MATISO_6336 example_01 (verified).  Computed by gearlever: F_t 127352 N (0.5), v
+    2.664 m/s, z_n 18.905 / 114.543 (ISO 6336-3), Z_H 2.39533 (ISO 6336-2 eq. 9, at the working angle of a =
+    500; the shifts' own centre distance 499.998 would give 2.39537), Z_E 189.81170, Z_beta 1.01944, each to half
+    a unit of its printed last digit.  Z_eps 0.803 and sigma_H0 are not reproduced (the copy lacks the tips)."""
+    from gearlever.gears import geometry as g
+
+    pub = tomllib.loads(read_text("gear_published.toml"))
+    e = next(x for x in pub["iso6336"] if x["name"] == "iso-tr-6336-30-example-1")
+    assert e["verified"]
+    a_n, beta = math.radians(e["pressure_angle_deg"]), math.radians(e["helix_deg"])
+    gm = g.mesh(e["module"], *e["teeth"], helix=beta, face_width=e["face_width"], center_distance=e["center_distance"])
+    d1 = gm.reference_diameter[0]
+    ft = 2000.0 * e["torque"] / d1
+    assert ft == pytest.approx(e["tangential_force"], abs=e["tangential_force_tolerance"])
+    v = math.pi * d1 * e["speed_rpm"] / 60000.0
+    assert v == pytest.approx(e["pitch_line_velocity"], abs=0.5e-3)
+    zn = [s.iso_virtual_teeth(z, a_n, beta) for z in e["teeth"]]
+    np.testing.assert_allclose(zn, e["virtual_teeth"], rtol=0, atol=0.5e-3)
+    assert gm.center_distance == pytest.approx(e["center_distance"], abs=1e-9)
+    zh = s.iso_zone_factor(a_n, beta, gm.working_pressure_angle)
+    assert zh == pytest.approx(e["zone_factor"], abs=0.5e-5)
+    ze = s.elastic_coefficient(e["young_modulus"], e["poisson"])
+    assert ze == pytest.approx(e["elasticity_factor"], abs=0.5e-5)
+    assert s.iso_helix_factor(beta) == pytest.approx(e["helix_factor"], abs=0.5e-5)
+    # the shifts as given put the gears at 499.998: the working angle there gives a Z_H off in the 5th decimal
+    by_shifts = g.mesh(e["module"], *e["teeth"], *e["shift"], helix=beta, face_width=e["face_width"])
+    assert abs(by_shifts.center_distance - e["center_distance"]) < 0.01
+    assert abs(s.iso_zone_factor(a_n, beta, by_shifts.working_pressure_angle) - e["zone_factor"]) > 0.5e-5
+
+
+def test_iso_contact_factors_pieces_and_refusals():
+    """Z_H of a spur pair at its reference angle is sqrt(2 / (cos a sin a)); Z_eps is continuous at eps_beta = 1
+    (ISO 6336-2 eq. 31, 32) and sqrt((4 - eps_a)/3) for spur gears; z_n is z for a spur gear; refusals name
+    the parameter."""
+    a = math.radians(20)
+    assert s.iso_zone_factor(a, 0.0, a) == pytest.approx(math.sqrt(2 / (math.cos(a) * math.sin(a))), rel=1e-14)
+    assert s.iso_contact_ratio_factor(1.5, 1.0 - 1e-12) == pytest.approx(s.iso_contact_ratio_factor(1.5, 1.0))
+    assert s.iso_contact_ratio_factor(1.5) == pytest.approx(math.sqrt(2.5 / 3), rel=1e-14)
+    assert s.iso_virtual_teeth(30, a, 0.0) == pytest.approx(30.0, rel=1e-14)
+    assert s.iso_helix_factor(0.0) == 1.0
+    for call, word in (
+        (lambda: s.iso_zone_factor(a, math.radians(50), a), "helix"),
+        (lambda: s.iso_zone_factor(0.0, 0.0, a), "pressure_angle"),
+        (lambda: s.iso_contact_ratio_factor(0.0), "transverse"),
+        (lambda: s.iso_contact_ratio_factor(1.5, -0.1), "overlap"),
+        (lambda: s.iso_virtual_teeth(0, a, 0.0), "teeth"),
+    ):
+        with pytest.raises(GearleverError, match=word):
+            call()
+
+
 def test_lewis_form_factor_from_the_generated_tooth_near_shigleys_table():
     """Lewis's parabola on the rack-generated tooth (fillet 0.300 as the table's) lies 0 to 9 % below Table 14-2:
     a consistency check of the construction, not a printed-digit check (the table's teeth were not cut by this rack)."""

@@ -20,6 +20,10 @@ stresses ``(N,)``):
   stress-cycle factors ``Y_N, Z_N`` (Fig. 14-14, 14-15), ``K_R`` (Table 14-10,
   eq. 14-38) and ``C_H`` (eq. 14-36, 14-37), combined by
   :func:`agma_allowable_stress` (eq. 14-17, 14-18).
+- ISO 6336-2 method B's geometry factors of the contact stress: the zone
+  factor ``Z_H``, the helix factor ``Z_beta``, the contact ratio factor
+  ``Z_eps`` (the elasticity factor ``Z_E`` is :func:`elastic_coefficient`)
+  and ISO 6336-3's virtual number of teeth.
 
 :func:`mesh_stresses` turns the tooth forces that
 :meth:`~gearlever.mechanism.Mechanism.inverse_dynamics` gives for every mesh
@@ -43,7 +47,7 @@ from functools import cache
 import numpy as np
 
 from gearlever._result import Result
-from gearlever._validate import finite, positive
+from gearlever._validate import finite, nonnegative, positive
 from gearlever.errors import GearleverError
 from gearlever.gears import geometry as _geo
 
@@ -68,6 +72,10 @@ __all__ = [
     "agma_reliability_factor",
     "agma_hardness_ratio_factor",
     "agma_allowable_stress",
+    "iso_zone_factor",
+    "iso_helix_factor",
+    "iso_contact_ratio_factor",
+    "iso_virtual_teeth",
     "safety_factor",
     "MeshStress",
     "mesh_stresses",
@@ -689,6 +697,100 @@ def agma_allowable_stress(
     s = positive("strength", strength) * positive("cycle_factor", cycle_factor)
     s *= positive("hardness_ratio", hardness_ratio)
     return s / (positive("temperature", temperature) * positive("reliability", reliability))
+
+
+def iso_zone_factor(pressure_angle: float, helix: float, working_pressure_angle: float) -> float:
+    """ISO 6336-2 zone factor ``Z_H = sqrt(2 cos beta_b cos alpha_wt / (cos^2 alpha_t sin alpha_wt))``.
+
+    Parameters
+    ----------
+    pressure_angle : the normal pressure angle ``alpha_n`` (radians).
+    helix : the helix angle ``beta`` (radians).
+    working_pressure_angle : the transverse working pressure angle ``alpha_wt`` (radians) at the operating
+        centre distance, as :attr:`GearMesh.working_pressure_angle <gearlever.gears.geometry.GearMesh>` gives it.
+
+    Notes
+    -----
+    ISO 6336-2:2006, eq. 9 (method B), with ``tan alpha_t = tan alpha_n /
+    cos beta`` and ``sin beta_b = sin beta cos alpha_n``.  It converts the
+    tangential force at the reference circle into the normal force at the
+    pitch point and the flanks' curvature there.
+
+    Examples
+    --------
+    >>> round(iso_zone_factor(math.radians(20), 0.0, math.radians(20)), 4)
+    2.4946
+    """
+    a_n = finite("pressure_angle", pressure_angle)
+    beta = finite("helix", helix)
+    a_w = finite("working_pressure_angle", working_pressure_angle)
+    if not 0 < a_n < math.pi / 2 or not 0 < a_w < math.pi / 2:
+        raise GearleverError("pressure_angle and working_pressure_angle must be between 0 and 90 deg")
+    if not 0 <= abs(beta) < math.pi / 4:
+        raise GearleverError(f"helix must be below 45 deg, got {math.degrees(beta)!r} deg")
+    a_t = math.atan(math.tan(a_n) / math.cos(beta))
+    beta_b = math.asin(math.sin(abs(beta)) * math.cos(a_n))
+    return math.sqrt(2 * math.cos(beta_b) * math.cos(a_w) / (math.cos(a_t) ** 2 * math.sin(a_w)))
+
+
+def iso_helix_factor(helix: float) -> float:
+    """ISO 6336-2 helix angle factor for contact stress ``Z_beta = 1 / sqrt(cos beta)``.
+
+    Notes
+    -----
+    ISO 6336-2:2006, eq. 33.
+
+    Examples
+    --------
+    >>> round(iso_helix_factor(math.radians(15.8)), 5)
+    1.01944
+    """
+    beta = finite("helix", helix)
+    if not abs(beta) < math.pi / 4:
+        raise GearleverError(f"helix must be below 45 deg, got {math.degrees(beta)!r} deg")
+    return 1.0 / math.sqrt(math.cos(beta))
+
+
+def iso_contact_ratio_factor(transverse: float, overlap: float = 0.0) -> float:
+    """ISO 6336-2 contact ratio factor ``Z_eps`` from the transverse and overlap contact ratios.
+
+    Notes
+    -----
+    ISO 6336-2:2006, eq. 31 and 32: ``sqrt((4 - eps_a)/3 (1 - eps_b) +
+    eps_b/eps_a)`` for ``eps_b < 1`` (spur gears: ``sqrt((4 - eps_a)/3)``) and
+    ``sqrt(1/eps_a)`` for ``eps_b >= 1``.
+
+    Examples
+    --------
+    >>> round(iso_contact_ratio_factor(1.6), 4), round(iso_contact_ratio_factor(1.6, 1.2), 4)
+    (0.8944, 0.7906)
+    """
+    ea = positive("transverse", transverse)
+    eb = nonnegative("overlap", overlap)
+    if eb >= 1.0:
+        return math.sqrt(1.0 / ea)
+    return math.sqrt((4.0 - ea) / 3.0 * (1.0 - eb) + eb / ea)
+
+
+def iso_virtual_teeth(teeth: float, pressure_angle: float, helix: float) -> float:
+    """Virtual number of teeth of a helical gear ``z_n = z / (cos^2 beta_b cos beta)`` (ISO 6336-3).
+
+    Notes
+    -----
+    ISO 6336-3:2006, eq. 9 (``sin beta_b = sin beta cos alpha_n``); a spur gear's is its own.
+
+    Examples
+    --------
+    >>> round(iso_virtual_teeth(17, math.radians(20), math.radians(15.8)), 3)
+    18.905
+    """
+    z = positive("teeth", teeth)
+    a_n = finite("pressure_angle", pressure_angle)
+    beta = finite("helix", helix)
+    if not abs(beta) < math.pi / 4:
+        raise GearleverError(f"helix must be below 45 deg, got {math.degrees(beta)!r} deg")
+    beta_b = math.asin(math.sin(abs(beta)) * math.cos(a_n))
+    return z / (math.cos(beta_b) ** 2 * math.cos(beta))
 
 
 def safety_factor(allowable: float, stress):
