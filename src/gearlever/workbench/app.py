@@ -122,6 +122,7 @@ def _worker_main(conn) -> None:
         "export": engine.export,
         "branch": engine.flip_branch,
         "dump_solve": functools.partial(engine.dump_solve, plain=not _HAS_ORJSON),
+        "cam": engine.cam,
     }
     with contextlib.suppress(Exception):  # warm up: the first request is then as fast as the others
         from gearlever.data import example_path
@@ -529,6 +530,16 @@ def create_app(
         """The shipped example models."""
         return JSONResponse({"examples": engine.examples()})
 
+    async def law_list(request: Request):
+        """The shipped example laws (for a cam)."""
+        return JSONResponse({"examples": engine.law_examples()})
+
+    @_endpoint
+    async def cam(request: Request):
+        """A cam and its follower for a law: one turn of frames (the model file has no cam pair)."""
+        body = await _body(request)
+        return _json(await pool.call("cam", solve_seconds, params=body))
+
     @_endpoint
     async def example_one(request: Request):
         name = request.path_params["name"]
@@ -699,6 +710,8 @@ def create_app(
         Route("/api/openapi.json", openapi, methods=["GET"]),
         Route("/api/examples", example_list, methods=["GET"]),
         Route("/api/examples/{name}", example_one, methods=["GET"]),
+        Route("/api/laws", law_list, methods=["GET"]),
+        Route("/api/cam", cam, methods=["POST"]),
         Route("/api/parse", parse, methods=["POST"]),
         Route("/api/dump", dump, methods=["POST"]),
         Route("/api/solve", solve, methods=["POST"]),
@@ -739,6 +752,7 @@ def _op(summary: str, body: dict | None = None, answer: str = "JSON answer", ext
     return op
 
 
+_FOLLOWERS = ["translating-roller", "translating-flat", "oscillating-roller", "oscillating-flat"]
 _ERROR = {"type": "object", "properties": {"error": {"type": "string"}}, "required": ["error"]}
 _MODEL = {"type": "string", "description": "the model file's TOML text", "maxLength": 256000}
 _FRAMES = {"type": "integer", "minimum": 2, "maximum": 3600, "default": 360}
@@ -764,6 +778,29 @@ OPENAPI = {
         "/api/examples": {"get": _op("the shipped example models")},
         "/api/examples/{name}": {
             "get": _op("an example's TOML text", extra_codes=("404",), params=[("name", {"type": "string"})])
+        },
+        "/api/laws": {"get": _op("the shipped example motion laws (for a cam)")},
+        "/api/cam": {
+            "post": _op(
+                "a disc cam and its follower for a motion law, sized and solved over one turn",
+                _obj(
+                    {
+                        "law": {"type": "string", "maxLength": 100000, "description": "a LAW.toml text"},
+                        "example": {"type": "string", "description": "a shipped law's name (GET /api/laws)"},
+                        "follower": {"type": "string", "enum": _FOLLOWERS},
+                        "centre": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
+                        "base_radius": {"type": "number"},
+                        "roller_radius": {"type": "number"},
+                        "offset": {"type": "number"},
+                        "arm": {"type": "number"},
+                        "pivot_distance": {"type": "number"},
+                        "max_pressure_angle_deg": {"type": "number"},
+                        "frames": _FRAMES,
+                    },
+                    required=(),
+                ),
+                extra_codes=("413",),
+            )
         },
         "/api/parse": {
             "post": _op("TOML text to the model as JSON, dof and inputs", _obj({"model": _MODEL}), extra_codes=("413",))

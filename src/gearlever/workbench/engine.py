@@ -40,8 +40,10 @@ the workbench, an application like the command line, imports it from there.
 
 from __future__ import annotations
 
+import collections
 import functools
 import math
+import re
 import tomllib
 
 import numpy as np
@@ -63,6 +65,8 @@ __all__ = [
     "run_job",
     "examples",
     "example",
+    "cam",
+    "law_examples",
     "EXPORT_FORMATS",
     "JOB_KINDS",
     "MAX_MODEL_CHARS",
@@ -130,8 +134,6 @@ def _toml(text: str, where: str = "model") -> dict:
         msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
         line = getattr(exc, "lineno", None)
         if line is None:
-            import re
-
             found = re.search(r"line (\d+)", msg)
             line = (
                 int(found.group(1)) if found else (max(1, len(text.splitlines())) if "end of document" in msg else None)
@@ -171,12 +173,25 @@ def load(text, where: str = "model"):
     scrubbed or re-solved from another start is parsed once); a
     :class:`~gearlever.mechanism.Mechanism` is not changed by solving it.
     """
-    return _load_cached(_text(where, text), where)
+    text = _text(where, text)
+    key = (text, where)
+    mech = _CACHE.get(key)
+    if mech is None:
+        mech = _remember(key, _mechanism(_toml(text, where), where))
+    else:
+        _CACHE.move_to_end(key)
+    return mech
 
 
-@functools.lru_cache(maxsize=CACHED_MODELS)
-def _load_cached(text: str, where: str):
-    return _mechanism(_toml(text, where), where)
+#: ``(text, where) -> Mechanism``, the newest last (:func:`load`).
+_CACHE: collections.OrderedDict = collections.OrderedDict()
+
+
+def _remember(key: tuple, mech):
+    _CACHE[key] = mech
+    while len(_CACHE) > CACHED_MODELS:
+        _CACHE.popitem(last=False)
+    return mech
 
 
 def _jsonable(v):
@@ -250,14 +265,15 @@ def dump(obj) -> str:
 
     if not isinstance(obj, dict):
         raise WorkbenchError(f"model must be a JSON object of the model file's tables, got {type(obj).__name__}")
-    _mechanism(obj)
+    mech = _mechanism(obj)  # the edit's one build: every refusal names its element
     try:
         text = model_toml(obj, exact=True)
     except GearleverError as exc:
         raise WorkbenchError(f"model: {exc}") from None
-    # the written text must read back as the same model; read through the cache, so that the page's solve
-    # of this text, which follows its dump, finds it compiled (when it reaches the same worker)
-    load(text)
+    # the text holds the model exactly (every float in its shortest exact form), so the mechanism built from
+    # the object is the text's: kept under it, the page's solve of this text, which follows its dump, finds it
+    # compiled (``Mechanism.loads(m.dumps())`` is the same model: the library's round-trip tests)
+    _remember((_text("model", text), "model"), mech)
     return text
 
 
@@ -1059,6 +1075,241 @@ def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
     return data, "image/svg+xml", f"{stem}_outline.svg"
 
 
+# --------------------------------------------------------------------------- cams
+#: Follower kinds of :func:`cam` (the library's registry, :data:`gearlever.cams.FOLLOWERS`).
+CAM_KEYS = (
+    "law",
+    "example",
+    "follower",
+    "centre",
+    "base_radius",
+    "roller_radius",
+    "offset",
+    "arm",
+    "pivot_distance",
+    "max_pressure_angle_deg",
+    "frames",
+)
+#: Default bound on the pressure angle of a roller follower when the bench sizes the base circle (deg):
+#: the common design limit for translating roller followers (R. L. Norton, *Design of Machinery*, sec. 8.6).
+CAM_PRESSURE_DEG = 30.0
+
+
+def law_examples() -> list:
+    """The shipped example laws (files of ``gearlever/data/examples`` holding a ``[law]`` table).
+
+    >>> [(e["name"], e["output"]) for e in law_examples()][:2]
+    [('law_dwell_rocker', 'angle'), ('law_lift', 'displacement')]
+    """
+    from importlib import resources
+
+    out = []
+    folder = resources.files("gearlever.data").joinpath("examples")
+    for entry in sorted(folder.iterdir(), key=lambda e: e.name):
+        if not entry.name.endswith(".toml"):
+            continue
+        text = entry.read_text(encoding="utf-8")
+        try:
+            d = tomllib.loads(text)
+        except tomllib.TOMLDecodeError:
+            continue
+        law = d.get("law")
+        if not isinstance(law, dict) or "segment" not in law:
+            continue
+        first = text.splitlines()[0].lstrip("# ").strip() if text.startswith("#") else ""
+        name = entry.name[: -len(".toml")]
+        out.append({"name": name, "output": str(law.get("output", "")), "title": first or name})
+    return out
+
+
+def _cam_law(params: dict):
+    """The law of a cam request: its TOML text (``law``) or a shipped example's name (``example``)."""
+    from importlib import resources
+
+    if ("law" in params) == ("example" in params):
+        raise WorkbenchError("law: give the law's TOML text (law) or a shipped example law's name (example), one")
+    if "example" in params:
+        names = [e["name"] for e in law_examples()]
+        if not isinstance(params["example"], str) or params["example"] not in names:
+            raise WorkbenchError(f"example: unknown law {str(params['example'])[:60]!r} (laws: {', '.join(names)})")
+        text = resources.files("gearlever.data").joinpath("examples", f"{params['example']}.toml")
+        return _law(text.read_text(encoding="utf-8"))
+    law = params["law"]
+    if not isinstance(law, str) or not 0 < len(law) <= 100_000:
+        raise WorkbenchError("law must be the TOML text of a [law] table (at most 100000 characters)")
+    return _law(law)
+
+
+def cam(params) -> dict:
+    """A disc cam and its follower for a motion law, placed on a ground pivot: one turn of frames.
+
+    Parameters
+    ----------
+    params : dict
+        ``law`` (a LAW.toml text with ``[[law.segment]]`` tables) or
+        ``example`` (a name of :func:`law_examples`); ``follower`` (a kind of
+        :data:`gearlever.cams.FOLLOWERS`; default ``translating-roller`` for a
+        displacement law, ``oscillating-roller`` for an angle law);
+        ``centre`` ``[x, y]`` (the cam's pivot, default the origin);
+        ``roller_radius``, ``offset``, ``arm``, ``pivot_distance`` (the
+        follower's dimensions; defaults: a roller of a quarter of the stroke,
+        for an oscillating follower an arm of 40 and a pivot 100 from the cam
+        centre, in the law's units); ``base_radius`` (default: sized by
+        :func:`gearlever.cams.size_base_radius`, the smallest base circle with
+        a roller's pressure angle at most ``max_pressure_angle_deg``,
+        default :data:`CAM_PRESSURE_DEG`, and no undercut); ``frames``.
+
+    Returns
+    -------
+    dict
+        ``profile`` (the cam surface at the first frame, model coordinates),
+        ``cam_angle_deg`` (the cam's turn at each frame: the page turns the
+        profile about ``centre`` by it), ``s`` (the follower's output, law
+        units, per frame), ``contact``, ``roller_centre`` (rollers),
+        ``follower`` (the follower's body per frame: a polyline of points),
+        ``face`` (flat followers: the face segment per frame), ``pivot``
+        (oscillating followers), the dimensions, ``pressure_angle_deg`` per
+        frame and its maximum, ``undercut`` and ``message``.
+
+    Notes
+    -----
+    The profile, the contact and the pressure angle are
+    :func:`gearlever.cams.design_cam`'s (R. L. Norton, *Design of Machinery*,
+    sec. 8.6): the cam turns counterclockwise by the input angle, the
+    follower's guide (or pivot) is fixed.  The model file has no cam pair
+    (the schema of :mod:`gearlever.mechanism.schema` has no cam-follower
+    higher pair and the solver no contact constraint), so the cam and its
+    follower are a mechanism of their own beside the linkage.
+
+    Examples
+    --------
+    >>> c = cam({"example": "law_lift", "centre": [100, 0], "frames": 36})
+    >>> c["follower_kind"], round(c["base_radius"], 3), len(c["s"]), c["s"][0]
+    ('translating-roller', 30.019, 36, 0.0)
+    """
+    from gearlever.cams import FOLLOWERS, design_cam, size_base_radius
+
+    if not isinstance(params, dict):
+        raise WorkbenchError("the cam must be a JSON object with a law or an example")
+    unknown = [k for k in params if k not in CAM_KEYS]
+    if unknown:
+        raise WorkbenchError(f"{str(unknown[0])[:40]}: not a parameter of a cam ({', '.join(CAM_KEYS)})")
+    frames = _frames(params.get("frames", 360))
+    law = _cam_law(params)
+    angle_law = law.output == "angle"
+    default = "oscillating-roller" if angle_law else "translating-roller"
+    kind = params.get("follower", default)
+    if not isinstance(kind, str) or kind not in FOLLOWERS:
+        raise WorkbenchError(f"follower must be one of {', '.join(FOLLOWERS)}, got {str(kind)[:40]!r}")
+    fk = FOLLOWERS[kind]
+    if (fk.law_output == "angle") != angle_law:
+        raise WorkbenchError(f"follower: {kind} follows an {fk.law_output} law; this law's output is {law.output}")
+    centre = _pair_xy(params, "centre")
+    stroke = float(np.ptp(law.evaluate(np.linspace(0, 2 * np.pi, 721)).s))
+    length = 40.0 if angle_law else stroke
+    dims = {
+        "roller_radius": _float(params, "roller_radius", length / 4 if fk.contact == "roller" else 0.0, 0.0, 1e6),
+        "offset": _float(params, "offset", 0.0, -1e6, 1e6),
+        "arm": _float(params, "arm", 40.0 if kind == "oscillating-roller" else None, 1e-9, 1e6),
+        "pivot_distance": _float(params, "pivot_distance", 100.0 if angle_law else None, 1e-9, 1e6),
+    }
+    if fk.contact == "flat":
+        dims["roller_radius"] = 0.0
+    phi = _float(params, "max_pressure_angle_deg", CAM_PRESSURE_DEG, 1.0, 89.0)
+    rb = _float(params, "base_radius", None, 1e-9, 1e6)
+    try:
+        sized = rb is None
+        if sized:
+            roller = fk.contact == "roller"
+            bound = {"max_pressure_angle": math.radians(phi)} if roller else {"min_curvature_radius": 0.0}
+            rb = size_base_radius(law, kind, **dims, **bound)
+        c = design_cam(law, kind, base_radius=rb, points=frames, **dims)
+    except GearleverError as exc:  # the library names the command line's flags: the bench's fields instead
+        raise WorkbenchError("cam: " + re.sub(r"--([a-z]+)-?([a-z]*)", _field_name, str(exc))) from None
+    L = max(rb + stroke if not angle_law else dims["pivot_distance"], 1e-9)
+    shift = np.asarray(centre)
+    out = {
+        "follower_kind": kind,
+        "law_output": law.output,
+        "units": law.units,
+        "centre": list(centre),
+        "frames": frames,
+        "base_radius": float(rb),
+        "sized": sized,
+        "roller_radius": dims["roller_radius"],
+        "offset": dims["offset"],
+        "arm": dims["arm"],
+        "pivot_distance": dims["pivot_distance"],
+        "stroke": math.degrees(stroke) if angle_law else stroke,
+        "cam_angle_deg": _num(np.degrees(c.theta)),
+        "s": _num(np.degrees(c.s) if angle_law else c.s),
+        "profile": _xy(c.surface + shift, L),
+        "contact": _xy(c.contact + shift, L),
+        "pressure_angle_deg": _num(np.degrees(c.pressure_angle)),
+        "pressure_angle_max_deg": math.degrees(c.pressure_angle_max),
+        "undercut": bool(c.undercut),
+        "roller_centre": None,
+        "face": None,
+        "pivot": None,
+    }
+    up = np.array([0.0, 1.0])
+    if fk.contact == "roller":
+        q = fk.path(c.s, _follower_params(dims), rb)[0]
+        out["roller_centre"] = _xy(q + shift, L)
+        tip = q
+    else:
+        beta, _, _, h = fk.face(c.s, _follower_params(dims), rb)[:4]
+        n = np.stack([np.cos(beta), np.sin(beta)], axis=1)
+        t = np.stack([-n[:, 1], n[:, 0]], axis=1)
+        fp = fk.face_position(c.contact, beta, _follower_params(dims))
+        ref = fk.face_position(c.contact + t, beta, _follower_params(dims)) - fp
+        t = t * np.sign(ref)[:, None]  # along the face, the way the library measures the contact's place
+        foot = c.contact - fp[:, None] * t
+        margin = 0.15 * max(c.face_width, rb)
+        lo, hi = c.face_contact_min - margin, c.face_contact_max + margin
+        out["face"] = [_xy(foot + lo * t + shift, L), _xy(foot + hi * t + shift, L)]
+        tip = foot
+    if angle_law:
+        pivot = np.array([dims["pivot_distance"], 0.0])
+        out["pivot"] = list(_xy((pivot + shift)[None, :], L)[0])
+        out["follower"] = [_xy(np.broadcast_to(pivot, tip.shape) + shift, L), _xy(tip + shift, L)]
+    else:
+        out["follower"] = [_xy(tip + shift, L), _xy(tip + rb * up + shift, L)]
+    how = (
+        f"sized for a pressure angle of at most {phi:g} deg and no undercut"
+        if sized and fk.contact == "roller"
+        else ("sized for no undercut" if sized else "as given")
+    )
+    u = f" {law.units}" if law.units and not angle_law else ""
+    out["message"] = (
+        f"cam: {kind} follower, base radius {rb:.4g}{u} ({how}); pressure angle at most "
+        f"{math.degrees(c.pressure_angle_max):.3g} deg; drawn as its own mechanism (the model file has no cam pair)"
+    )
+    return out
+
+
+def _field_name(m) -> str:
+    return m.group(1) + ("_" + m.group(2) if m.group(2) else "")
+
+
+def _follower_params(dims: dict):
+    from gearlever.cams import FollowerParams
+
+    return FollowerParams(dims["roller_radius"], dims["offset"], dims["arm"], dims["pivot_distance"])
+
+
+def _pair_xy(params: dict, key: str) -> tuple:
+    v = params.get(key, [0.0, 0.0])
+    if (
+        not isinstance(v, list)
+        or len(v) != 2
+        or not all(not isinstance(c, bool) and isinstance(c, (int, float)) and math.isfinite(c) for c in v)
+        or not all(abs(c) <= 1e9 for c in v)
+    ):
+        raise WorkbenchError(f"{key} must be [x, y], two finite numbers of at most 1e9 in size, got {v!r}"[:200])
+    return float(v[0]), float(v[1])
+
+
 # --------------------------------------------------------------------------- examples
 def examples() -> list:
     """The shipped example models that have ``[links]``: ``[{"name", "title"}]``."""
@@ -1173,9 +1424,7 @@ def check_job(params) -> dict:
         out["target"] = _points(params, "target", 3, MAX_TARGET)
         out["budget"] = _int(params, "budget", 2000, 480, min(MAX_BUDGET, 200_000))
         out["seed"] = _int(params, "seed", 0, 0, 2**31 - 1)
-        out["type"] = params.get("type", "fourbar")
-        if out["type"] not in ("fourbar", "geared-fivebar", "sixbar", "auto"):
-            raise WorkbenchError(f"type must be fourbar, geared-fivebar, sixbar or auto, got {out['type']!r}")
+        out["type"] = _type(params, "path", "fourbar", auto=True)
     elif kind == "curve":
         out["target"] = _points(params, "target", 3, MAX_TARGET)
         out["time"] = _float(params, "time", 20.0, 1.0, 600.0)
@@ -1200,9 +1449,7 @@ def check_job(params) -> dict:
         out["input_range_deg"] = _pair(params, "input_range_deg")
         out["output_range_deg"] = _pair(params, "output_range_deg")
         out["points"] = _int(params, "points", 3, 3, 50)
-        out["type"] = params.get("type", "fourbar")
-        if out["type"] not in ("fourbar", "slider-crank"):
-            raise WorkbenchError(f"type must be fourbar or slider-crank, got {out['type']!r}")
+        out["type"] = _type(params, "function", "fourbar")
     elif kind == "motion":
         poses = _points(params, "poses", 3, 5, width=3)
         out["poses"] = poses
@@ -1214,19 +1461,27 @@ def check_job(params) -> dict:
         if len(poses) > 3 and ("fixed_pivots" in out or "moving_pivots" in out):
             raise WorkbenchError("fixed_pivots/moving_pivots are for three poses only")
     else:
-        from gearlever.synthesis.law import KINDS
         from gearlever.synthesis.law.driver import DEFAULT_BUDGET, MAX_BUDGET
 
         law = params.get("law")
         if not isinstance(law, str) or not 0 < len(law) <= 100_000:
             raise WorkbenchError("law must be the TOML text of a [law] table (at most 100000 characters)")
         out["law_obj"] = _law(law)
-        out["type"] = params.get("type", "auto")
-        if out["type"] not in tuple(KINDS) + ("auto",):
-            raise WorkbenchError(f"type must be one of auto, {', '.join(KINDS)}, got {out['type']!r}")
+        out["type"] = _type(params, "law", "auto", auto=True)
         out["budget"] = _int(params, "budget", DEFAULT_BUDGET, 1, MAX_BUDGET)
         out["seed"] = _int(params, "seed", 0, 0, 2**31 - 1)
     return out
+
+
+def _type(params: dict, family: str, default: str, auto: bool = False) -> str:
+    """The job's ``type``: a kind of ``family`` in the one registry of synthesis kinds (or ``auto``)."""
+    from gearlever.synthesis.registry import names
+
+    known = names(family) + (("auto",) if auto else ())
+    v = params.get("type", default)
+    if v not in known:
+        raise WorkbenchError(f"type must be one of {', '.join(known)}, got {v!r}")
+    return v
 
 
 def _law(text: str):
@@ -1258,8 +1513,101 @@ def _result(rank: int, score: dict, model: dict, comment: str) -> dict:
     }
 
 
+def _problem(params: dict) -> tuple:
+    """``(family, kind name, args, kwargs)`` of a checked job: what the family's driver is called with.
+
+    The kind's name is the job's ``type`` (``auto``: every kind of the family,
+    the driver's choice); a motion job's kind is told by its number of poses.
+    """
+    family = params["kind"]
+    if family == "path":
+        return family, params["type"], (params["target"],), {}
+    if family == "curve":
+        kw = {"max_joints": params["max_joints"], "designs": params["designs"], "time_limit": params["time"]}
+        return family, "topology", (params["target"],), kw
+    if family == "function":
+        from gearlever.synthesis.function import function_targets
+
+        slider = params["type"] == "slider-crank"
+        orange = params["output_range_deg"] if slider else np.radians(params["output_range_deg"])
+        tg = function_targets(
+            params["expr"], params["x_range"], np.radians(params["input_range_deg"]), orange, params["points"]
+        )
+        kw = {"desired": tg.desired, "input_range": tg.input_range}
+        return family, params["type"], (tg.input_angle, tg.output), kw
+    if family == "motion":
+        poses = params["poses"]
+        kw = {k: params.get(k) for k in ("fixed_pivots", "moving_pivots")}
+        return family, f"{len(poses)}-poses", (poses[:, :2], np.radians(poses[:, 2])), kw
+    return family, params["type"], (params["law_obj"],), {}
+
+
+def _designs(family: str, res, params: dict) -> list:
+    """``[(score, model dict, comment)]`` of a family's result, best first (what the bench lists)."""
+    if family == "path":
+        if not res.feasible:
+            raise WorkbenchError("target: no buildable linkage passes near these points; draw them again")
+        comment = f"gearlever workbench: path synthesis ({res.kind}, seed {params['seed']})"
+        return [({"objective": res.objective, "kind": res.kind}, res.model(), comment)]
+    if family == "curve":
+        from gearlever.curves.model import linkage_model
+
+        if not len(res.designs):
+            raise WorkbenchError(
+                "target: no linkage was found within the search's time; give it more time (time) or draw again"
+            )
+        return [
+            (
+                {"distance": float(d), "material": float(mt), "joints": lk.n_joints, "links": len(lk.edges)},
+                linkage_model(lk),
+                f"gearlever workbench: curve synthesis, design {n} (distance {d:.6g}, material {mt:.6g})",
+            )
+            for n, (lk, d, mt) in enumerate(zip(res.designs, res.distance, res.material), 1)
+        ]
+    if family == "function":
+        if res.defect:
+            raise WorkbenchError(f"function: refused, {res.defect}; change the ranges or the points")
+        score = {"structural_error_max": res.structural_error_max, "grashof": getattr(res, "grashof", "")}
+        return [(score, res.model, f"gearlever workbench: function y = {params['expr']}")]
+    if family == "motion":
+        good = [s for s in res.solutions if not s.defect] or list(res.solutions)
+        if not good:
+            raise WorkbenchError("poses: no four-bar guides the coupler through these poses")
+        return [
+            (
+                {"residual": s.residual, "grashof": s.grashof, "defect": s.defect},
+                s.model,
+                f"gearlever workbench: motion synthesis ({res.method}), solution {n}",
+            )
+            for n, s in enumerate(good, 1)
+        ]
+    return [({"kind": res.kind}, res.model(), f"gearlever workbench: law synthesis ({res.kind})")]
+
+
+def _driver(family: str, name: str):
+    """The registered kind ``name`` of ``family`` (:mod:`gearlever.synthesis.registry`), ``(call, searched)``.
+
+    ``auto`` is every kind of the family: the family's driver with ``kind="auto"``.
+    """
+    import importlib
+
+    from gearlever.synthesis import registry
+
+    if name == "auto":
+        k = registry.kinds(family)[0]
+        module, _, fn = k.entry.partition(":")
+        return functools.partial(getattr(importlib.import_module(module), fn), **{k.kind_arg: "auto"}), k.searched
+    k = registry.get(family, name)
+    return k.synthesize, k.searched
+
+
 def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None = None) -> list:
     """Run a synthesis job checked by :func:`check_job`; answer its ranked designs.
+
+    The job's family and kind are looked up in the one registry of synthesis
+    kinds (:func:`gearlever.synthesis.registry.kinds`): its driver is called
+    once, with the seed, budget, scheduler and progress of a searched kind,
+    and its designs are wrapped as model texts.
 
     Parameters
     ----------
@@ -1288,119 +1636,23 @@ def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None =
         if progress is not None:
             progress(str(stage), int(done), int(total))
 
-    kind = params["kind"]
+    family = params["kind"]
     tick("start", 0, 1)
     try:
-        if kind == "path":
-            from gearlever.synthesis.path import synthesize_path
-
-            res = synthesize_path(
-                params["target"],
-                kind=params["type"],
-                seed=params["seed"],
-                budget=params["budget"],
-                scheduler=scheduler,
-                progress=tick,
-                workers=1,
-            )
-            tick("done", 1, 1)
-            if not res.feasible:
-                raise WorkbenchError("target: no buildable linkage passes near these points; draw them again")
-            return [
-                _result(
-                    1,
-                    {"objective": res.objective, "kind": res.kind},
-                    res.model(),
-                    f"gearlever workbench: path synthesis ({res.kind}, seed {params['seed']})",
-                )
-            ]
-        if kind == "curve":
-            from gearlever.curves.model import linkage_model
-            from gearlever.curves.search import synthesize_curve
-
-            res = synthesize_curve(
-                params["target"],
-                max_joints=params["max_joints"],
-                designs=params["designs"],
-                budget=params["budget"],
-                time_limit=params["time"],
-                seed=params["seed"],
-                scheduler=scheduler,
-                progress=tick,
-                workers=1,
-            )
-            tick("done", 1, 1)
-            if not len(res.designs):
-                raise WorkbenchError(
-                    "target: no linkage was found within the search's time; give it more time (time) or draw again"
-                )
-            return [
-                _result(
-                    n,
-                    {"distance": float(d), "material": float(mt), "joints": lk.n_joints, "links": len(lk.edges)},
-                    linkage_model(lk),
-                    f"gearlever workbench: curve synthesis, design {n} (distance {d:.6g}, material {mt:.6g})",
-                )
-                for n, (lk, d, mt) in enumerate(zip(res.designs, res.distance, res.material), 1)
-            ][:MAX_RESULTS]
-        if kind == "function":
-            from gearlever.synthesis.function import function_targets, synthesize_function
-
-            slider = params["type"] == "slider-crank"
-            orange = params["output_range_deg"] if slider else np.radians(params["output_range_deg"])
-            tg = function_targets(
-                params["expr"], params["x_range"], np.radians(params["input_range_deg"]), orange, params["points"]
-            )
+        name_, args, kw = _problem(params)[1:]
+        call, searched = _driver(family, name_)
+        if searched:
+            kw.update(seed=params["seed"], budget=params["budget"], scheduler=scheduler, progress=tick, workers=1)
+        else:
             tick("synthesis", 0, 1)
-            res = synthesize_function(
-                tg.input_angle, tg.output, kind=params["type"], desired=tg.desired, input_range=tg.input_range
-            )
-            tick("done", 1, 1)
-            if res.defect:
-                raise WorkbenchError(f"function: refused, {res.defect}; change the ranges or the points")
-            score = {"structural_error_max": res.structural_error_max, "grashof": getattr(res, "grashof", "")}
-            return [_result(1, score, res.model, f"gearlever workbench: function y = {params['expr']}")]
-        if kind == "motion":
-            from gearlever.synthesis.motion import synthesize_motion
-
-            poses = params["poses"]
-            tick("synthesis", 0, 1)
-            res = synthesize_motion(
-                poses[:, :2],
-                np.radians(poses[:, 2]),
-                fixed_pivots=params.get("fixed_pivots"),
-                moving_pivots=params.get("moving_pivots"),
-            )
-            tick("done", 1, 1)
-            good = [s for s in res.solutions if not s.defect] or list(res.solutions)
-            if not good:
-                raise WorkbenchError("poses: no four-bar guides the coupler through these poses")
-            return [
-                _result(
-                    n,
-                    {"residual": s.residual, "grashof": s.grashof, "defect": s.defect},
-                    s.model,
-                    f"gearlever workbench: motion synthesis ({res.method}), solution {n}",
-                )
-                for n, s in enumerate(good[:MAX_RESULTS], 1)
-            ]
-        from gearlever.synthesis.law import synthesize_law
-
-        res = synthesize_law(
-            params["law_obj"],
-            kind=params["type"],
-            seed=params["seed"],
-            budget=params["budget"],
-            scheduler=scheduler,
-            progress=tick,
-            workers=1,
-        )
+        res = call(*args, **kw)
         tick("done", 1, 1)
-        return [_result(1, {"kind": res.kind}, res.model(), f"gearlever workbench: law synthesis ({res.kind})")]
+        designs = _designs(family, res, params)[:MAX_RESULTS]
+        return [_result(n, score, model, comment) for n, (score, model, comment) in enumerate(designs, 1)]
     except GearleverError as exc:
         if isinstance(exc, WorkbenchError):
             raise
-        raise WorkbenchError(f"{kind}: {exc}") from None
+        raise WorkbenchError(f"{family}: {exc}") from None
     finally:
         if cancelled is not None and cancelled():
             STOP.set()
