@@ -189,6 +189,36 @@ def test_jobs_never_answer_5xx(client, body):
         check(client.get(f"/api/jobs/{job_id}"))
 
 
+cam_bodies = st.one_of(
+    json_values,
+    st.fixed_dictionaries(
+        {},
+        optional={
+            "example": st.one_of(st.sampled_from(["law_lift", "law_dwell_rocker", "fourbar", "../x"]), json_values),
+            "law": st.one_of(st.text(max_size=40), st.just(example_text("law_lift")), json_values),
+            "follower": st.one_of(
+                st.sampled_from(["translating-roller", "translating-flat", "oscillating-roller", "x"]), json_values
+            ),
+            "centre": st.one_of(json_values, st.lists(numbers, max_size=3)),
+            "base_radius": st.one_of(numbers, json_values),
+            "roller_radius": st.one_of(numbers, json_values),
+            "offset": numbers,
+            "arm": numbers,
+            "pivot_distance": numbers,
+            "max_pressure_angle_deg": st.one_of(numbers, json_values),
+            "frames": st.one_of(st.integers(-5, 50), json_values),
+            "x": json_values,
+        },
+    ),
+)
+
+
+@FUZZ
+@given(body=cam_bodies)
+def test_cam_never_answers_5xx(client, body):
+    check(client.post("/api/cam", json=body))
+
+
 @FUZZ
 @given(
     name=st.one_of(

@@ -31,7 +31,10 @@ const S = {
   draftLink: null, // {first: joint} or {link: name} while the link tool grows a link
   lastGear: null,
   curve: [],
-  poses: [], // motion synthesis poses [x, y, angle_deg] placed with the pose tool
+  cam: null, // {centre: [x, y], law: "example:NAME" | "file:NAME", follower}: a cam placed with the cam tool
+  camFrames: null, // the last /api/cam answer for S.cam
+  camRevision: -1,
+  camError: "",
   dof: null,
   redundant: null,
   inputs: [],
@@ -77,6 +80,7 @@ function fit() {
   if (S.frames && S.frames.extent && S.frames.extent.every(Number.isFinite)) box = S.frames.extent;
   else {
     const pts = Object.values(S.model.points || {});
+    if (S.camFrames && S.cam) pts.push(...S.camFrames.profile.filter(Boolean), ...S.camFrames.follower.flat().filter(Boolean));
     if (pts.length) {
       const xs = pts.map((p) => p[0]);
       const ys = pts.map((p) => p[1]);
@@ -99,6 +103,21 @@ function fit() {
 }
 
 // ---------------------------------------------------------------- what is drawn where
+
+/** The motion poses of the model ([[poses]]: point, angle_deg) as [x, y, angle_deg]. */
+function poses() {
+  return (S.model.poses || []).map((p) => [p.point[0], p.point[1], p.angle_deg]);
+}
+
+function setPose(k, [x, y, a]) {
+  S.model.poses[k] = { point: [x, y], angle_deg: a };
+}
+
+/** Frames of the cycle drawn: the mechanism's, else the cam's when a cam is alone on the bench. */
+function frameCount() {
+  if (S.frames && !S.stale) return S.frames.frames;
+  return S.camFrames && S.camRevision === S.revision ? S.camFrames.frames : 0;
+}
 
 function poseIndex() {
   if (!S.frames || S.stale || !S.frames.frames) return null;
@@ -181,7 +200,7 @@ function ensureDefs() {
   if ($("#canvas defs")) return;
   const defs = el("defs");
   svg().insertBefore(defs, svg().firstChild);
-  for (const [id, color] of [["arrow-v", "#2e7d32"], ["arrow-a", "#b3261e"], ["arrow-f", "#5e35b1"], ["arrow-p", "#00695c"]]) {
+  for (const [id, color] of [["arrow-v", "#2e7d32"], ["arrow-a", "#b3261e"], ["arrow-f", "#5e35b1"], ["arrow-p", "#00695c"], ["arrow-l", "#e65100"]]) {
     const m = el("marker", { id, viewBox: "0 0 10 10", refX: 9, refY: 5, markerWidth: 7, markerHeight: 7, orient: "auto-start-reverse" }, defs);
     el("path", { d: "M0,0 L10,5 L0,10 z", fill: color }, m);
   }
@@ -244,7 +263,7 @@ function render() {
     el("polyline", { points: S.curve.map((p) => toPx(...p).map((v) => v.toFixed(1)).join(",")).join(" "), class: "target-curve" }, curve);
   }
   // motion poses: the coupler point and the coupler's direction
-  S.poses.forEach(([x, y, a], k) => {
+  poses().forEach(([x, y, a], k) => {
     const [px, py] = toPx(x, y);
     const r = (a * Math.PI) / 180;
     const grp = el("g", { class: "pose", "data-pose": k }, curve);
@@ -272,6 +291,8 @@ function render() {
     const a = ((ang || 0) * Math.PI) / 180;
     el("line", { x1: cx, y1: cy, x2: cx + radius * S.view.s * Math.cos(a), y2: cy - radius * S.view.s * Math.sin(a), class: "gear-mark" }, grp);
   }
+  // the cam and its follower (their own mechanism, from POST /api/cam)
+  if (S.cam && S.camFrames && S.camRevision === S.revision) drawCam(links, S.frame % S.camFrames.frames);
   // links
   let k = 0;
   for (const [name, pts] of Object.entries(model.links || {})) {
@@ -357,8 +378,9 @@ function render() {
     if ($("#show-kennedy").checked && S.frames.kennedy) drawKennedy(centres, i);
     if ($("#show-forces").checked) drawForces(arrows, i);
     else $("#torque").textContent = "";
+    drawLoads(arrows, labels);
   }
-  $("#empty").hidden = Object.keys(model.points || {}).length > 0;
+  $("#empty").hidden = Object.keys(model.points || {}).length > 0 || !!S.cam || poses().length > 0;
   updatePlayUi();
 }
 
@@ -396,16 +418,60 @@ function drawKennedy(layer, i) {
   }
 }
 
+/** A unit as a user writes it: the CSV column's "N_mm" is shown "N·mm". */
+const unitText = (u) => String(u || "").replace(/_/g, "·");
+
+/** The arrows' scale (px per force unit): the largest pin reaction of the cycle and the largest load are 70 px. */
+function forceScale() {
+  const F = S.forces && S.forcesRevision === S.revision && !S.forces.error && $("#show-forces").checked ? S.forces : null;
+  let max = 0;
+  if (F) for (const series of Object.values(F.pin)) for (const v of series) if (v && v[0] !== null) max = Math.max(max, Math.hypot(v[0], v[1]));
+  for (const l of S.model.loads || []) if (Array.isArray(l.force)) max = Math.max(max, Math.hypot(l.force[0], l.force[1]));
+  return max > 0 ? 70 / max : 0;
+}
+
+/** Where a load's point is drawn now: a named point where it is solved, or a sketch location carried rigidly by
+ * the load's link (moved with the link's first two points). */
+function loadAt(load) {
+  if (typeof load.point === "string") return pos(load.point);
+  if (!Array.isArray(load.point)) return null;
+  const [a, b] = S.model.links?.[load.link] || [];
+  const [A0, B0, A, B] = [S.model.points[a], S.model.points[b], pos(a), pos(b)];
+  if (!A0 || !A) return load.point;
+  if (!B0 || !B) return [A[0] + load.point[0] - A0[0], A[1] + load.point[1] - A0[1]];
+  const t = Math.atan2(B[1] - A[1], B[0] - A[0]) - Math.atan2(B0[1] - A0[1], B0[0] - A0[0]);
+  const [dx, dy] = [load.point[0] - A0[0], load.point[1] - A0[1]];
+  return [A[0] + Math.cos(t) * dx - Math.sin(t) * dy, A[1] + Math.sin(t) * dx + Math.cos(t) * dy];
+}
+
+/** The model's loads: each force an arrow ending at its point, on the pin forces' scale, labelled with its size
+ * and unit (the forces' unit when the server answered them, else N, the model file's). */
+function drawLoads(layer, labels) {
+  const scale = forceScale();
+  const unit = unitText(S.forces?.units?.force || "N");
+  (S.model.loads || []).forEach((l, k) => {
+    if (!Array.isArray(l.force)) return;
+    const p = loadAt(l);
+    const size = Math.hypot(l.force[0], l.force[1]);
+    if (!p || !(size > 0) || !(scale > 0)) return;
+    const [x, y] = toPx(...p);
+    const [dx, dy] = [l.force[0] * scale, -l.force[1] * scale];
+    el("line", { x1: x - dx, y1: y - dy, x2: x, y2: y, class: "arrow load", "marker-end": "url(#arrow-l)", "data-load": k }, layer);
+    const t = el("text", { x: x - dx / 2 + 6, y: y - dy / 2, class: "load-label", "data-load-label": k }, labels);
+    t.textContent = `${Number(size.toPrecision(4))} ${unit}`;
+  });
+}
+
 /** Pin reactions at frame i as arrows at their pins (the force on the pin's second link), scaled so that the
- * largest of the cycle is 70 px; the input torque in the play bar. Both from POST /api/forces. */
+ * largest of the cycle is 70 px (the loads on the same scale); the input torque in the play bar. Both from
+ * POST /api/forces. */
 function drawForces(layer, i) {
   const F = S.forces;
   const out = $("#torque");
   if (!F || S.forcesRevision !== S.revision) { out.textContent = ""; return; }
   if (F.error) { out.textContent = `forces: ${F.error}`; return; }
-  let max = 0;
-  for (const series of Object.values(F.pin)) for (const v of series) if (v && v[0] !== null) max = Math.max(max, Math.hypot(v[0], v[1]));
-  const scale = max > 0 ? 70 / max : 0;
+  const scale = forceScale();
+
   for (const [key, series] of Object.entries(F.pin)) {
     const v = series[i];
     const p = pos(key.split(":")[0]);
@@ -415,7 +481,112 @@ function drawForces(layer, i) {
     if (Math.hypot(dx, dy) < 2) continue;
     el("line", { x1: x, y1: y, x2: x + dx, y2: y + dy, class: "arrow force", "marker-end": "url(#arrow-f)", "data-force": key }, layer);
   }
-  out.textContent = Object.entries(F.torque).map(([n, t]) => `T ${n} ${t[i] === null ? "–" : Number(t[i].toPrecision(4))} ${F.units.torque}`).join(" · ");
+  out.textContent = Object.entries(F.torque).map(([n, t]) => `T ${n} ${t[i] === null ? "–" : Number(t[i].toPrecision(4))} ${unitText(F.units.torque)}`).join(" · ");
+}
+
+/** The cam at frame i: its profile turned about its pivot by the cam's angle, the follower where the server
+ * places it (roller, face, stem, arm), all from POST /api/cam. */
+function drawCam(layer, i) {
+  const C = S.camFrames;
+  const [cx, cy] = C.centre;
+  const a = (C.cam_angle_deg[i] * Math.PI) / 180;
+  const [c, s] = [Math.cos(a), Math.sin(a)];
+  const turn = ([x, y]) => toPx(cx + c * (x - cx) - s * (y - cy), cy + s * (x - cx) + c * (y - cy));
+  const px = (p) => toPx(p[0], p[1]);
+  const grp = el("g", { class: "cam", "data-cam": C.follower_kind }, layer);
+  el("polygon", { points: C.profile.filter(Boolean).map((p) => turn(p).map((v) => v.toFixed(1)).join(",")).join(" "), class: "cam-profile" }, grp);
+  const [hx, hy] = px([cx, cy]);
+  const [mx, my] = turn([cx + 0.6 * C.base_radius, cy]);
+  el("line", { x1: hx, y1: hy, x2: mx, y2: my, class: "cam-mark" }, grp);
+  const pivots = [[hx, hy], ...(C.pivot ? [px(C.pivot)] : [])];
+  for (const [x, y] of pivots) {
+    el("path", { d: `M${x},${y} l-9,13 h18 z`, class: "ground-mark" }, grp);
+    el("circle", { cx: x, cy: y, r: 4, class: "cam-hub" }, grp);
+  }
+  const f = el("g", { class: "follower", "data-follower": C.follower_kind }, layer);
+  const [p0, p1] = [C.follower[0][i], C.follower[1][i]];
+  if (p0 && p1) {
+    const [a0, b0] = [px(p0), px(p1)];
+    el("line", { x1: a0[0], y1: a0[1], x2: b0[0], y2: b0[1], class: "follower-body" }, f);
+  }
+  if (C.face && C.face[0][i] && C.face[1][i]) {
+    const [a0, b0] = [px(C.face[0][i]), px(C.face[1][i])];
+    el("line", { x1: a0[0], y1: a0[1], x2: b0[0], y2: b0[1], class: "follower-face" }, f);
+  }
+  if (C.roller_centre && C.roller_centre[i]) {
+    const [x, y] = px(C.roller_centre[i]);
+    el("circle", { cx: x, cy: y, r: Math.max(2, C.roller_radius * S.view.s), class: "follower-roller" }, f);
+  }
+}
+
+/** The cam's law as the server takes it: a shipped example by name, or a workspace file's text. */
+async function camLaw(spec) {
+  if (spec.law.startsWith("example:")) return { example: spec.law.slice("example:".length) };
+  return { law: (await api.getFile(spec.law.slice("file:".length))).model };
+}
+
+/** Ask the server for the cam of S.cam (law, follower, pivot): sized and solved over one turn by the library;
+ * kept for the revision it was asked for. */
+async function syncCam() {
+  if (!S.cam) { S.camFrames = null; S.camError = ""; S.camRevision = S.revision; return; }
+  if (S.camRevision === S.revision) return;
+  const revision = S.revision;
+  const spec = S.cam;
+  try {
+    const body = { ...(await camLaw(spec)), centre: spec.centre, frames: FRAMES };
+    if (spec.follower) body.follower = spec.follower;
+    const answer = await api.post("/api/cam", body);
+    if (revision !== S.revision) return;
+    S.camFrames = answer;
+    S.camError = "";
+  } catch (e) {
+    if (revision !== S.revision) return;
+    S.camFrames = null;
+    S.camError = e.message;
+  }
+  S.camRevision = revision;
+  render();
+  setStatus();
+}
+
+/** The cam tool's click: a cam on a ground pivot at xy, of the law and follower chosen beside the tool (one undo step). */
+function placeCam(xy) {
+  const law = $("#cam-law").value;
+  if (!law) { notify("choose the cam's law first (the list beside the cam tool)"); return Promise.resolve(); }
+  const before = snapshot();
+  S.cam = { centre: xy, law, follower: $("#cam-follower").value || null };
+  pushUndo(before);
+  return changed();
+}
+
+/** A new law or follower chosen while a cam is on the bench: the cam is made again (one undo step). */
+function camChoice() {
+  if (!S.cam) return;
+  const before = snapshot();
+  S.cam = { ...S.cam, law: $("#cam-law").value || S.cam.law, follower: $("#cam-follower").value || null };
+  pushUndo(before);
+  changed();
+}
+
+async function loadLaws() {
+  const sel = $("#cam-law");
+  const add = (group, value, text) => {
+    const o = document.createElement("option");
+    o.value = value;
+    o.textContent = text;
+    group.appendChild(o);
+  };
+  const shipped = document.createElement("optgroup");
+  shipped.label = "shipped laws";
+  for (const e of (await api.get("/api/laws")).examples) add(shipped, `example:${e.name}`, `${e.name} (${e.output})`);
+  sel.appendChild(shipped);
+  const files = (await api.get("/api/files")).files.filter((f) => f.name.endsWith(".toml"));
+  if (files.length) {
+    const ws = document.createElement("optgroup");
+    ws.label = "workspace";
+    for (const f of files) add(ws, `file:${f.name}`, f.name);
+    sel.appendChild(ws);
+  }
 }
 
 let forcing = null;
@@ -489,7 +660,9 @@ function arrowScale(kind) {
 
 function setStatus() {
   const parts = [];
-  if (!Object.keys(S.model.points || {}).length) parts.push("Empty bench: pick an example, or place two ground pivots (G) to start.");
+  if (!Object.keys(S.model.points || {}).length) {
+    if (!S.cam) parts.push("Empty bench: pick an example, or place two ground pivots (G) to start.");
+  }
   else if (!M.solvable(S.model)) {
     if (!S.model.links?.ground?.length) parts.push("Place a ground pivot (G).");
     else if (Object.keys(S.model.links).length < 2) parts.push("Join joints into links (L): click them one after another, Enter ends.");
@@ -502,6 +675,10 @@ function setStatus() {
       parts.push(`assembles ${closed}/${S.frames.frames}`);
     }
   }
+  if (S.cam) {
+    const note = S.camError ? `cam: ${S.camError}` : (S.camFrames && S.camRevision === S.revision ? S.camFrames.message : "");
+    if (note) parts.push(note);
+  }
   const status = $("#status");
   const msg = S.error || S.message;
   status.textContent = parts.join(" · ") + (msg ? ` · ${msg}` : "");
@@ -509,13 +686,16 @@ function setStatus() {
 }
 
 function updatePlayUi() {
-  const n = S.frames && !S.stale ? S.frames.frames : 0;
+  const n = frameCount();
   const scrub = $("#scrub");
   scrub.max = String(Math.max(0, n - 1));
   if (Number(scrub.value) !== S.frame) scrub.value = String(S.frame);
   const inp = S.frames && !S.stale && S.frames.input_deg ? S.frames.input_deg[S.frame] : null;
   const kind = S.frames?.input_kind?.[S.inputs[0]];
-  $("#angle").textContent = inp === null || inp === undefined ? "" : `${S.inputs[0] || "input"} ${inp.toFixed(1)}${kind === "slider" ? "" : "°"}`;
+  const camDeg = !inp && n && S.camFrames ? S.camFrames.cam_angle_deg[S.frame % S.camFrames.frames] : null;
+  $("#angle").textContent = inp === null || inp === undefined
+    ? (camDeg === null || camDeg === undefined ? "" : `cam ${camDeg.toFixed(1)}°`)
+    : `${S.inputs[0] || "input"} ${inp.toFixed(1)}${kind === "slider" ? "" : "°"}`;
   const label = S.playing ? "pause" : "play";
   $("#play").textContent = S.playing ? "❚❚" : "▶";
   $('[data-action="play"]').textContent = label;
@@ -550,7 +730,7 @@ function linkSeries(f, ln, q) {
   if (q === "alpha" && f.alpha?.[ln]) return [{ label: `${ln} α (rad/s² per (input rad/s)²)`, ys: f.alpha[ln] }];
   if (q === "torque") {
     const F = S.forces && S.forcesRevision === S.revision && !S.forces.error ? S.forces : null;
-    return F ? Object.entries(F.torque).map(([n, ys]) => ({ label: `input ${n} torque (${F.units.torque}) at ${S.rpm} rpm`, ys })) : [];
+    return F ? Object.entries(F.torque).map(([n, ys]) => ({ label: `input ${n} torque (${unitText(F.units.torque)}) at ${S.rpm} rpm`, ys })) : [];
   }
   return [{ label: `${ln} angle (deg)`, ys: f.angle_deg[ln] }];
 }
@@ -571,8 +751,15 @@ function refill(select, names, preferred) {
 
 // ---------------------------------------------------------------- model changes, undo, sync with the server
 
+/** The undoable state: the model and the cam beside it (the model file has no cam pair). */
 function snapshot() {
-  return JSON.stringify(S.model);
+  return JSON.stringify({ model: S.model, cam: S.cam });
+}
+
+function restore(text) {
+  const snap = JSON.parse(text);
+  S.model = snap.model;
+  S.cam = snap.cam;
 }
 
 function pushUndo(before) {
@@ -597,7 +784,8 @@ function changed(opts = {}) {
   render();
   renderProps();
   setStatus();
-  return requestSync(opts);
+  const cam = syncCam();
+  return requestSync(opts).then(() => cam);
 }
 
 let syncing = null;
@@ -717,7 +905,7 @@ function finishSync() {
 function undo() {
   if (!S.undo.length) return Promise.resolve();
   S.redo.push(snapshot());
-  S.model = JSON.parse(S.undo.pop());
+  restore(S.undo.pop());
   S.selected = null;
   return changed();
 }
@@ -725,7 +913,7 @@ function undo() {
 function redo() {
   if (!S.redo.length) return Promise.resolve();
   S.undo.push(snapshot());
-  S.model = JSON.parse(S.redo.pop());
+  restore(S.redo.pop());
   S.selected = null;
   return changed();
 }
@@ -819,11 +1007,11 @@ function onPointerDown(ev) {
   } else if (S.tool === "pose") {
     const hit = poseAt(px, py);
     if (hit) Object.assign(gesture, hit);
-    else if (S.poses.length >= 5) { gesture.kind = "none"; notify("five poses at most: drag one, or clear them in the synthesis panel"); }
+    else if (poses().length >= 5) { gesture.kind = "none"; notify("five poses at most: drag one, or clear them in the synthesis panel"); }
     else {
       const [x, y] = toModel(px, py);
-      S.poses.push([x, y, 0]);
-      Object.assign(gesture, { kind: "pose-turn", index: S.poses.length - 1 });
+      (S.model.poses ||= []).push({ point: [x, y], angle_deg: 0 });
+      Object.assign(gesture, { kind: "pose-turn", index: S.model.poses.length - 1, added: true });
       render();
     }
   } else if (S.tool === "input") {
@@ -834,8 +1022,9 @@ function onPointerDown(ev) {
 
 /** The pose under the pixel: its point (drag moves it) or the tip of its direction (drag turns it). */
 function poseAt(px, py) {
-  for (let k = S.poses.length - 1; k >= 0; k--) {
-    const [x, y, a] = S.poses[k];
+  const all = poses();
+  for (let k = all.length - 1; k >= 0; k--) {
+    const [x, y, a] = all[k];
     const [qx, qy] = toPx(x, y);
     const r = (a * Math.PI) / 180;
     if (Math.hypot(qx + POSE_PX * Math.cos(r) - px, qy - POSE_PX * Math.sin(r) - py) <= HIT_PX) return { kind: "pose-turn", index: k };
@@ -871,12 +1060,12 @@ function onPointerMove(ev) {
     turnInputTo(gesture.joint, toModel(px, py));
   } else if (gesture.kind === "pose-move" && gesture.moved) {
     const [x, y] = snap(toModel(px, py));
-    S.poses[gesture.index] = [x, y, S.poses[gesture.index][2]];
+    setPose(gesture.index, [x, y, poses()[gesture.index][2]]);
     render();
   } else if (gesture.kind === "pose-turn" && gesture.moved) {
-    const [x, y] = S.poses[gesture.index];
+    const [x, y] = poses()[gesture.index];
     const [mx, my] = toModel(px, py);
-    S.poses[gesture.index][2] = Number(((Math.atan2(my - y, mx - x) * 180) / Math.PI).toFixed(2));
+    setPose(gesture.index, [x, y, Number(((Math.atan2(my - y, mx - x) * 180) / Math.PI).toFixed(2))]);
     render();
   }
 }
@@ -901,8 +1090,15 @@ function onPointerUp(ev) {
     return;
   }
   if (g.kind === "pose-move" || g.kind === "pose-turn" || g.kind === "none") {
-    const p = S.poses[g.index];
-    if (p) notify(`pose ${g.index + 1} of ${S.poses.length}: (${Number(p[0].toPrecision(5))}, ${Number(p[1].toPrecision(5))}) at ${p[2]}°`);
+    const all = poses();
+    const p = all[g.index];
+    if (p) {
+      S.selected = { kind: "pose", index: g.index };
+      renderProps();
+      // a pose added, moved or turned is one undo step, saved with the model ([[poses]])
+      if (g.moved || g.added) { pushUndo(g.before); changed(); }
+      notify(`pose ${g.index + 1} of ${all.length}: (${Number(p[0].toPrecision(5))}, ${Number(p[1].toPrecision(5))}) at ${p[2]}°`);
+    }
     return;
   }
   if (g.kind === "pan" || g.kind === "turn") {
@@ -916,6 +1112,9 @@ function onPointerUp(ev) {
 function click(px, py, joint, link) {
   const xy = snap(toModel(px, py));
   switch (S.tool) {
+    case "cam":
+      placeCam(joint ? [...S.model.points[joint]] : xy);
+      break;
     case "select":
       S.selected = link ? { kind: "link", name: link } : null;
       renderProps(); render();
@@ -1012,7 +1211,7 @@ function onWheel(ev) {
 let last = 0;
 function tick(t) {
   if (!S.playing) return;
-  const n = S.frames && !S.stale ? S.frames.frames : 0;
+  const n = frameCount();
   if (n) {
     const dt = last ? Math.min(0.1, (t - last) / 1000) : 0;
     S.frameF = ((S.frameF ?? S.frame) + dt * S.speed * (n / 4)) % n;
@@ -1025,7 +1224,7 @@ function tick(t) {
 
 function play() {
   if (S.playing) { stop(); return; }
-  if (!S.frames || S.stale) { notify("nothing to play yet: the model needs an input"); return; }
+  if (!frameCount()) { notify("nothing to play yet: the model needs an input"); return; }
   S.playing = true;
   S.frameF = S.frame;
   last = 0;
@@ -1073,6 +1272,18 @@ function renderProps() {
   clear(box);
   const m = S.model;
   const sel = S.selected;
+  if (sel?.kind === "pose" && m.poses?.[sel.index]) {
+    const h = document.createElement("h3");
+    h.textContent = `pose ${sel.index + 1} (motion synthesis)`;
+    box.appendChild(h);
+    const [x, y, a] = poses()[sel.index];
+    const put = (v, k) => Number.isFinite(v) && edit(() => { const p = poses()[sel.index]; p[k] = v; setPose(sel.index, p); });
+    field(box, "x", x, (v) => put(v, 0), { attrs: { "data-field": "pose-x" } });
+    field(box, "y", y, (v) => put(v, 1), { attrs: { "data-field": "pose-y" } });
+    field(box, "angle (deg)", a, (v) => put(v, 2), { attrs: { "data-field": "pose-angle" } });
+    button(box, "delete pose", () => { edit((mm) => M.deletePose(mm, sel.index)); S.selected = null; renderProps(); }, { "data-action-pose": "delete" });
+    return;
+  }
   if (sel?.kind === "joint" && m.points?.[sel.name]) {
     const h = document.createElement("h3");
     h.textContent = `joint ${sel.name}`;
@@ -1391,11 +1602,11 @@ function synthParams(kind) {
     const ta = document.createElement("textarea");
     ta.id = "synth-poses";
     ta.rows = 5;
-    ta.value = S.poses.length ? S.poses.map((p) => p.map((v) => Number(v.toPrecision(8))).join(", ")).join("\n") : "0, 0, 0\n20, 10, 30\n40, 10, 60";
+    ta.value = poses().length ? poses().map((p) => p.map((v) => Number(v.toPrecision(8))).join(", ")).join("\n") : "0, 0, 0\n20, 10, 30\n40, 10, 60";
     box.appendChild(ta);
     const row = document.createElement("div");
     row.className = "row";
-    button(row, "clear poses", () => { S.poses = []; render(); synthParams(kind); }, { id: "synth-clear-poses" });
+    button(row, "clear poses", () => { edit((m) => { delete m.poses; }); synthParams(kind); }, { id: "synth-clear-poses" });
     box.appendChild(row);
   } else if (kind === "law") {
     note.textContent = "the [law] table of a cam law file";
@@ -1445,8 +1656,9 @@ function jobBody(kind, opts = {}) {
   }
   if (kind === "motion") {
     const typed = $("#synth-poses") ? val("#synth-poses", "").split("\n").filter((l) => l.trim()).map(nums) : [];
-    const poses = opts.poses ?? (S.poses.length >= 3 && !$("#dlg-synth").open ? S.poses : (typed.length ? typed : S.poses));
-    const body = { kind, poses: poses.map((p) => p.map((v) => Number(Number(v).toPrecision(10)))) };
+    const placed = poses();
+    const chosen = opts.poses ?? (placed.length >= 3 && !$("#dlg-synth").open ? placed : (typed.length ? typed : placed));
+    const body = { kind, poses: chosen.map((p) => p.map((v) => Number(Number(v).toPrecision(10)))) };
     if (body.poses.length === 3) body.moving_pivots = opts.moving_pivots ?? movingPivots(body.poses);
     return body;
   }
@@ -1589,12 +1801,13 @@ const SHORTCUTS = [
   ["I", "input", () => setTool("input")],
   ["C", "curve (freehand target)", () => setTool("curve")],
   ["M", "motion pose (press at the point, drag along the coupler)", () => setTool("pose")],
+  ["K", "cam and follower (the law and follower chosen beside the tool)", () => setTool("cam")],
   ["Space", "play / pause", () => play()],
   ["← →", "previous / next frame", null],
   ["Ctrl+Z", "undo", () => undo()],
   ["Ctrl+Shift+Z, Ctrl+Y", "redo", () => redo()],
   ["Ctrl+S", "save into the workspace", null],
-  ["Delete", "delete the selected joint or link", null],
+  ["Delete", "delete the selected joint, link or pose", null],
   ["F", "fit the drawing", null],
   ["N", "new empty bench", null],
   ["?", "this help", null],
@@ -1612,13 +1825,14 @@ function onKey(ev) {
   if (ev.key === "Escape" || ev.key === "Enter") { if (S.draftLink) { endLink(); ev.preventDefault(); } return; }
   if (ev.key === " ") { ev.preventDefault(); play(); return; }
   if (ev.key === "ArrowRight" || ev.key === "ArrowLeft") {
-    const n = S.frames && !S.stale ? S.frames.frames : 0;
+    const n = frameCount();
     if (n) { S.frame = (S.frame + (ev.key === "ArrowRight" ? 1 : n - 1)) % n; render(); }
     return;
   }
   if (ev.key === "Delete" || ev.key === "Backspace") {
     const sel = S.selected;
-    if (sel?.kind === "joint") edit((m) => M.deletePoint(m, sel.name));
+    if (sel?.kind === "pose") edit((m) => M.deletePose(m, sel.index));
+    else if (sel?.kind === "joint") edit((m) => M.deletePoint(m, sel.name));
     else if (sel?.kind === "link") edit((m) => M.deleteLink(m, sel.name));
     S.selected = null;
     renderProps();
@@ -1628,7 +1842,7 @@ function onKey(ev) {
   if (k === "f") { fit(); render(); return; }
   if (k === "n") { newBench(); return; }
   if (ev.key === "?") { $("#dlg-help").showModal(); return; }
-  const tool = { v: "select", g: "ground", p: "pin", l: "link", s: "slider", e: "gear", o: "point", i: "input", c: "curve", m: "pose" }[k];
+  const tool = { v: "select", g: "ground", p: "pin", l: "link", s: "slider", e: "gear", o: "point", i: "input", c: "curve", m: "pose", k: "cam" }[k];
   if (tool) setTool(tool);
 }
 
@@ -1636,7 +1850,7 @@ function newBench() {
   stop();
   edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); });
   S.curve = [];
-  S.poses = [];
+  S.cam = null;
   S.selected = null;
   S.file = { name: null, etag: null };
   fit();
@@ -1738,6 +1952,8 @@ function wire() {
     runJob(body).catch((e) => { $("#synth-stage").textContent = e.message; $("#synth-run").disabled = false; });
   });
   $("#synth-cancel").addEventListener("click", cancelJob);
+  $("#cam-law").addEventListener("change", camChoice);
+  $("#cam-follower").addEventListener("change", camChoice);
   window.addEventListener("resize", () => { render(); drawPlots(); });
   window.addEventListener("hashchange", () => fromFragment());
 }
@@ -1768,7 +1984,7 @@ window.workbench = {
   // for tests and scripts
   play: () => { if (!S.playing) play(); }, pause: stop, setFrame: (i) => { S.frame = i; render(); },
   setTool, fit: () => { fit(); render(); }, save: (name) => saveFile(name), open: openFile,
-  share: openShare, export: exportAs, curve: () => S.curve.map((p) => [...p]), poses: () => S.poses.map((p) => [...p]), branch: (joint) => setBranch(joint),
+  share: openShare, export: exportAs, curve: () => S.curve.map((p) => [...p]), poses: () => poses(), cam: () => (S.camRevision === S.revision ? S.camFrames : null), view: () => ({ ...S.view }), branch: (joint) => setBranch(joint),
 };
 
 async function start() {
@@ -1781,6 +1997,7 @@ async function start() {
   setStatus();
   drawPlots();
   await loadExamples();
+  await loadLaws().catch((e) => notify(`laws: ${e.message}`));
   const opened = await fromFragment();
   const name = new URL(window.location.href).searchParams.get("open");
   if (name && !opened) {

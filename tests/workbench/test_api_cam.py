@@ -1,0 +1,108 @@
+"""The workbench's cam (``POST /api/cam``, ``GET /api/laws``) through Starlette's test client.
+
+The cam and its follower are the library's (:func:`gearlever.cams.design_cam`, sized by
+:func:`gearlever.cams.size_base_radius`); the answer is checked against the translating roller follower's
+closed forms (R. L. Norton, *Design of Machinery*, sec. 8.6: the roller centre at ``sqrt(Rp**2 - e**2) + s``
+on the follower's axis, the pressure angle ``arctan((v - e) / (s + sqrt(Rp**2 - e**2)))``), against the
+geometry of contact (the cam surface touches the roller) and of the arm (an oscillating follower's roller stays
+one arm from its pivot).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from tests.workbench._client import api_client, error_line, example_text, ok
+
+
+@pytest.fixture(scope="module")
+def client(tmp_path_factory):
+    with api_client(tmp_path_factory.mktemp("workspace")) as c:
+        yield c
+
+
+def test_laws_lists_the_shipped_laws_with_their_output(client):
+    laws = {e["name"]: e["output"] for e in ok(client.get("/api/laws"))["examples"]}
+    assert laws == {"law_dwell_rocker": "angle", "law_lift": "displacement", "law_quick_return": "displacement"}
+
+
+def test_translating_roller_cam_matches_nortons_closed_forms_and_touches_its_roller(client):
+    from gearlever.data import example_path
+    from gearlever.laws import load_law
+
+    e = 4.0
+    c = ok(client.post("/api/cam", json={"example": "law_lift", "centre": [10, -5], "offset": e, "frames": 360}))
+    assert c["follower_kind"] == "translating-roller" and c["sized"] and c["roller_radius"] == 5.0
+    law = load_law(example_path("law_lift.toml"))
+    theta = np.radians(c["cam_angle_deg"])
+    ev = law.evaluate(theta)
+    s, v = ev.s - ev.s.min(), ev.v
+    rp = c["base_radius"] + c["roller_radius"]
+    y0 = math.sqrt(rp**2 - e**2)
+    rc = np.array(c["roller_centre"]) - [10, -5]
+    tol = 1e-5 * (c["base_radius"] + c["stroke"])  # six digits of the cam's size
+    np.testing.assert_allclose(rc[:, 0], e, atol=tol)
+    np.testing.assert_allclose(rc[:, 1], y0 + s, atol=tol)
+    phi = np.degrees(np.arctan((v - e) / (s + y0)))
+    np.testing.assert_allclose(np.abs(c["pressure_angle_deg"]), np.abs(phi), atol=1e-4)
+    assert c["pressure_angle_max_deg"] <= 30.0 + 1e-9 and c["pressure_angle_max_deg"] > 29.9  # sized to the bound
+    # the profile turned by the cam's angle touches the roller at every frame: nearest point one roller radius off
+    prof = np.array(c["profile"]) - [10, -5]
+    for k in range(0, 360, 30):
+        t = math.radians(c["cam_angle_deg"][k])
+        turned = prof @ np.array([[math.cos(t), math.sin(t)], [-math.sin(t), math.cos(t)]])
+        gap = np.min(np.hypot(*(turned - rc[k]).T))
+        assert abs(gap - c["roller_radius"]) < 0.01 * c["base_radius"], (k, gap)
+    # the contact lies on the roller
+    ct = np.array(c["contact"]) - [10, -5]
+    np.testing.assert_allclose(np.hypot(*(ct - rc).T), c["roller_radius"], atol=2 * tol)
+
+
+def test_flat_and_oscillating_followers_keep_their_geometry(client):
+    flat = ok(client.post("/api/cam", json={"example": "law_lift", "follower": "translating-flat", "frames": 72}))
+    a, b, ct = (np.array(x) for x in (flat["face"][0], flat["face"][1], flat["contact"]))
+    # the contact lies on the face segment, which stays horizontal (the face normal is the follower's axis)
+    np.testing.assert_allclose(a[:, 1], b[:, 1], atol=1e-6)
+    np.testing.assert_allclose(ct[:, 1], a[:, 1], atol=1e-4)
+    assert np.all((ct[:, 0] >= np.minimum(a[:, 0], b[:, 0])) & (ct[:, 0] <= np.maximum(a[:, 0], b[:, 0])))
+    np.testing.assert_allclose(a[:, 1], flat["base_radius"] + np.array(flat["s"]), atol=1e-4)
+    rock = ok(client.post("/api/cam", json={"example": "law_dwell_rocker", "frames": 72}))
+    assert rock["follower_kind"] == "oscillating-roller" and rock["pivot"] == [100.0, 0.0]
+    rc = np.array(rock["roller_centre"])
+    np.testing.assert_allclose(np.hypot(*(rc - rock["pivot"]).T), rock["arm"], atol=1e-3)
+    assert math.isclose(max(rock["s"]) - min(rock["s"]), 45.0, abs_tol=1e-4)  # the law's 45 deg swing
+
+
+def test_a_workspace_law_text_gives_the_same_cam_as_its_example(client):
+    text = example_text("law_lift")
+    a = ok(client.post("/api/cam", json={"law": text, "frames": 36}))
+    b = ok(client.post("/api/cam", json={"example": "law_lift", "frames": 36}))
+    assert a == b
+
+
+@pytest.mark.parametrize(
+    ("body", "field"),
+    [
+        ({"example": "law_lift", "follower": "oscillating-roller"}, "follower: oscillating-roller follows an angle"),
+        ({"example": "law_lift", "follower": "wheel"}, "follower must be one of"),
+        ({"example": "law_lift", "law": "x"}, "law: give the law's TOML text (law) or"),
+        ({}, "law: give the law's TOML text"),
+        ({"example": "fourbar"}, "example: unknown law 'fourbar'"),
+        ({"law": example_text("fourbar")}, "law"),
+        ({"example": "law_lift", "colour": 1}, "colour: not a parameter of a cam"),
+        ({"example": "law_lift", "centre": [1]}, "centre must be [x, y]"),
+        ({"example": "law_lift", "frames": 1}, "frames must be an integer"),
+        ({"example": "law_lift", "roller_radius": -1}, "roller_radius must be a number"),
+        ({"example": "law_dwell_rocker", "pivot_distance": 30}, "pivot_distance"),
+    ],
+)
+def test_cam_refusals_name_the_field_in_one_line(client, body, field):
+    assert field in error_line(client.post("/api/cam", json=body), 400)
+
+
+def test_cam_refusal_names_the_benchs_field_not_the_command_lines_flag(client):
+    msg = error_line(client.post("/api/cam", json={"example": "law_dwell_rocker", "pivot_distance": 30}), 400)
+    assert "--" not in msg and "pivot_distance" in msg
