@@ -113,6 +113,11 @@ def test_cam_drawn_on_an_empty_bench_is_the_librarys_and_turns_and_undoes(browse
         assert js(d, "return document.querySelector('[data-cam]')") is None
         call(d, "workbench.redo()")
         wait_for(d, "return !!document.querySelector('[data-cam]')")
+        # a new bench clears it, in one undo step with the model
+        d.find_element(By.CSS_SELECTOR, '[data-action="new"]').click()
+        wait_for(d, "return !document.querySelector('[data-cam]') && !workbench.cam()")
+        call(d, "workbench.undo()")
+        wait_for(d, "return !!document.querySelector('[data-cam]')")
 
 
 def test_cam_of_an_angle_law_has_an_oscillating_follower_on_its_pivot(browser, bench):

@@ -23,9 +23,14 @@ line naming the field, and for a TOML syntax error the line.
 - :func:`flip_branch`: the sketch moved onto another assembly branch of a dyad.
 - :func:`structure`, :func:`forces`, :func:`export` (DXF and outline SVG by
   :mod:`gearlever.export`).
-- :func:`check_job` and :func:`run_job`: the synthesis kinds path, curve,
-  function, motion and law, with a ``progress(stage, done, total)`` callback
-  and a cancel flag, answering ranked designs as model TOML texts.
+- :func:`check_job` and :func:`run_job`: the synthesis families path, curve,
+  function, motion and law, each job's kind the one synthesis registry's
+  (:mod:`gearlever.synthesis.registry`), with a ``progress(stage, done,
+  total)`` callback and a cancel flag, answering ranked designs as model TOML
+  texts.
+- :func:`cam`, :func:`law_examples`: a disc cam and its follower for a motion
+  law, sized and designed by :mod:`gearlever.cams` (a mechanism of its own:
+  the model file has no cam pair).
 
 Caps (each named in the refusal): :data:`MAX_MODEL_CHARS` characters of
 model text, :data:`MAX_LINKS` moving links, :data:`MAX_POINTS` points,

@@ -1848,9 +1848,8 @@ function onKey(ev) {
 
 function newBench() {
   stop();
-  edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); });
+  edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); S.cam = null; });
   S.curve = [];
-  S.cam = null;
   S.selected = null;
   S.file = { name: null, etag: null };
   fit();
