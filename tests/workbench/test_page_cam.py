@@ -236,3 +236,31 @@ def test_a_load_is_drawn_as_an_arrow_at_its_point_on_the_pin_forces_scale_and_la
         assert math.isclose(fx, math.hypot(*series[90]) * scale, rel_tol=1e-6)
         assert d.find_element(By.ID, "torque").text.endswith("N·mm")
         shot(d, tmp_path, "load")
+
+
+def test_cam_on_the_cranks_ground_pivot_turns_with_the_crank(browser, bench, tmp_path):
+    d = browser
+    desktop(d)
+    with guarded(d, bench):
+        open_bench(d, bench)
+        call(d, "workbench.load(arguments[0])", FOURBAR)
+        settled(d)
+        Select(d.find_element(By.ID, "cam-law")).select_by_value("example:law_lift")
+        tool(d, "cam")
+        click_at(d, *joint_centre(d, "O2"))  # the crank's ground pivot: the cam is rigid on the crank
+        wait_for(d, "return !!workbench.cam() && !!document.querySelector('[data-cam]')")
+        settled(d)
+        c = js(d, "return workbench.cam()")
+        f = js(d, "return workbench.frames()")
+        crank = np.array(f["angle_deg"]["crank"])
+        assert c["frames"] == f["frames"] and c["centre"] == f["point"]["O2"][0]
+        # the cam's angle at each frame is the crank's turn from the sketch, to the nearest 0.1 deg
+        turn = np.mod(crank - crank[0], 360.0)
+        diff = np.abs((np.array(c["cam_angle_deg"]) - turn + 180.0) % 360.0 - 180.0)
+        assert diff.max() <= 0.05 + 1e-9, diff.max()
+        assert "it turns with crank" in d.find_element(By.ID, "status").text
+        js(d, "workbench.setFrame(100)")
+        shot(d, tmp_path, "cam_on_crank")
+        # moving the crank's pivot moves the cam with it (a new solve, a new cam)
+        call(d, "workbench.undo()")
+        assert js(d, "return document.querySelector('[data-cam]')") is None

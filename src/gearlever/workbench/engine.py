@@ -1094,7 +1094,12 @@ CAM_KEYS = (
     "pivot_distance",
     "max_pressure_angle_deg",
     "frames",
+    "angles_deg",
 )
+#: Profile points of a cam turned by given angles (``angles_deg``): each frame is the nearest of them (0.1 deg).
+CAM_POINTS = 3600
+#: Most profile points answered (the drawing's polygon).
+CAM_PROFILE = 720
 #: Default bound on the pressure angle of a roller follower when the bench sizes the base circle (deg):
 #: the common design limit for translating roller followers (R. L. Norton, *Design of Machinery*, sec. 8.6).
 CAM_PRESSURE_DEG = 30.0
@@ -1162,7 +1167,10 @@ def cam(params) -> dict:
         centre, in the law's units); ``base_radius`` (default: sized by
         :func:`gearlever.cams.size_base_radius`, the smallest base circle with
         a roller's pressure angle at most ``max_pressure_angle_deg``,
-        default :data:`CAM_PRESSURE_DEG`, and no undercut); ``frames``.
+        default :data:`CAM_PRESSURE_DEG`, and no undercut); ``frames`` (one
+        turn in equal steps), or ``angles_deg``, the cam's angle at each frame
+        (a cam rigid on a link turns with it: the link's angle from its first
+        frame; each frame is the nearest of :data:`CAM_POINTS` cam angles).
 
     Returns
     -------
@@ -1199,7 +1207,22 @@ def cam(params) -> dict:
     unknown = [k for k in params if k not in CAM_KEYS]
     if unknown:
         raise WorkbenchError(f"{str(unknown[0])[:40]}: not a parameter of a cam ({', '.join(CAM_KEYS)})")
-    frames = _frames(params.get("frames", 360))
+    angles = params.get("angles_deg")
+    if angles is not None:
+        if (
+            not isinstance(angles, list)
+            or not 2 <= len(angles) <= MAX_FRAMES
+            or not all(not isinstance(a, bool) and isinstance(a, (int, float)) and math.isfinite(a) for a in angles)
+            or not all(abs(a) <= 1e6 for a in angles)
+        ):
+            raise WorkbenchError(f"angles_deg must be a list of 2 to {MAX_FRAMES} finite angles of at most 1e6 deg")
+        if "frames" in params:
+            raise WorkbenchError("frames: give frames or angles_deg, not both")
+        frames, points = len(angles), CAM_POINTS
+        rows = np.rint(np.mod(np.radians(angles), 2 * np.pi) / (2 * np.pi) * points).astype(int) % points
+    else:
+        frames = points = _frames(params.get("frames", 360))
+        rows = np.arange(frames)
     law = _cam_law(params)
     angle_law = law.output == "angle"
     default = "oscillating-roller" if angle_law else "translating-roller"
@@ -1228,11 +1251,13 @@ def cam(params) -> dict:
             roller = fk.contact == "roller"
             bound = {"max_pressure_angle": math.radians(phi)} if roller else {"min_curvature_radius": 0.0}
             rb = size_base_radius(law, kind, **dims, **bound)
-        c = design_cam(law, kind, base_radius=rb, points=frames, **dims)
+        c = design_cam(law, kind, base_radius=rb, points=points, **dims)
     except GearleverError as exc:  # the library names the command line's flags: the bench's fields instead
         raise WorkbenchError("cam: " + re.sub(r"--([a-z]+)-?([a-z]*)", _field_name, str(exc))) from None
     L = max(rb + stroke if not angle_law else dims["pivot_distance"], 1e-9)
     shift = np.asarray(centre)
+    every = max(1, points // CAM_PROFILE)
+    theta, s, contact = c.theta[rows], c.s[rows], c.contact[rows]
     out = {
         "follower_kind": kind,
         "law_output": law.output,
@@ -1246,11 +1271,11 @@ def cam(params) -> dict:
         "arm": dims["arm"],
         "pivot_distance": dims["pivot_distance"],
         "stroke": math.degrees(stroke) if angle_law else stroke,
-        "cam_angle_deg": _num(np.degrees(c.theta)),
-        "s": _num(np.degrees(c.s) if angle_law else c.s),
-        "profile": _xy(c.surface + shift, L),
-        "contact": _xy(c.contact + shift, L),
-        "pressure_angle_deg": _num(np.degrees(c.pressure_angle)),
+        "cam_angle_deg": _num(np.degrees(theta)),
+        "s": _num(np.degrees(s) if angle_law else s),
+        "profile": _xy(c.surface[::every] + shift, L),
+        "contact": _xy(contact + shift, L),
+        "pressure_angle_deg": _num(np.degrees(c.pressure_angle[rows])),
         "pressure_angle_max_deg": math.degrees(c.pressure_angle_max),
         "undercut": bool(c.undercut),
         "roller_centre": None,
@@ -1259,17 +1284,17 @@ def cam(params) -> dict:
     }
     up = np.array([0.0, 1.0])
     if fk.contact == "roller":
-        q = fk.path(c.s, _follower_params(dims), rb)[0]
+        q = fk.path(s, _follower_params(dims), rb)[0]
         out["roller_centre"] = _xy(q + shift, L)
         tip = q
     else:
-        beta, _, _, h = fk.face(c.s, _follower_params(dims), rb)[:4]
+        beta = fk.face(s, _follower_params(dims), rb)[0]
         n = np.stack([np.cos(beta), np.sin(beta)], axis=1)
         t = np.stack([-n[:, 1], n[:, 0]], axis=1)
-        fp = fk.face_position(c.contact, beta, _follower_params(dims))
-        ref = fk.face_position(c.contact + t, beta, _follower_params(dims)) - fp
+        fp = fk.face_position(contact, beta, _follower_params(dims))
+        ref = fk.face_position(contact + t, beta, _follower_params(dims)) - fp
         t = t * np.sign(ref)[:, None]  # along the face, the way the library measures the contact's place
-        foot = c.contact - fp[:, None] * t
+        foot = contact - fp[:, None] * t
         margin = 0.15 * max(c.face_width, rb)
         lo, hi = c.face_contact_min - margin, c.face_contact_max + margin
         out["face"] = [_xy(foot + lo * t + shift, L), _xy(foot + hi * t + shift, L)]

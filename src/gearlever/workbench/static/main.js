@@ -533,7 +533,13 @@ async function syncCam() {
   const revision = S.revision;
   const spec = S.cam;
   try {
-    const body = { ...(await camLaw(spec)), centre: spec.centre, frames: FRAMES };
+    const body = { ...(await camLaw(spec)), centre: spec.centre };
+    const turns = spec.on && S.frames && !S.stale ? S.frames.angle_deg?.[spec.on] : null;
+    if (turns) {
+      // rigid on its link: the cam's angle at each frame is the link's turn from the first frame (the sketch)
+      let last = 0;
+      body.angles_deg = turns.map((a) => (a === null ? last : (last = a - turns[0])));
+    } else body.frames = FRAMES;
     if (spec.follower) body.follower = spec.follower;
     const answer = await api.post("/api/cam", body);
     if (revision !== S.revision) return;
@@ -550,11 +556,15 @@ async function syncCam() {
 }
 
 /** The cam tool's click: a cam on a ground pivot at xy, of the law and follower chosen beside the tool (one undo step). */
-function placeCam(xy) {
+function placeCam(xy, joint) {
   const law = $("#cam-law").value;
   if (!law) { notify("choose the cam's law first (the list beside the cam tool)"); return Promise.resolve(); }
+  // on a ground pivot of a moving link (an input first) the cam is rigid on that link and turns with it
+  const onGround = joint && M.isGround(S.model, joint);
+  const carriers = onGround ? Object.keys(S.model.links).filter((l) => l !== "ground" && S.model.links[l].includes(joint)) : [];
+  const on = carriers.find((l) => inputLinks().includes(l)) || carriers[0] || null;
   const before = snapshot();
-  S.cam = { centre: xy, law, follower: $("#cam-follower").value || null };
+  S.cam = { centre: xy, law, follower: $("#cam-follower").value || null, on };
   pushUndo(before);
   return changed();
 }
@@ -676,7 +686,8 @@ function setStatus() {
     }
   }
   if (S.cam) {
-    const note = S.camError ? `cam: ${S.camError}` : (S.camFrames && S.camRevision === S.revision ? S.camFrames.message : "");
+    const served = S.camFrames && S.camRevision === S.revision ? S.camFrames.message : "";
+    const note = S.camError ? `cam: ${S.camError}` : (served && S.cam.on ? `${served}; it turns with ${S.cam.on}` : served);
     if (note) parts.push(note);
   }
   const status = $("#status");
@@ -784,7 +795,8 @@ function changed(opts = {}) {
   render();
   renderProps();
   setStatus();
-  const cam = syncCam();
+  // a cam on a link turns with it: asked for once the link's angles of this revision are solved (finishSync)
+  const cam = S.cam?.on && M.solvable(S.model) ? null : syncCam();
   return requestSync(opts).then(() => cam);
 }
 
@@ -894,6 +906,7 @@ function takeFrames(f) {
 }
 
 function finishSync() {
+  if (S.cam?.on) syncCam();
   fillKennedy();
   render();
   drawPlots();
@@ -1113,7 +1126,7 @@ function click(px, py, joint, link) {
   const xy = snap(toModel(px, py));
   switch (S.tool) {
     case "cam":
-      placeCam(joint ? [...S.model.points[joint]] : xy);
+      placeCam(joint ? [...S.model.points[joint]] : xy, joint);
       break;
     case "select":
       S.selected = link ? { kind: "link", name: link } : null;
