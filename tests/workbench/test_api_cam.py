@@ -83,6 +83,21 @@ def test_a_workspace_law_text_gives_the_same_cam_as_its_example(client):
     assert a == b
 
 
+def test_a_cam_turned_by_given_angles_is_the_cam_of_the_nearest_tenth_of_a_degree(client):
+    turn = ok(client.post("/api/cam", json={"example": "law_lift", "frames": 360}))
+    ok_angles = [float(k) for k in range(360)]
+    given = ok(client.post("/api/cam", json={"example": "law_lift", "angles_deg": ok_angles}))
+    assert given["frames"] == 360 and given["cam_angle_deg"] == turn["cam_angle_deg"]
+    assert given["s"] == turn["s"] and given["roller_centre"] == turn["roller_centre"]
+    odd = ok(client.post("/api/cam", json={"example": "law_lift", "angles_deg": [100.04, 460.0, -150.0, 123.44]}))
+    assert odd["cam_angle_deg"] == [100.0, 100.0, 210.0, 123.4]
+    ref = ok(client.post("/api/cam", json={"example": "law_lift", "frames": 3600}))
+    rows = (1000, 1000, 2100, 1234)
+    assert min(odd["s"]) > 1.0  # on the rise and the return, not a dwell
+    np.testing.assert_allclose(odd["s"], [ref["s"][k] for k in rows], atol=1e-4)
+    np.testing.assert_allclose(odd["roller_centre"], [ref["roller_centre"][k] for k in rows], atol=1e-4)
+
+
 @pytest.mark.parametrize(
     ("body", "field"),
     [
@@ -95,6 +110,8 @@ def test_a_workspace_law_text_gives_the_same_cam_as_its_example(client):
         ({"example": "law_lift", "colour": 1}, "colour: not a parameter of a cam"),
         ({"example": "law_lift", "centre": [1]}, "centre must be [x, y]"),
         ({"example": "law_lift", "frames": 1}, "frames must be an integer"),
+        ({"example": "law_lift", "frames": 4, "angles_deg": [0, 1]}, "frames: give frames or angles_deg"),
+        ({"example": "law_lift", "angles_deg": [0, "x"]}, "angles_deg must be a list"),
         ({"example": "law_lift", "roller_radius": -1}, "roller_radius must be a number"),
         ({"example": "law_dwell_rocker", "pivot_distance": 30}, "pivot_distance"),
     ],

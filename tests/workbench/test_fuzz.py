@@ -207,6 +207,7 @@ cam_bodies = st.one_of(
             "pivot_distance": numbers,
             "max_pressure_angle_deg": st.one_of(numbers, json_values),
             "frames": st.one_of(st.integers(-5, 50), json_values),
+            "angles_deg": st.one_of(json_values, st.lists(numbers, max_size=5)),
             "x": json_values,
         },
     ),
