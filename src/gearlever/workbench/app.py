@@ -796,6 +796,13 @@ OPENAPI = {
                         "pivot_distance": {"type": "number"},
                         "max_pressure_angle_deg": {"type": "number"},
                         "frames": _FRAMES,
+                        "angles_deg": {
+                            "type": "array",
+                            "items": {"type": "number"},
+                            "minItems": 2,
+                            "maxItems": 3600,
+                            "description": "the cam's angle at each frame (a cam turning with a link), not with frames",
+                        },
                     },
                     required=(),
                 ),
