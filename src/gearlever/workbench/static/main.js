@@ -109,8 +109,10 @@ function poses() {
   return (S.model.poses || []).map((p) => [p.point[0], p.point[1], p.angle_deg]);
 }
 
+/** A pose as the model keeps it: the pointer's place to 6 significant digits (what a user would type). */
 function setPose(k, [x, y, a]) {
-  S.model.poses[k] = { point: [x, y], angle_deg: a };
+  const tidy = (v) => Number(Number(v).toPrecision(6));
+  S.model.poses[k] = { point: [tidy(x), tidy(y)], angle_deg: tidy(a) };
 }
 
 /** Frames of the cycle drawn: the mechanism's, else the cam's when a cam is alone on the bench. */
@@ -1022,8 +1024,8 @@ function onPointerDown(ev) {
     if (hit) Object.assign(gesture, hit);
     else if (poses().length >= 5) { gesture.kind = "none"; notify("five poses at most: drag one, or clear them in the synthesis panel"); }
     else {
-      const [x, y] = toModel(px, py);
-      (S.model.poses ||= []).push({ point: [x, y], angle_deg: 0 });
+      (S.model.poses ||= []).push(null);
+      setPose(S.model.poses.length - 1, [...toModel(px, py), 0]);
       Object.assign(gesture, { kind: "pose-turn", index: S.model.poses.length - 1, added: true });
       render();
     }
