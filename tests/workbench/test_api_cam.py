@@ -123,3 +123,57 @@ def test_cam_refusals_name_the_field_in_one_line(client, body, field):
 def test_cam_refusal_names_the_benchs_field_not_the_command_lines_flag(client):
     msg = error_line(client.post("/api/cam", json={"example": "law_dwell_rocker", "pivot_distance": 30}), 400)
     assert "--" not in msg and "pivot_distance" in msg
+
+
+def test_cam_saved_as_a_cam_file_reopens_as_the_same_cam_at_its_pivot(client, tmp_path):
+    """The answer's cam_toml is a CAM.toml the library reads (load_cam: the same surface about the pivot,
+    cam_centre: the pivot); PUT as NAME.cam.toml with the model's ETag rules, listed as a cam, and POSTed back
+    as ``file`` it gives the same law, follower, base radius, pivot and frames."""
+    from gearlever.cams import cam_centre, design_cam, load_cam
+    from gearlever.data import example_path
+    from gearlever.laws import load_law
+
+    first = ok(
+        client.post("/api/cam", json={"example": "law_lift", "follower": "translating-flat", "centre": [40, 7.5]})
+    )
+    text = first["cam_toml"]
+    path = tmp_path / "bench.cam.toml"
+    path.write_text(text)
+    assert cam_centre(path) == (40.0, 7.5)
+    law = load_law(example_path("law_lift.toml"))
+    own = design_cam(law, "translating-flat", base_radius=first["base_radius"], points=360)
+    assert np.allclose(load_cam(path).surface, own.surface, rtol=1e-10, atol=1e-10 * first["base_radius"])
+    saved = ok(client.put("/api/files/bench.cam.toml", json={"model": text}), 201)
+    listed = {f["name"]: f["kind"] for f in ok(client.get("/api/files"))["files"]}
+    assert listed["bench.cam.toml"] == "cam"
+    assert "If-Match" in error_line(client.put("/api/files/bench.cam.toml", json={"model": text}), 428)
+    stale = client.put("/api/files/bench.cam.toml", json={"model": text}, headers={"If-Match": '"0000"'})
+    assert "changed since it was read" in error_line(stale, 412)
+    r = client.get("/api/files/bench.cam.toml")
+    assert r.headers["ETag"] == saved["etag"] and r.json()["model"] == text  # not clobbered
+    again = ok(client.post("/api/cam", json={"file": r.json()["model"]}))
+    for key in ("follower_kind", "centre", "frames", "cam_angle_deg"):
+        assert again[key] == first[key], key
+    assert again["base_radius"] == pytest.approx(first["base_radius"], rel=1e-11)  # written at 12 digits
+    size = first["base_radius"] + first["stroke"]
+    for key in ("s", "profile", "face"):
+        np.testing.assert_allclose(np.array(again[key], float), np.array(first[key], float), atol=1e-9 * size)
+    assert again["sized"] is False
+
+
+@pytest.mark.parametrize(
+    "text, says",
+    [
+        ("not toml = = 1", "TOML"),
+        ('[cam]\nfollower = "translating-flat"\nbase_radius = 30.0\n', "law"),
+        ('[cam]\nfollower = "translating-flat"\nbase_radius = 30.0\ncentre = "here"\n', "centre"),
+        ('[cam]\nfollower = "translating-flat"\nbase_radius = 30.0\nwheel = 2\n', "wheel"),
+    ],
+)
+def test_a_cam_file_that_the_library_refuses_is_not_written_and_not_drawn(client, text, says):
+    line = error_line(client.put("/api/files/bad.cam.toml", json={"model": text}), 400)
+    assert line.startswith("model: ") and says in line
+    assert "bad.cam.toml" not in [f["name"] for f in ok(client.get("/api/files"))["files"]]
+    line = error_line(client.post("/api/cam", json={"file": text}), 400)
+    assert line.startswith("file: ") and says in line
+    assert "one" in error_line(client.post("/api/cam", json={"file": text, "example": "law_lift"}), 400)

@@ -57,6 +57,7 @@ from starlette.responses import FileResponse, JSONResponse, Response, StreamingR
 from starlette.routing import Route
 
 from gearlever.workbench.errors import ApiError
+from gearlever.workbench.files import CAM_SUFFIX
 
 __all__ = [
     "create_app",
@@ -123,6 +124,7 @@ def _worker_main(conn) -> None:
         "branch": engine.flip_branch,
         "dump_solve": functools.partial(engine.dump_solve, plain=not _HAS_ORJSON),
         "cam": engine.cam,
+        "cam_file": engine.cam_file_params,
     }
     with contextlib.suppress(Exception):  # warm up: the first request is then as fast as the others
         from gearlever.data import example_path
@@ -682,6 +684,13 @@ def create_app(
         body = await _body(request)
         _only(body, ("model",))
         text = _field(body, "model", str)
+        if files.path(request.path_params["name"]).name.endswith(CAM_SUFFIX):  # a CAM.toml the library reads
+            try:
+                await pool.call("cam_file", solve_seconds, text=text)
+            except ApiError as exc:
+                if exc.status != 400:
+                    raise
+                raise ApiError(400, "model: " + exc.message.removeprefix("file: "), **exc.extra) from None
         created, etag, size = files.write(request.path_params["name"], text, request.headers.get("if-match"))
         return JSONResponse(
             {"name": request.path_params["name"], "etag": etag, "size": size},
@@ -786,6 +795,12 @@ OPENAPI = {
                 _obj(
                     {
                         "law": {"type": "string", "maxLength": 100000, "description": "a LAW.toml text"},
+                        "file": {
+                            "type": "string",
+                            "maxLength": 100000,
+                            "description": "a CAM.toml text (as the answer's cam_toml): its law, follower, "
+                            "dimensions and centre, each overridden by the same key given beside it",
+                        },
                         "example": {"type": "string", "description": "a shipped law's name (GET /api/laws)"},
                         "follower": {"type": "string", "enum": _FOLLOWERS},
                         "centre": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
@@ -904,7 +919,7 @@ OPENAPI = {
                 params=[("id", {"type": "string"})],
             )
         },
-        "/api/files": {"get": _op("the workspace's model files")},
+        "/api/files": {"get": _op("the workspace's model files and cam files (kind: model or cam)")},
         "/api/files/{name}": {
             "get": _op("a file's text, with its ETag", extra_codes=("404",), params=[("name", {"type": "string"})]),
             "put": _op(

@@ -1085,6 +1085,7 @@ def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
 CAM_KEYS = (
     "law",
     "example",
+    "file",
     "follower",
     "centre",
     "base_radius",
@@ -1157,7 +1158,9 @@ def cam(params) -> dict:
     ----------
     params : dict
         ``law`` (a LAW.toml text with ``[[law.segment]]`` tables) or
-        ``example`` (a name of :func:`law_examples`); ``follower`` (a kind of
+        ``example`` (a name of :func:`law_examples`) or ``file`` (a CAM.toml
+        text, as the bench saves it: its law, follower, dimensions and
+        ``centre``, each overridden by the same key given beside it); ``follower`` (a kind of
         :data:`gearlever.cams.FOLLOWERS`; default ``translating-roller`` for a
         displacement law, ``oscillating-roller`` for an angle law);
         ``centre`` ``[x, y]`` (the cam's pivot, default the origin);
@@ -1182,7 +1185,9 @@ def cam(params) -> dict:
         ``follower`` (the follower's body per frame: a polyline of points),
         ``face`` (flat followers: the face segment per frame), ``pivot``
         (oscillating followers), the dimensions, ``pressure_angle_deg`` per
-        frame and its maximum, ``undercut`` and ``message``.
+        frame and its maximum, ``undercut``, ``message`` and ``cam_toml``,
+        the CAM.toml text of this cam (:func:`gearlever.cams.cam_toml`, its
+        pivot as ``[cam] centre``) that the bench saves beside the model.
 
     Notes
     -----
@@ -1207,6 +1212,10 @@ def cam(params) -> dict:
     unknown = [k for k in params if k not in CAM_KEYS]
     if unknown:
         raise WorkbenchError(f"{str(unknown[0])[:40]}: not a parameter of a cam ({', '.join(CAM_KEYS)})")
+    if "file" in params:
+        if "law" in params or "example" in params:
+            raise WorkbenchError("file: a CAM.toml text holds its law; give file, law or example, one")
+        params = {**cam_file_params(params["file"]), **{k: v for k, v in params.items() if k != "file"}}
     angles = params.get("angles_deg")
     if angles is not None:
         if (
@@ -1315,6 +1324,52 @@ def cam(params) -> dict:
         f"cam: {kind} follower, base radius {rb:.4g}{u} ({how}); pressure angle at most "
         f"{math.degrees(c.pressure_angle_max):.3g} deg; drawn as its own mechanism (the model file has no cam pair)"
     )
+    from gearlever.cams import cam_toml
+
+    report = {"pressure_angle_max_deg": math.degrees(c.pressure_angle_max), "undercut": bool(c.undercut)}
+    out["cam_toml"] = cam_toml(c, law.to_dict(), report, "Written by the gearlever workbench", centre=centre)
+    return out
+
+
+def cam_file_params(text) -> dict:
+    """The cam parameters of a CAM.toml text (law, follower, dimensions, ``centre``), checked by the library.
+
+    The text is read by :func:`gearlever.cams.load_cam` (every refusal of the
+    CAM format, named) and :func:`gearlever.cams.cam_centre`; the answer is
+    what :func:`cam` takes: ``law`` (the text itself, which reads as a
+    LAW.toml), ``follower``, ``base_radius`` and the follower's dimensions
+    given in the file, and ``centre``.
+
+    >>> c = cam({"example": "law_lift", "centre": [100, 0], "frames": 36})
+    >>> p = cam_file_params(c["cam_toml"])
+    >>> p["follower"], p["centre"], round(p["base_radius"], 3)
+    ('translating-roller', [100.0, 0.0], 30.019)
+    """
+    import tempfile
+    from pathlib import Path
+
+    from gearlever.cams import cam_centre, load_cam
+
+    if not isinstance(text, str) or not 0 < len(text) <= 100_000:
+        raise WorkbenchError("file must be the TOML text of a CAM file ([cam] and [law], at most 100000 characters)")
+    d = _toml(text, "file")
+    if isinstance(d.get("law"), dict) and "samples" in d["law"]:
+        raise WorkbenchError("file: the law's samples name a CSV file; the bench takes [[law.segment]] tables")
+    with tempfile.TemporaryDirectory() as tmp:
+        p = Path(tmp) / "cam.toml"
+        p.write_text(text, encoding="utf-8")
+        try:
+            load_cam(p, points=360)
+            centre = cam_centre(p)
+        except GearleverError as exc:
+            raise WorkbenchError(
+                "file: " + str(exc).replace(str(p) + ": ", "").replace(str(p), "the CAM file")
+            ) from None
+    table = d["cam"]
+    out = {"law": text, "follower": table["follower"], "centre": list(centre)}
+    for key in ("base_radius", "roller_radius", "offset", "arm", "pivot_distance"):
+        if key in table:
+            out[key] = float(table[key])
     return out
 
 
