@@ -77,10 +77,20 @@ function snap([x, y]) {
 function fit() {
   const r = svg().getBoundingClientRect();
   let box = null;
-  if (S.frames && S.frames.extent && S.frames.extent.every(Number.isFinite)) box = S.frames.extent;
-  else {
+  const cams = S.camFrames && S.cam ? [...S.camFrames.profile.filter(Boolean), ...S.camFrames.follower.flat().filter(Boolean)] : [];
+  if (S.frames && S.frames.extent && S.frames.extent.every(Number.isFinite)) {
+    box = [...S.frames.extent];
+    if (cams.length) {
+      // the cam turns: the circle of its profile about its pivot, and its follower
+      const [cx, cy] = S.camFrames.centre;
+      const R = Math.max(...S.camFrames.profile.filter(Boolean).map(([x, y]) => Math.hypot(x - cx, y - cy)));
+      for (const [x, y] of [...cams, [cx - R, cy - R], [cx + R, cy + R]]) {
+        box = [Math.min(box[0], x), Math.min(box[1], y), Math.max(box[2], x), Math.max(box[3], y)];
+      }
+    }
+  } else {
     const pts = Object.values(S.model.points || {});
-    if (S.camFrames && S.cam) pts.push(...S.camFrames.profile.filter(Boolean), ...S.camFrames.follower.flat().filter(Boolean));
+    pts.push(...cams);
     if (pts.length) {
       const xs = pts.map((p) => p[0]);
       const ys = pts.map((p) => p[1]);
@@ -523,6 +533,8 @@ function drawCam(layer, i) {
 
 /** The cam's law as the server takes it: a shipped example by name, or a workspace file's text. */
 async function camLaw(spec) {
+  if (spec.file) return { file: spec.file }; // a saved cam (CAM.toml): its law, follower and dimensions
+  if (spec.lawText) return { law: spec.lawText };
   if (spec.law.startsWith("example:")) return { example: spec.law.slice("example:".length) };
   return { law: (await api.getFile(spec.law.slice("file:".length))).model };
 }
@@ -557,14 +569,35 @@ async function syncCam() {
   setStatus();
 }
 
+/** The link a cam on the ground pivot `joint` is rigid on (an input first), or null. */
+function camCarrier(joint, model = S.model) {
+  const onGround = joint && M.isGround(model, joint);
+  const carriers = onGround ? Object.keys(model.links).filter((l) => l !== "ground" && model.links[l].includes(joint)) : [];
+  const inputs = inputLinks();
+  return carriers.find((l) => inputs.includes(l)) || carriers[0] || null;
+}
+
+/** The cam file saved beside a model file: NAME.toml (or NAME.links.json) -> NAME.cam.toml. */
+function camFileOf(name) {
+  return `${name.replace(/(\.cam)?(\.toml|\.links\.json)$/, "")}.cam.toml`;
+}
+
+/** The cam of a CAM.toml text, as the bench keeps it: its pivot (the file's [cam] centre) and follower read by the
+ * server (the library's reader), the text itself sent back to draw it (exact dimensions); rigid on the link whose
+ * ground pivot it sits on in `model`. */
+async function camFromFile(text, model) {
+  const c = await api.post("/api/cam", { file: text, frames: FRAMES });
+  const joint = Object.keys(model.points || {}).find((j) => M.isGround(model, j)
+    && Math.abs(model.points[j][0] - c.centre[0]) < 1e-9 && Math.abs(model.points[j][1] - c.centre[1]) < 1e-9);
+  return { centre: c.centre, law: "cam", file: text, follower: c.follower_kind, on: joint ? camCarrier(joint, model) : null };
+}
+
 /** The cam tool's click: a cam on a ground pivot at xy, of the law and follower chosen beside the tool (one undo step). */
 function placeCam(xy, joint) {
   const law = $("#cam-law").value;
   if (!law) { notify("choose the cam's law first (the list beside the cam tool)"); return Promise.resolve(); }
   // on a ground pivot of a moving link (an input first) the cam is rigid on that link and turns with it
-  const onGround = joint && M.isGround(S.model, joint);
-  const carriers = onGround ? Object.keys(S.model.links).filter((l) => l !== "ground" && S.model.links[l].includes(joint)) : [];
-  const on = carriers.find((l) => inputLinks().includes(l)) || carriers[0] || null;
+  const on = camCarrier(joint);
   const before = snapshot();
   S.cam = { centre: xy, law, follower: $("#cam-follower").value || null, on };
   pushUndo(before);
@@ -575,13 +608,25 @@ function placeCam(xy, joint) {
 function camChoice() {
   if (!S.cam) return;
   const before = snapshot();
-  S.cam = { ...S.cam, law: $("#cam-law").value || S.cam.law, follower: $("#cam-follower").value || null };
+  const law = $("#cam-law").value;
+  const next = { ...S.cam, law: law || S.cam.law, follower: $("#cam-follower").value || null };
+  if (next.file) { next.lawText = law ? undefined : next.file; delete next.file; } // a saved cam's law, new follower
+  if (law) delete next.lawText;
+  S.cam = next;
   pushUndo(before);
   changed();
 }
 
+/** The law list beside the cam tool: the shipped laws and the workspace's files, asked again each time the cam
+ * tool is chosen (a law saved since the page opened is listed); the choice is kept when it is still listed. */
+let lawsAsked = null;
 async function loadLaws() {
   const sel = $("#cam-law");
+  const asked = (lawsAsked = Symbol("laws"));
+  const [laws, listing] = await Promise.all([api.get("/api/laws"), api.get("/api/files")]);
+  if (asked !== lawsAsked) return; // a newer refresh is under way
+  const kept = sel.value;
+  for (const g of [...sel.querySelectorAll("optgroup")]) g.remove();
   const add = (group, value, text) => {
     const o = document.createElement("option");
     o.value = value;
@@ -590,15 +635,16 @@ async function loadLaws() {
   };
   const shipped = document.createElement("optgroup");
   shipped.label = "shipped laws";
-  for (const e of (await api.get("/api/laws")).examples) add(shipped, `example:${e.name}`, `${e.name} (${e.output})`);
+  for (const e of laws.examples) add(shipped, `example:${e.name}`, `${e.name} (${e.output})`);
   sel.appendChild(shipped);
-  const files = (await api.get("/api/files")).files.filter((f) => f.name.endsWith(".toml"));
+  const files = listing.files.filter((f) => f.name.endsWith(".toml"));
   if (files.length) {
     const ws = document.createElement("optgroup");
     ws.label = "workspace";
     for (const f of files) add(ws, `file:${f.name}`, f.name);
     sel.appendChild(ws);
   }
+  sel.value = [...sel.options].some((o) => o.value === kept) ? kept : "";
 }
 
 let forcing = null;
@@ -934,10 +980,11 @@ function redo() {
 }
 
 /** Replace the model by a TOML text (one undo step); resolves once it is solved. */
-async function load(text, { fitView = true } = {}) {
+async function load(text, { fitView = true, cam } = {}) {
   const parsed = await api.post("/api/parse", { model: text });
   const before = snapshot();
   S.model = parsed.model;
+  if (cam !== undefined) S.cam = cam; // a file opened with its cam (or without one): the same undo step
   pushUndo(before);
   S.selected = null; S.draftLink = null; S.frame = 0;
   clearTomlError();
@@ -1462,6 +1509,7 @@ function setTool(tool) {
   for (const b of $$("[data-tool]")) b.setAttribute("aria-pressed", String(b.dataset.tool === tool));
   svg().dataset.tool = tool;
   document.body.classList.remove("tools-open");
+  if (tool === "cam") loadLaws().catch((e) => notify(`laws: ${e.message}`));
 }
 
 function endLink() {
@@ -1532,22 +1580,77 @@ async function listFiles() {
 }
 
 async function openFile(name) {
+  if (name.endsWith(".cam.toml")) return openCam(name);
   const { model, etag } = await api.getFile(name);
-  await load(model);
-  S.file = { name, etag };
+  // the cam saved beside the model comes back with it (a model without one: no cam)
+  let cam = null;
+  let camEtag = null;
+  try {
+    const got = await api.getFile(camFileOf(name));
+    cam = await camFromFile(got.model, (await api.post("/api/parse", { model })).model);
+    camEtag = got.etag;
+  } catch (e) {
+    if (e.status !== 404) notify(`${camFileOf(name)}: ${e.message}`);
+  }
+  await load(model, { cam });
+  if (cam) { await syncCam(); fit(); render(); } // the view takes in the cam too
+  S.file = { name, etag, camEtag };
   $("#file-name").value = name;
   $("#dlg-files").close();
   notify(`opened ${name}`);
 }
 
+/** A CAM.toml opened alone: an empty bench with the cam at its pivot (one undo step). */
+async function openCam(name) {
+  const { model } = await api.getFile(name);
+  const cam = await camFromFile(model, M.EMPTY());
+  stop();
+  const before = snapshot();
+  S.model = M.EMPTY();
+  S.cam = cam;
+  pushUndo(before);
+  S.selected = null; S.draftLink = null; S.frame = 0;
+  await changed();
+  fit();
+  render();
+  S.file = { name: null, etag: null, camEtag: null };
+  $("#dlg-files").close();
+  notify(`opened the cam ${name}`);
+}
+
+/** Save the bench's cam as the CAM.toml beside the model file `name` (If-Match: the cam file's ETag when it was
+ * opened or saved with this model); the new ETag, or null after a conflict (shown). */
+async function saveCam(name, force = null) {
+  const file = camFileOf(name);
+  if (S.camRevision !== S.revision) await syncCam();
+  if (!S.camFrames?.cam_toml) throw new Error(`the cam is not drawn (${S.camError || "not solved"}): ${file} not written`);
+  try {
+    S.file.camEtag = await api.putFile(file, S.camFrames.cam_toml, force || S.file.camEtag);
+    return S.file.camEtag;
+  } catch (e) {
+    if (e.status === 412 || e.status === 428) {
+      showConflict(file, e.status, { overwrite: (tag) => saveCam(name, tag), mine: name });
+      if (!$("#dlg-files").open) $("#dlg-files").showModal();
+      return null;
+    }
+    throw e;
+  }
+}
+
 async function saveFile(name, { force = false } = {}) {
   name = name || S.file.name || "design.toml";
+  if (name.endsWith(".cam.toml")) {
+    notify(`${name}: a .cam.toml name is the cam's; save the bench as a model (.toml), its cam goes beside it`);
+    return null;
+  }
   const etag = S.file.name === name ? S.file.etag : null;
   $("#file-conflict").hidden = true;
   try {
     const newTag = await api.putFile(name, S.toml, force ? force : etag);
-    S.file = { name, etag: newTag };
-    notify(`saved ${name}`);
+    const camEtag = S.file.name === name ? S.file.camEtag : null;
+    S.file = { name, etag: newTag, camEtag };
+    if (S.cam && (await saveCam(name)) === null) return null;
+    notify(S.cam ? `saved ${name} and its cam ${camFileOf(name)}` : `saved ${name}`);
     listFiles();
     return name;
   } catch (e) {
@@ -1561,22 +1664,25 @@ async function saveFile(name, { force = false } = {}) {
   }
 }
 
-function showConflict(name, status) {
+function showConflict(name, status, { overwrite = null, mine = null } = {}) {
   $("#file-conflict").hidden = false;
   $("#file-conflict-text").textContent = status === 412
     ? `${name} changed in the workspace since you opened it: nothing was written. Keep which?`
     : `${name} already exists in the workspace: nothing was written. Keep which?`;
-  $("#conflict-overwrite").onclick = async () => { const { etag } = await api.getFile(name); await saveFile(name, { force: etag }); };
+  $("#conflict-overwrite").onclick = async () => {
+    const { etag } = await api.getFile(name);
+    await (overwrite ? overwrite(etag) : saveFile(name, { force: etag }));
+  };
   $("#conflict-copy").onclick = async () => {
     const { files } = await api.get("/api/files");
     const names = new Set(files.map((f) => f.name));
-    const stem = name.replace(/\.toml$/, "");
+    const stem = (mine || name).replace(/\.toml$/, ""); // a cam's conflict: the bench saved as a new model
     let k = 2;
     while (names.has(`${stem}-${k}.toml`)) k++;
     S.file = { name: null, etag: null };
     await saveFile(`${stem}-${k}.toml`);
   };
-  $("#conflict-theirs").onclick = () => openFile(name);
+  $("#conflict-theirs").onclick = () => openFile(mine || name);
 }
 
 // synthesis
