@@ -20,7 +20,7 @@ from selenium.webdriver.support.ui import Select
 
 from tests.workbench import _server
 from tests.workbench._server import guarded, open_bench, wait_for
-from tests.workbench.test_page import FOURBAR, call, click_at, desktop, joint_centre, js, settled, shot, tool
+from tests.workbench.test_page import FOURBAR, call, click_at, desktop, joint_centre, js, screen, settled, shot, tool
 
 bench = _server.bench
 browser = _server.browser
@@ -110,3 +110,44 @@ def test_law_list_is_asked_again_when_the_cam_tool_is_chosen(browser, bench):
             d, "return [...document.querySelectorAll('#cam-law option')].some((o) => o.value === 'file:my_law.toml')"
         )
         assert values().count("example:law_lift") == 1  # rebuilt, not appended
+
+
+def test_share_link_carries_the_cam_and_a_fresh_page_finds_it(browser, bench):
+    import base64
+    import zlib
+
+    from gearlever.cams import cam_centre, load_cam
+
+    d = browser
+    desktop(d)
+    with guarded(d, bench):
+        open_bench(d, bench)
+        call(d, "workbench.load(arguments[0])", FOURBAR)
+        settled(d)
+        Select(d.find_element(By.ID, "cam-law")).select_by_value("example:law_lift")
+        Select(d.find_element(By.ID, "cam-follower")).select_by_visible_text("translating-flat")
+        tool(d, "cam")
+        click_at(d, *screen(d, 20.0, -8.0))  # on no joint: a cam alone beside the linkage
+        wait_for(d, _CAM_READY)
+        settled(d)
+        before = js(d, "return workbench.cam()")
+        link = call(d, "workbench.share()")["ok"]
+        frag = link.split("#", 1)[1]
+        assert frag.startswith("m=") and "&c=" in frag and "token" not in link
+        # the cam's part is the CAM.toml text, deflate-raw compressed and base64url encoded, as the model's
+        packed = frag.split("&c=", 1)[1]
+        text = zlib.decompress(base64.urlsafe_b64decode(packed + "=" * (-len(packed) % 4)), -15).decode()
+        path = bench.workspace.parent / "shared.cam.toml"
+        path.write_text(text, encoding="utf-8")
+        assert list(cam_centre(path)) == before["centre"] and load_cam(path).follower == "translating-flat"
+        model = js(d, "return workbench.model()")
+        d.get("about:blank")
+        open_bench(d, bench, fragment=frag)
+        wait_for(d, _CAM_READY)
+        settled(d)
+        after = js(d, "return workbench.cam()")
+        assert js(d, "return workbench.model()") == model
+        assert after["follower_kind"] == "translating-flat" and after["centre"] == before["centre"]
+        assert abs(after["base_radius"] - before["base_radius"]) <= 1e-11 * before["base_radius"]
+        np.testing.assert_allclose(after["s"], before["s"], atol=1e-9)
+        assert js(d, "return workbench.state().undo") == 1  # model and cam: one step

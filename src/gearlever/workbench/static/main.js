@@ -6,7 +6,7 @@
 import * as api from "./api.js";
 import * as M from "./model.js";
 import { drawPlot, el } from "./plots.js";
-import { modelFromFragment, shareUrl } from "./share.js";
+import { sharedFromFragment, shareUrl } from "./share.js";
 
 const FRAMES = 360;
 const POSE_PX = 36; // drawn length of a pose's direction
@@ -1550,7 +1550,8 @@ async function exportAs(format) {
 }
 
 async function openShare() {
-  const link = await shareUrl(S.toml);
+  if (S.cam && S.camRevision !== S.revision) await syncCam();
+  const link = await shareUrl(S.toml, S.cam ? S.camFrames?.cam_toml : null);
   $("#share-link").value = link;
   window.history.replaceState(null, "", new URL(link).hash);
   try { await navigator.clipboard.writeText(link); notify("share link copied"); } catch { notify("share link in the export panel"); }
@@ -2079,10 +2080,16 @@ function wire() {
 }
 
 async function fromFragment() {
-  let text = null;
-  try { text = await modelFromFragment(); } catch (e) { notify(`share link: ${e.message}`); return false; }
-  if (text === null) return false;
-  try { await load(text); notify("opened from the share link"); return true; } catch (e) { notify(`share link: ${e.message}`); return false; }
+  let shared = null;
+  try { shared = await sharedFromFragment(); } catch (e) { notify(`share link: ${e.message}`); return false; }
+  if (shared === null) return false;
+  try {
+    const cam = shared.cam ? await camFromFile(shared.cam, (await api.post("/api/parse", { model: shared.model })).model) : null;
+    await load(shared.model, { cam });
+    if (cam) { await syncCam(); fit(); render(); }
+    notify(shared.cam ? "opened from the share link, with its cam" : "opened from the share link");
+    return true;
+  } catch (e) { notify(`share link: ${e.message}`); return false; }
 }
 
 window.workbench = {
