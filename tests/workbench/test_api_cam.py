@@ -177,3 +177,44 @@ def test_a_cam_file_that_the_library_refuses_is_not_written_and_not_drawn(client
     line = error_line(client.post("/api/cam", json={"file": text}), 400)
     assert line.startswith("file: ") and says in line
     assert "one" in error_line(client.post("/api/cam", json={"file": text, "example": "law_lift"}), 400)
+
+
+def test_export_dxf_and_outline_svg_carry_the_cam_profile_on_its_own_layer(client, tmp_path):
+    """The cam layer's polyline is the library's profile (load_cam's surface) turned by the frame's cam angle
+    about the pivot, to 1e-6; the DXF audits clean; the outline SVG has the cam's group."""
+    import ezdxf
+
+    from gearlever.cams import load_cam
+
+    fourbar = example_text("fourbar")
+    text = ok(client.post("/api/cam", json={"example": "law_lift", "centre": [30, -20], "frames": 36}))["cam_toml"]
+    angle = 37.5
+    body = {"model": fourbar, "frames": 36, "inputs": {"crank": 90}, "cam": text, "cam_angle_deg": angle}
+    r = client.post("/api/export/dxf", json=body)
+    assert r.status_code == 200, r.text
+    path = tmp_path / "m.dxf"
+    path.write_bytes(r.content)
+    doc = ezdxf.readfile(path)
+    assert not doc.audit().has_errors
+    assert {"ground", "crank", "coupler", "rocker", "cam"} <= {layer.dxf.name for layer in doc.layers}
+    polys = doc.modelspace().query('LWPOLYLINE[layer=="cam"]')
+    assert len(polys) == 1 and polys[0].closed
+    got = np.array([(p[0], p[1]) for p in polys[0].get_points("xy")])
+    cam_file = tmp_path / "c.cam.toml"
+    cam_file.write_text(text)
+    t = math.radians(angle)
+    surface = load_cam(cam_file).surface
+    want = surface @ np.array([[math.cos(t), math.sin(t)], [-math.sin(t), math.cos(t)]]) + [30, -20]
+    assert got.shape == want.shape and np.abs(got - want).max() <= 1e-6
+    circles = doc.modelspace().query('CIRCLE[layer=="cam"]')
+    assert [tuple(c.dxf.center)[:2] for c in circles] == [(30.0, -20.0)]  # the bore at the pivot
+    svg = client.post("/api/export/svg-outline", json=body)
+    assert svg.status_code == 200 and 'id="link-cam"' in svg.text
+    # without a cam: no cam layer; a cam for a raster format or a bad cam text is refused, named
+    plain = client.post("/api/export/dxf", json={k: v for k, v in body.items() if not k.startswith("cam")})
+    path.write_bytes(plain.content)
+    assert "cam" not in {layer.dxf.name for layer in ezdxf.readfile(path).layers}
+    assert "cam:" in error_line(client.post("/api/export/png", json={"model": fourbar, "cam": text}), 400)
+    bad = client.post("/api/export/dxf", json={**body, "cam": "[cam]\nfollower = 1\n"})
+    assert error_line(bad, 400).startswith("cam: ")
+    assert "cam_angle_deg" in error_line(client.post("/api/export/dxf", json={**body, "cam_angle_deg": "x"}), 400)

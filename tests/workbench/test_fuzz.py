@@ -234,6 +234,17 @@ def test_cam_never_answers_5xx(client, body):
 
 @FUZZ
 @given(
+    fmt=st.sampled_from(["dxf", "svg-outline", "csv"]),
+    cam=st.one_of(st.just(CAM_FILE), st.text(max_size=40), json_values),
+    angle=st.one_of(numbers, json_values),
+)
+def test_export_with_a_cam_never_answers_5xx(client, fmt, cam, angle):
+    body = {"model": example_text("fourbar"), "frames": 8, "cam": cam, "cam_angle_deg": angle}
+    check(client.post(f"/api/export/{fmt}", json=body))
+
+
+@FUZZ
+@given(
     name=st.one_of(
         st.text(max_size=30),
         st.sampled_from(["m.toml", "../m.toml", "a.links.json", "%2e%2e", "con.toml", "m.cam.toml"]),

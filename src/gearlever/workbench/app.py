@@ -602,10 +602,19 @@ def create_app(
         if fmt not in engine.EXPORT_FORMATS:
             raise ApiError(404, f"format: {fmt[:40]!r} is not one of {', '.join(engine.EXPORT_FORMATS)}")
         body = await _body(request)
-        _only(body, ("model", "frames", "inputs"))
+        _only(body, ("model", "frames", "inputs", "cam", "cam_angle_deg"))
         inputs = _field(body, "inputs", dict, required=False)
+        cam = _field(body, "cam", str, required=False)
+        cam_angle = body.get("cam_angle_deg", 0.0)  # checked by the engine: a finite number
         data, ctype, filename = await pool.call(
-            "export", export_seconds, text=_model_text(body), fmt=fmt, frames=_frames(body), inputs=inputs
+            "export",
+            export_seconds,
+            text=_model_text(body),
+            fmt=fmt,
+            frames=_frames(body),
+            inputs=inputs,
+            cam=cam,
+            cam_angle_deg=cam_angle,
         )
         return Response(
             data,
@@ -867,8 +876,17 @@ OPENAPI = {
         },
         "/api/export/{format}": {
             "post": _op(
-                "the model as a file (svg, png, gif, csv, html, toml; dxf and svg-outline at the pose of inputs)",
-                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS}),
+                "the model as a file (svg, png, gif, csv, html, toml; dxf and svg-outline at the pose of inputs, "
+                "with the cam's profile on a layer of its own when cam is given)",
+                _obj(
+                    {
+                        "model": _MODEL,
+                        "frames": _FRAMES,
+                        "inputs": _NUMS,
+                        "cam": {"type": "string", "maxLength": 100000, "description": "a CAM.toml text (cam_toml)"},
+                        "cam_angle_deg": {"type": "number", "description": "the cam's turn in the frame drawn"},
+                    }
+                ),
                 answer="the file",
                 extra_codes=("404", "413"),
                 params=[

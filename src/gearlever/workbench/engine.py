@@ -997,7 +997,7 @@ def _safe_name(name: str) -> str:
     return keep or "mechanism"
 
 
-def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
+def export(text, fmt: str, frames: int = 360, inputs=None, cam=None, cam_angle_deg=0.0) -> tuple:
     """The model as a file: ``(body bytes, content type, file name)``.
 
     ``fmt``: ``svg``, ``png`` (the drawing of ``gearlever mechanism draw``),
@@ -1007,7 +1007,12 @@ def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
     ``dxf`` and ``svg-outline`` (every link's outline, pin holes and gears for
     CAD, :func:`gearlever.export.mechanism_drawing`, one layer or group per
     link) at the pose of ``inputs`` (``{input: deg, or length for a
-    slider}``, as for :func:`solve_frames`; default the sketch).
+    slider}``, as for :func:`solve_frames`; default the sketch).  ``cam``, a
+    CAM.toml text (the bench's cam, :func:`cam`'s ``cam_toml``), adds the
+    cam's profile to those two as a part of its own (layer ``cam``): the
+    library's surface (:func:`gearlever.cams.load_cam`) turned
+    counterclockwise by ``cam_angle_deg`` about its ``centre``, with a bore
+    of the pin diameter there.
     """
     if fmt not in EXPORT_FORMATS:
         raise WorkbenchError(f"format must be one of {', '.join(EXPORT_FORMATS)}, got {fmt!r}")
@@ -1016,7 +1021,9 @@ def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
     _work(mech, frames)
     stem = _safe_name(mech.model.name or "mechanism")
     if fmt in ("dxf", "svg-outline"):
-        return _cad(mech, fmt, stem, inputs)
+        return _cad(mech, fmt, stem, inputs, cam, cam_angle_deg)
+    if cam is not None:
+        raise WorkbenchError(f"cam: the cam's profile is drawn in the dxf and svg-outline formats, not {fmt}")
     if inputs is not None:
         raise WorkbenchError(f"inputs: a pose is for the dxf and svg-outline formats, not {fmt}")
     if fmt == "toml":
@@ -1057,9 +1064,10 @@ def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
     return data, ctype, f"{stem}.{fmt}"
 
 
-def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
-    """DXF or outline SVG of the mechanism at a pose (:mod:`gearlever.export`)."""
+def _cad(mech, fmt: str, stem: str, inputs, cam=None, cam_angle_deg=0.0) -> tuple:
+    """DXF or outline SVG of the mechanism at a pose (:mod:`gearlever.export`), with the bench's cam if given."""
     import tempfile
+    from dataclasses import replace
     from pathlib import Path
 
     from gearlever.export import FORMATS, mechanism_drawing
@@ -1070,6 +1078,9 @@ def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
         drawing = mechanism_drawing(mech, pose)
     except GearleverError as exc:
         raise WorkbenchError(f"inputs: {exc}") from None
+    if cam is not None:
+        taken = {p.name for p in drawing.parts}
+        drawing = replace(drawing, parts=(*drawing.parts, cam_part(cam, cam_angle_deg, drawing.pin_diameter, taken)))
     suffix = "dxf" if fmt == "dxf" else "svg"
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / f"m.{suffix}"
@@ -1078,6 +1089,58 @@ def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
     if fmt == "dxf":
         return data, "application/dxf", f"{stem}.dxf"
     return data, "image/svg+xml", f"{stem}_outline.svg"
+
+
+def cam_part(text, angle_deg=0.0, bore: float = 0.0, taken=()):
+    """The bench's cam as a part of a CAD drawing: its profile and its bore, on a layer of its own.
+
+    Parameters
+    ----------
+    text : str
+        The CAM.toml text (:func:`cam`'s ``cam_toml``), read by
+        :func:`gearlever.cams.load_cam` (the profile) and
+        :func:`gearlever.cams.cam_centre` (where its pivot is).
+    angle_deg : float
+        The cam's turn (counterclockwise, deg), as the frame drawn.
+    bore : float
+        Diameter of the hole at the pivot (0: none).
+    taken : collection of str
+        Names of the drawing's parts: the layer is ``cam``, or ``cam_2``... when a link holds that name.
+
+    Returns
+    -------
+    gearlever.export.outline.Part
+
+    Examples
+    --------
+    >>> p = cam_part(cam({"example": "law_lift", "centre": [100, 0], "frames": 36})["cam_toml"], 0.0, 4.0)
+    >>> p.name, p.outlines[0].shape, p.holes
+    ('cam', (36, 2), (((100.0, 0.0), 2.0),))
+    """
+    import tempfile
+    from pathlib import Path
+
+    from gearlever.cams import cam_centre, load_cam
+    from gearlever.export.outline import Part
+
+    try:
+        cam_file_params(text)  # every refusal of the CAM format, named
+    except WorkbenchError as exc:
+        raise WorkbenchError("cam: " + str(exc).removeprefix("file: ")) from None
+    a = _float({"cam_angle_deg": angle_deg}, "cam_angle_deg", 0.0, -1e6, 1e6)
+    with tempfile.TemporaryDirectory() as tmp:
+        p = Path(tmp) / "cam.toml"
+        p.write_text(text, encoding="utf-8")
+        design, centre = load_cam(p), np.array(cam_centre(p))
+    t = math.radians(a)
+    turn = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+    outline = design.surface @ turn.T + centre
+    name, k = "cam", 1
+    while name in taken:
+        k += 1
+        name = f"cam_{k}"
+    holes = (((float(centre[0]), float(centre[1])), bore / 2),) if bore > 0 else ()
+    return Part(name, (outline,), holes, origin=(float(centre[0]), float(centre[1])), angle=t)
 
 
 # --------------------------------------------------------------------------- cams

@@ -1538,6 +1538,11 @@ async function exportAs(format) {
       const k = S.frames.closed[S.frame] ? S.frame : lastClosed(S.frame);
       body.inputs = Object.fromEntries(Object.entries(S.frames.inputs_deg).map(([n, v]) => [n, v[k]]));
     }
+    // the cam on the bench: its profile on a layer of its own, turned as in the frame shown
+    if ((format === "dxf" || format === "svg-outline") && S.cam && S.camFrames && S.camRevision === S.revision) {
+      body.cam = S.camFrames.cam_toml;
+      body.cam_angle_deg = S.camFrames.cam_angle_deg[S.frame % S.camFrames.frames];
+    }
     const { blob, filename } = await api.postFile(`/api/export/${format}`, body);
     const base = (S.file.name || S.model.mechanism?.name || "mechanism").replace(/\.toml$/, "").replace(/[^\p{L}\p{N}_.-]+/gu, "_");
     download(blob, filename || `${base}.${format}`);
