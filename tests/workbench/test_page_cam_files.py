@@ -67,7 +67,7 @@ def test_cam_saved_beside_the_model_reopens_in_a_fresh_page_the_same(browser, be
             assert after[key] == before[key], key
         np.testing.assert_allclose(after["s"], before["s"], atol=1e-9)
         np.testing.assert_allclose(np.array(after["profile"], float), np.array(before["profile"], float), atol=1e-8)
-        assert "it turns with crank" in d.find_element(By.ID, "status").text
+        wait_for(d, "return document.getElementById('status').textContent.includes('it turns with crank')")
         assert js(d, "return workbench.state().undo") == 1  # model and cam: one step
         js(d, "workbench.setFrame(60)")
         shot(d, tmp_path, "cam_reopened")

@@ -1592,11 +1592,14 @@ async function openFile(name) {
   let cam = null;
   let camEtag = null;
   try {
-    const got = await api.getFile(camFileOf(name));
-    cam = await camFromFile(got.model, (await api.post("/api/parse", { model })).model);
-    camEtag = got.etag;
+    const { files } = await api.get("/api/files");
+    if (files.some((f) => f.name === camFileOf(name))) {
+      const got = await api.getFile(camFileOf(name));
+      cam = await camFromFile(got.model, (await api.post("/api/parse", { model })).model);
+      camEtag = got.etag;
+    }
   } catch (e) {
-    if (e.status !== 404) notify(`${camFileOf(name)}: ${e.message}`);
+    notify(`${camFileOf(name)}: ${e.message}`);
   }
   await load(model, { cam });
   if (cam) { await syncCam(); fit(); render(); } // the view takes in the cam too
