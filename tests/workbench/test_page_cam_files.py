@@ -124,6 +124,7 @@ def test_share_link_carries_the_cam_and_a_fresh_page_finds_it(browser, bench):
         open_bench(d, bench)
         call(d, "workbench.load(arguments[0])", FOURBAR)
         settled(d)
+        plain_dxf = call(d, "workbench.export('dxf')")["ok"]
         Select(d.find_element(By.ID, "cam-law")).select_by_value("example:law_lift")
         Select(d.find_element(By.ID, "cam-follower")).select_by_visible_text("translating-flat")
         tool(d, "cam")
@@ -131,6 +132,8 @@ def test_share_link_carries_the_cam_and_a_fresh_page_finds_it(browser, bench):
         wait_for(d, _CAM_READY)
         settled(d)
         before = js(d, "return workbench.cam()")
+        # the page's DXF carries the cam's profile: 360 more polyline vertices than the linkage alone
+        assert call(d, "workbench.export('dxf')")["ok"] > plain_dxf + 360 * 2 * 10
         link = call(d, "workbench.share()")["ok"]
         frag = link.split("#", 1)[1]
         assert frag.startswith("m=") and "&c=" in frag and "token" not in link

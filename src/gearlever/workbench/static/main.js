@@ -1659,7 +1659,10 @@ async function saveFile(name, { force = false } = {}) {
     const camEtag = S.file.name === name ? S.file.camEtag : null;
     S.file = { name, etag: newTag, camEtag };
     if (S.cam && (await saveCam(name)) === null) return null;
-    notify(S.cam ? `saved ${name} and its cam ${camFileOf(name)}` : `saved ${name}`);
+    // a cam file left beside a model saved without a cam would bring a cam back when it is opened: say so
+    const stray = !S.cam && (await api.get("/api/files")).files.some((f) => f.name === camFileOf(name));
+    notify(S.cam ? `saved ${name} and its cam ${camFileOf(name)}`
+      : (stray ? `saved ${name}; ${camFileOf(name)} beside it is left as it was (it opens with ${name})` : `saved ${name}`));
     listFiles();
     return name;
   } catch (e) {
