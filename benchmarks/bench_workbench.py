@@ -111,14 +111,16 @@ def edited_obj(obj: dict, i: int) -> dict:
 
 
 def server_cpu_ms(text: str, n: int = 15) -> float:
-    """Median CPU time (ms) of the worker's share of an edit: compile, solve and encode a cycle of 360 frames."""
+    """Median CPU time (ms) of the worker's share of an edit as the page sends it (the model as JSON): check,
+    write the TOML, compile, solve and encode a cycle of 360 frames (``engine.dump_solve``)."""
     from gearlever.workbench import engine
     from gearlever.workbench.app import _HAS_ORJSON, _encode
 
+    obj = engine.parse(text)["model"]
     runs = []
     for i in range(n):
         t0 = time.process_time()
-        _encode(engine.solve_frames(edited(text, 10_000 + i), FRAMES, plain=not _HAS_ORJSON))
+        _encode(engine.dump_solve(edited_obj(obj, 10_000 + i), FRAMES, plain=not _HAS_ORJSON))
         runs.append(time.process_time() - t0)
     return float(np.median(runs[2:])) * 1000
 

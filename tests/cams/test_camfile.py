@@ -45,3 +45,34 @@ def test_written_cam_reads_back_as_the_same_design(tmp_path, kind, dims):
     back = load_cam(path)
     assert back.follower == kind and back.theta.size == 720
     assert np.allclose(back.surface, cam.surface, rtol=1e-11, atol=1e-11 * 40.0)
+
+
+def test_centre_is_written_and_read_back_and_leaves_the_design_alone(tmp_path):
+    from gearlever.cams import cam_centre
+
+    law = law_from_segments("displacement", "mm", LAW)
+    cam = design_cam(law, "translating-roller", base_radius=40.0, roller_radius=6.0, points=720)
+    path = tmp_path / "cam.toml"
+    path.write_text(cam_toml(cam, law.to_dict(), {}, centre=(120.5, -1 / 3)))
+    assert cam_centre(path) == (120.5, float(f"{-1 / 3:.12g}"))
+    assert np.allclose(load_cam(path).surface, cam.surface, rtol=1e-11, atol=1e-11 * 40.0)  # about the pivot
+    plain = tmp_path / "plain.toml"
+    plain.write_text(cam_toml(cam, law.to_dict(), {}))
+    assert "centre" not in tomllib.loads(plain.read_text())["cam"] and cam_centre(plain) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("bad", ["[1]", '["a", 2]', "[1, nan]", "3", "[true, 1]"])
+def test_a_centre_that_is_not_two_finite_numbers_is_refused_naming_it(tmp_path, bad):
+    from gearlever.cams import cam_centre
+    from gearlever.errors import GearleverError
+
+    law = law_from_segments("displacement", "mm", LAW)
+    cam = design_cam(law, "translating-roller", base_radius=40.0, roller_radius=6.0, points=720)
+    text = cam_toml(cam, law.to_dict(), {}).replace("[cam]\n", f"[cam]\ncentre = {bad}\n")
+    path = tmp_path / "cam.toml"
+    path.write_text(text)
+    for read in (load_cam, cam_centre):
+        with pytest.raises(GearleverError, match=r"\[cam\] centre must be \[x, y\]"):
+            read(path)
+    with pytest.raises(GearleverError, match="centre"):
+        cam_toml(cam, law.to_dict(), {}, centre=(1.0, float("inf")))

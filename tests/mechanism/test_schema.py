@@ -53,6 +53,7 @@ def _element(name: str) -> dict:
         "masses": {"mass": 1.0, "centre": "A", "inertia": 0.1},
         "loads": {"link": "rocker", "torque": 1.0},
         "friction": {"coefficient": 0.1, "pin_radius": 0.05},
+        "poses": {"point": [1.0, 2.0], "angle_deg": 30.0},
     }[name]
 
 
@@ -80,6 +81,8 @@ def _with(name: str, element: dict) -> dict:
         d["loads"] = [element]
     elif name == "friction":
         d["friction"] = element
+    elif name == "poses":
+        d["poses"] = [element]
     return d
 
 
@@ -116,6 +119,7 @@ def test_reader_keeps_the_schemas_kept_tables_in_extra():
     d = dict(FOURBAR, lengths={"crank": 1.5}, masses={"crank": {"mass": 1.0, "centre": "A"}})
     d["loads"] = [{"link": "rocker", "torque": 2.0}]
     d["friction"] = {"coefficient": 0.1, "pin_radius": 0.05}
+    d["poses"] = [{"point": [1.0, 2.0], "angle_deg": 30.0}]
     m = model_from_dict(d)
     assert set(m.extra) == set(schema.kept_tables())
 
@@ -344,3 +348,21 @@ def test_schema_caps_are_the_readers():
 
     assert model.MAX_LINKS == schema.MAX_LINKS and loads.MAX_LOAD == schema.MAX_LOAD
     assert math.isclose(schema.MAX_COORDINATE, 1e12)
+
+
+def test_poses_round_trip_through_dumps_and_loads_and_read_in_radians():
+    from gearlever.mechanism.model import parse_poses
+
+    d = dict(FOURBAR, poses=[{"point": [0.5, 2.0], "angle_deg": 30.0}, {"point": [1.5, 2.5], "angle_deg": -15.5}])
+    m = Mechanism.from_dict(d)
+    again = Mechanism.loads(m.dumps())
+    assert again.model.extra["poses"] == d["poses"]
+    assert parse_poses(again.model.extra["poses"]) == [(0.5, 2.0, math.radians(30.0)), (1.5, 2.5, math.radians(-15.5))]
+
+
+def test_poses_beyond_the_five_motion_synthesis_takes_are_refused_naming_the_table():
+    d = dict(FOURBAR, poses=[{"point": [0.0, float(k)], "angle_deg": 0.0} for k in range(schema.MAX_POSES + 1)])
+    with pytest.raises(GearleverError, match=r"\[\[poses\]\]: 6 entries, more than the cap of 5"):
+        model_from_dict(d)
+    with pytest.raises(GearleverError, match=r"poses\[0\]\.angle_deg must be a finite number"):
+        model_from_dict(dict(FOURBAR, poses=[{"point": [0.0, 0.0], "angle_deg": float("nan")}]))

@@ -89,6 +89,28 @@ def test_dump_round_trips_parse(client, name):
     assert again["model"] == parsed["model"]
 
 
+@pytest.mark.parametrize("name", ["fourbar", "zrdpm_gear_contour", "watt_sixbar"])
+def test_an_edit_builds_its_mechanism_once_and_it_is_the_one_its_text_reads_to(name, monkeypatch):
+    from gearlever.mechanism import Mechanism
+    from gearlever.workbench import engine
+
+    obj = engine.parse(example_text(name))["model"]
+    obj["points"] = {k: [x + 1e-3, y] for k, (x, y) in obj["points"].items()}  # a model not seen before
+    built = []
+    real = engine._mechanism
+    monkeypatch.setattr(engine, "_mechanism", lambda *a, **k: built.append(1) or real(*a, **k))
+    answer = engine.dump_solve(obj, frames=12)
+    assert len(built) == 1  # dump builds it; the solve of its text finds it
+    cached = engine.load(answer["toml"])
+    assert len(built) == 1 and cached.model == Mechanism.loads(answer["toml"]).model
+    # and it moves as the mechanism read from the text does, row by row
+    fresh = Mechanism.loads(answer["toml"])
+    q = fresh.sketch_inputs[None, :] + np.linspace(0.0, 1.0, 7)[:, None]
+    a, b = cached.solve(q), fresh.solve(q)
+    for p in fresh.model.points:
+        np.testing.assert_array_equal(a.point[p], b.point[p])
+
+
 def test_dump_refuses_a_non_object_and_a_bad_model(client):
     assert "JSON object" in error_line(client.post("/api/dump", json={"model": "text"}), 400)
     assert "links" in error_line(client.post("/api/dump", json={"model": {"points": {"A": [0, 0]}}}), 400)

@@ -168,3 +168,36 @@ def test_solve_of_a_model_object_answers_its_toml_and_the_same_cycle_as_dump_the
     two = ok(client.post("/api/solve", json={"model": text, "frames": 36}))
     assert one.pop("toml") == text and one == two
     assert "points" in error_line(client.post("/api/solve", json={"model": {"links": {}}, "frames": 36}), 400)
+
+
+# --------------------------------------------------------------------------- synthesis kinds
+@pytest.mark.parametrize(("family", "auto"), [("path", True), ("function", False), ("law", True)])
+def test_job_types_are_the_kinds_of_the_one_synthesis_registry(family, auto):
+    from gearlever.synthesis.registry import names
+    from gearlever.workbench.engine import WorkbenchError, check_job
+
+    base = {
+        "path": {"target": [[0, 0], [1, 1], [2, 0]]},
+        "function": {"expr": "x", "x_range": [1, 2], "input_range_deg": [0, 90], "output_range_deg": [0, 90]},
+        "law": {"law": example_text("law_lift")},
+    }[family]
+    known = names(family) + (("auto",) if auto else ())
+    for t in known:
+        assert check_job({"kind": family, **base, "type": t})["type"] == t
+    with pytest.raises(WorkbenchError, match=f"type must be one of {', '.join(known)}, got 'nope'"):
+        check_job({"kind": family, **base, "type": "nope"})
+
+
+def test_a_motion_job_runs_the_registrys_kind_for_its_number_of_poses():
+    from gearlever.synthesis.motion import synthesize_motion
+    from gearlever.workbench.engine import check_job, run_job
+
+    poses = [[0.0, 0.0, 0.0], [2.0, 1.0, 20.0], [4.0, 1.0, 45.0], [5.0, 0.0, 70.0]]
+    seen = []
+    results = run_job(check_job({"kind": "motion", "poses": poses}), progress=lambda *a: seen.append(a[0]))
+    assert seen[0] == "start" and seen[-1] == "done" and results[0]["rank"] == 1
+    # the same designs as the library's driver called directly
+    ref = synthesize_motion(np.array(poses)[:, :2], np.radians(np.array(poses)[:, 2]))
+    good = [s for s in ref.solutions if not s.defect] or list(ref.solutions)
+    assert len(results) == min(len(good), 10)
+    assert results[0]["score"]["residual"] == pytest.approx(good[0].residual, rel=1e-12, abs=1e-15)

@@ -189,13 +189,73 @@ def test_jobs_never_answer_5xx(client, body):
         check(client.get(f"/api/jobs/{job_id}"))
 
 
+CAM_FILE = (
+    '[cam]\nfollower = "translating-roller"\nbase_radius = 30.0\nroller_radius = 5.0\ncentre = [3.0, 4.0]\n'
+    + example_text("law_lift")
+)
+
+cam_bodies = st.one_of(
+    json_values,
+    st.fixed_dictionaries(
+        {},
+        optional={
+            "example": st.one_of(st.sampled_from(["law_lift", "law_dwell_rocker", "fourbar", "../x"]), json_values),
+            "law": st.one_of(st.text(max_size=40), st.just(example_text("law_lift")), json_values),
+            "file": st.one_of(
+                st.text(max_size=40),
+                st.just(CAM_FILE),
+                st.just(CAM_FILE.replace("centre = [3.0, 4.0]", "centre = [1e400, 2]")),
+                st.just(CAM_FILE.replace("[cam]", '[cam]\nwheel = "x"')),
+                json_values,
+            ),
+            "follower": st.one_of(
+                st.sampled_from(["translating-roller", "translating-flat", "oscillating-roller", "x"]), json_values
+            ),
+            "centre": st.one_of(json_values, st.lists(numbers, max_size=3)),
+            "base_radius": st.one_of(numbers, json_values),
+            "roller_radius": st.one_of(numbers, json_values),
+            "offset": numbers,
+            "arm": numbers,
+            "pivot_distance": numbers,
+            "max_pressure_angle_deg": st.one_of(numbers, json_values),
+            "frames": st.one_of(st.integers(-5, 50), json_values),
+            "angles_deg": st.one_of(json_values, st.lists(numbers, max_size=5)),
+            "x": json_values,
+        },
+    ),
+)
+
+
+@FUZZ
+@given(body=cam_bodies)
+def test_cam_never_answers_5xx(client, body):
+    check(client.post("/api/cam", json=body))
+
+
+@FUZZ
+@given(
+    fmt=st.sampled_from(["dxf", "svg-outline", "csv"]),
+    cam=st.one_of(st.just(CAM_FILE), st.text(max_size=40), json_values),
+    angle=st.one_of(numbers, json_values),
+)
+def test_export_with_a_cam_never_answers_5xx(client, fmt, cam, angle):
+    body = {"model": example_text("fourbar"), "frames": 8, "cam": cam, "cam_angle_deg": angle}
+    check(client.post(f"/api/export/{fmt}", json=body))
+
+
 @FUZZ
 @given(
     name=st.one_of(
-        st.text(max_size=30), st.sampled_from(["m.toml", "../m.toml", "a.links.json", "%2e%2e", "con.toml"])
+        st.text(max_size=30),
+        st.sampled_from(["m.toml", "../m.toml", "a.links.json", "%2e%2e", "con.toml", "m.cam.toml"]),
     ),
     method=st.sampled_from(["GET", "PUT"]),
-    body=st.one_of(json_values, st.fixed_dictionaries({"model": st.one_of(st.text(max_size=50), json_values)})),
+    body=st.one_of(
+        json_values,
+        st.fixed_dictionaries(
+            {"model": st.one_of(st.text(max_size=50), st.just(CAM_FILE), st.just(CAM_FILE[:90]), json_values)}
+        ),
+    ),
     if_match=st.one_of(st.none(), st.text(max_size=20).filter(lambda s: s.isprintable() and s.isascii())),
 )
 def test_files_never_answer_5xx(client, name, method, body, if_match):

@@ -103,7 +103,7 @@ def test_force_arrows_and_input_torque_from_a_load_entered_in_the_panel_match_vi
         assert {"A", "B", "O2", "O4"} <= set(keys)
         shot(d, tmp_path, "forces")
         text = d.find_element(By.ID, "torque").text
-        assert text.startswith("T crank ") and text.endswith("N_mm")
+        assert text.startswith("T crank ") and text.endswith("N·mm")
         # virtual work: no mass, so the torque times the crank rate balances the load's power, T = -F . dP/dtheta
         f = js(d, "return workbench.frames()")
         T = float(text.split()[2])
@@ -218,12 +218,14 @@ def test_motion_poses_placed_and_turned_on_the_canvas_give_a_fourbar_through_the
         poses = js(d, "return workbench.poses()")
         assert math.hypot(poses[2][0] - 45, poses[2][1] - 25) < 0.6 and poses[0][2] > 10
         shot(d, tmp_path, "poses")
+        steps = settled(d)["undo"]  # the load, and each pose added, moved or turned: one step each
+        assert steps == 1 + 3 + 2, steps
         action(d, "synthesize")
         Select(d.find_element(By.ID, "synth-kind")).select_by_value("motion")
         d.find_element(By.ID, "synth-run").click()
         wait_for(d, "return document.querySelectorAll('[data-result]').length > 0", 120)
         d.find_element(By.CSS_SELECTOR, '[data-result="1"]').click()
-        wait_for(d, "return workbench.state().undo === 2 && !workbench.state().pending", 60)
+        wait_for(d, f"return workbench.state().undo === {steps + 1} && !workbench.state().pending", 60)
         text = js(d, "return workbench.model()")
         assert "motion synthesis" in text
         # the coupler passes through every pose: the library solves the inserted model

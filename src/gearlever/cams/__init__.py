@@ -14,7 +14,7 @@ Within the layering of the guide's architecture page (held by
 matplotlib.
 """
 
-from gearlever.cams.camfile import cam_toml, load_cam
+from gearlever.cams.camfile import cam_centre, cam_toml, load_cam
 from gearlever.cams.design import CamDesign, design_cam, size_base_radius
 from gearlever.cams.export import EXPORTS, export_profile
 from gearlever.cams.followers import FOLLOWERS, FollowerParams
@@ -24,6 +24,7 @@ __all__ = [
     "FOLLOWERS",
     "CamDesign",
     "FollowerParams",
+    "cam_centre",
     "cam_toml",
     "design_cam",
     "export_profile",

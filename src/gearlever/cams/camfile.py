@@ -10,10 +10,20 @@ from __future__ import annotations
 from gearlever.cams.design import MAX_POINTS, CamDesign, design_cam
 from gearlever.errors import GearleverError, a
 
-__all__ = ["CAM_DIGITS", "cam_toml", "load_cam"]
+__all__ = ["CAM_DIGITS", "cam_centre", "cam_toml", "load_cam"]
 
 #: Keys of the ``[cam]`` table.
-CAM_KEYS = ("follower", "units", "base_radius", "roller_radius", "offset", "arm", "pivot_distance", "points")
+CAM_KEYS = (
+    "follower",
+    "units",
+    "base_radius",
+    "roller_radius",
+    "offset",
+    "arm",
+    "pivot_distance",
+    "points",
+    "centre",
+)
 #: Significant digits of the numbers of a CAM.toml (and of ``gearlever cam design``'s report).
 CAM_DIGITS = 12
 
@@ -24,7 +34,7 @@ def _table(name: str, d: dict) -> list[str]:
     return [f"[{name}]"] + [f"{k} = {toml_value(v, CAM_DIGITS)}" for k, v in d.items() if v is not None]
 
 
-def cam_toml(design: CamDesign, law_table: dict, report: dict, comment: str = "") -> str:
+def cam_toml(design: CamDesign, law_table: dict, report: dict, comment: str = "", centre=None) -> str:
     """Text of a CAM.toml: ``[cam]`` dimensions, the ``[law]`` (so the file reads as a LAW.toml too), ``[report]``.
 
     Parameters
@@ -40,6 +50,10 @@ def cam_toml(design: CamDesign, law_table: dict, report: dict, comment: str = ""
         JSON report.
     comment : str
         Lines written first as ``#`` comments.
+    centre : (float, float), optional
+        Where the cam's pivot sits in a drawing (``centre = [x, y]``, read
+        back by :func:`cam_centre`): the workbench places the cam there.  The
+        profile's own coordinates are about the pivot either way.
 
     Returns
     -------
@@ -63,6 +77,8 @@ def cam_toml(design: CamDesign, law_table: dict, report: dict, comment: str = ""
 
     from gearlever._format import rounded, toml_value
 
+    if centre is not None:
+        _centre({"centre": list(centre)}, "centre")
     cam = {
         "follower": design.follower,
         "units": design.units,
@@ -72,6 +88,7 @@ def cam_toml(design: CamDesign, law_table: dict, report: dict, comment: str = ""
         "arm": design.arm,
         "pivot_distance": design.pivot_distance,
         "points": int(design.theta.size),
+        "centre": None if centre is None else [float(centre[0]), float(centre[1])],
     }
     cam = rounded(cam, CAM_DIGITS)  # NaN (a dimension the follower has not) as None: left out
     lines = [f"# {c}" for c in comment.splitlines()] + [""] + _table("cam", cam) + [""]
@@ -150,6 +167,7 @@ def load_cam(path, points: int | None = None) -> CamDesign:
             if isinstance(v, bool) or not isinstance(v, int | float):
                 raise GearleverError(f"{source}: [cam] {key} must be a number, got {v!r}")
             dims[key] = float(v)
+    _centre(cam, source)
     n = cam.get("points", 3600) if points is None else points
     if isinstance(n, bool) or not isinstance(n, int) or not 8 <= n <= MAX_POINTS:
         raise GearleverError(f"{source}: [cam] points must be an integer in 8 .. {MAX_POINTS:,}, got {n!r}")
@@ -176,3 +194,42 @@ def load_cam(path, points: int | None = None) -> CamDesign:
             f"got {cam['units']!r}"
         )
     return replace(design, units=cam["units"])
+
+
+def _centre(cam: dict, source: str) -> tuple[float, float]:
+    """The ``centre`` of a ``[cam]`` table (default the origin), checked: two finite numbers."""
+    import math
+
+    v = cam.get("centre", [0.0, 0.0])
+    if (
+        not isinstance(v, list)
+        or len(v) != 2
+        or not all(not isinstance(x, bool) and isinstance(x, int | float) and math.isfinite(x) for x in v)
+    ):
+        raise GearleverError(f"{source}: [cam] centre must be [x, y], two finite numbers, got {v!r}")
+    return float(v[0]), float(v[1])
+
+
+def cam_centre(path) -> tuple[float, float]:
+    """Where a CAM.toml places the cam's pivot in a drawing: its ``[cam] centre = [x, y]``, default the origin.
+
+    The profile of :func:`load_cam` is about the pivot; the centre only says
+    where the workbench draws it (``gearlever cam design`` writes none).
+
+    Raises
+    ------
+    GearleverError
+        The message starts with the file: not TOML, no ``[cam]`` table, or a
+        centre that is not two finite numbers.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "cam.toml"
+    >>> _ = p.write_text('[cam]\\nfollower = "translating-flat"\\nbase_radius = 30.0\\ncentre = [100, -5.5]\\n')
+    >>> cam_centre(p)
+    (100.0, -5.5)
+    """
+    from gearlever._io import read_toml_table
+
+    return _centre(read_toml_table(path, "CAM", "cam", CAM_KEYS, " (write one with gearlever cam design)"), str(path))

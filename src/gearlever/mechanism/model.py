@@ -106,6 +106,7 @@ from gearlever.mechanism.schema import (
 __all__ = [
     "GROUND",
     "parse_lengths",
+    "parse_poses",
     "Link",
     "Slider",
     "Gear",
@@ -392,6 +393,9 @@ def model_from_dict(d) -> MechanismModel:
     # [lengths]: checked here, used by gearlever.mechanism.assemble (kept raw in extra)
     if "lengths" in d:
         parse_lengths(d["lengths"], links)
+    # [[poses]]: checked here, used by motion synthesis (kept raw in extra)
+    if "poses" in d:
+        parse_poses(d["poses"])
     _check_columns(points, links, sliders, inputs, units)
     model = MechanismModel(
         name=name,
@@ -829,6 +833,38 @@ def _check_connected(links, joints, sliders) -> None:
     for n in links:
         if n not in seen:
             raise GearleverError(f"links.{n}: not joined to ground by pins or sliders")
+
+
+# --------------------------------------------------------------------------- [[poses]]
+def parse_poses(raw) -> list:
+    """Check a ``[[poses]]`` array: ``[(x, y, angle in rad), ...]``.
+
+    Each pose is a coupler point ``point = [x, y]`` and the coupler's
+    direction ``angle_deg`` (degrees in the file, radians returned), as
+    :func:`gearlever.synthesis.motion.synthesize_motion` takes them.
+
+    Raises
+    ------
+    GearleverError
+        Naming the pose (``poses[2].point``): not an array of tables, more
+        than :data:`~gearlever.mechanism.schema.MAX_POSES`, an unknown or
+        missing key, a coordinate or angle not a finite number.
+
+    Examples
+    --------
+    >>> parse_poses([{"point": [1, 2], "angle_deg": 90}])
+    [(1.0, 2.0, 1.5707963267948966)]
+    """
+    raw = _array_of_tables("poses", raw)
+    _count("[[poses]]", len(raw), schema.MAX_POSES)
+    out = []
+    for i, pose in enumerate(raw):
+        where = f"poses[{i}]"
+        _table(where, pose, schema.allowed_keys("poses"), schema.required_keys("poses"))
+        x, y = _coords(f"{where}.point", pose["point"])
+        a = _num(f"{where}.angle_deg", pose["angle_deg"])
+        out.append((float(x), float(y), math.radians(a)))
+    return out
 
 
 # --------------------------------------------------------------------------- [lengths]

@@ -24,7 +24,7 @@ Examples
 >>> required_keys("gears")
 ('link', 'centre', 'teeth')
 >>> write_order()[-4:]
-('sliders', 'meshes', 'inputs', 'loads')
+('meshes', 'inputs', 'loads', 'poses')
 
 Notes
 -----
@@ -97,6 +97,8 @@ MAX_COORDINATE = 1e12
 #: the structure's rank decisions are relative (1e-9); a crank of 10 in a model
 #: spanning 1e11 made a one-dof four-bar read as three dof.
 MAX_SCALE_RATIO = 1e6
+#: Most poses of ``[[poses]]``: motion synthesis takes three to five (Burmester).
+MAX_POSES = 5
 #: Largest mass, moment of inertia, force, torque or gravity component accepted (in the model's units).
 #: Forces are products of these with lengths (at most 1e12) and speeds squared; a value beyond this
 #: cap is far past any machine and would overflow floating point (inf, then NaN forces passed off as
@@ -314,6 +316,17 @@ TABLES: tuple = (
             Key("sliders", "table of SLIDER = { coefficient }", "a slider's own coefficient"),
         ),
         kept=True,
+    ),
+    Table(
+        "poses",
+        "array",
+        "a pose of a coupler for motion synthesis: its point and its direction (the workbench's pose tool)",
+        (
+            Key("point", "[x, y]", "where the coupler point is", required=True, unit="length", cap=_COORD),
+            Key("angle_deg", "number", "the coupler's direction, counter-clockwise from +x", required=True, unit="deg"),
+        ),
+        kept=True,
+        cap=f"{MAX_POSES} entries",
     ),
 )
 

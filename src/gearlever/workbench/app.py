@@ -57,6 +57,7 @@ from starlette.responses import FileResponse, JSONResponse, Response, StreamingR
 from starlette.routing import Route
 
 from gearlever.workbench.errors import ApiError
+from gearlever.workbench.files import CAM_SUFFIX
 
 __all__ = [
     "create_app",
@@ -122,6 +123,8 @@ def _worker_main(conn) -> None:
         "export": engine.export,
         "branch": engine.flip_branch,
         "dump_solve": functools.partial(engine.dump_solve, plain=not _HAS_ORJSON),
+        "cam": engine.cam,
+        "cam_file": engine.cam_file_params,
     }
     with contextlib.suppress(Exception):  # warm up: the first request is then as fast as the others
         from gearlever.data import example_path
@@ -529,6 +532,16 @@ def create_app(
         """The shipped example models."""
         return JSONResponse({"examples": engine.examples()})
 
+    async def law_list(request: Request):
+        """The shipped example laws (for a cam)."""
+        return JSONResponse({"examples": engine.law_examples()})
+
+    @_endpoint
+    async def cam(request: Request):
+        """A cam and its follower for a law: one turn of frames (the model file has no cam pair)."""
+        body = await _body(request)
+        return _json(await pool.call("cam", solve_seconds, params=body))
+
     @_endpoint
     async def example_one(request: Request):
         name = request.path_params["name"]
@@ -589,10 +602,19 @@ def create_app(
         if fmt not in engine.EXPORT_FORMATS:
             raise ApiError(404, f"format: {fmt[:40]!r} is not one of {', '.join(engine.EXPORT_FORMATS)}")
         body = await _body(request)
-        _only(body, ("model", "frames", "inputs"))
+        _only(body, ("model", "frames", "inputs", "cam", "cam_angle_deg"))
         inputs = _field(body, "inputs", dict, required=False)
+        cam = _field(body, "cam", str, required=False)
+        cam_angle = body.get("cam_angle_deg", 0.0)  # checked by the engine: a finite number
         data, ctype, filename = await pool.call(
-            "export", export_seconds, text=_model_text(body), fmt=fmt, frames=_frames(body), inputs=inputs
+            "export",
+            export_seconds,
+            text=_model_text(body),
+            fmt=fmt,
+            frames=_frames(body),
+            inputs=inputs,
+            cam=cam,
+            cam_angle_deg=cam_angle,
         )
         return Response(
             data,
@@ -671,6 +693,13 @@ def create_app(
         body = await _body(request)
         _only(body, ("model",))
         text = _field(body, "model", str)
+        if files.path(request.path_params["name"]).name.endswith(CAM_SUFFIX):  # a CAM.toml the library reads
+            try:
+                await pool.call("cam_file", solve_seconds, text=text)
+            except ApiError as exc:
+                if exc.status != 400:
+                    raise
+                raise ApiError(400, "model: " + exc.message.removeprefix("file: "), **exc.extra) from None
         created, etag, size = files.write(request.path_params["name"], text, request.headers.get("if-match"))
         return JSONResponse(
             {"name": request.path_params["name"], "etag": etag, "size": size},
@@ -699,6 +728,8 @@ def create_app(
         Route("/api/openapi.json", openapi, methods=["GET"]),
         Route("/api/examples", example_list, methods=["GET"]),
         Route("/api/examples/{name}", example_one, methods=["GET"]),
+        Route("/api/laws", law_list, methods=["GET"]),
+        Route("/api/cam", cam, methods=["POST"]),
         Route("/api/parse", parse, methods=["POST"]),
         Route("/api/dump", dump, methods=["POST"]),
         Route("/api/solve", solve, methods=["POST"]),
@@ -739,6 +770,7 @@ def _op(summary: str, body: dict | None = None, answer: str = "JSON answer", ext
     return op
 
 
+_FOLLOWERS = ["translating-roller", "translating-flat", "oscillating-roller", "oscillating-flat"]
 _ERROR = {"type": "object", "properties": {"error": {"type": "string"}}, "required": ["error"]}
 _MODEL = {"type": "string", "description": "the model file's TOML text", "maxLength": 256000}
 _FRAMES = {"type": "integer", "minimum": 2, "maximum": 3600, "default": 360}
@@ -764,6 +796,42 @@ OPENAPI = {
         "/api/examples": {"get": _op("the shipped example models")},
         "/api/examples/{name}": {
             "get": _op("an example's TOML text", extra_codes=("404",), params=[("name", {"type": "string"})])
+        },
+        "/api/laws": {"get": _op("the shipped example motion laws (for a cam)")},
+        "/api/cam": {
+            "post": _op(
+                "a disc cam and its follower for a motion law, sized and solved over one turn",
+                _obj(
+                    {
+                        "law": {"type": "string", "maxLength": 100000, "description": "a LAW.toml text"},
+                        "file": {
+                            "type": "string",
+                            "maxLength": 100000,
+                            "description": "a CAM.toml text (as the answer's cam_toml): its law, follower, "
+                            "dimensions and centre, each overridden by the same key given beside it",
+                        },
+                        "example": {"type": "string", "description": "a shipped law's name (GET /api/laws)"},
+                        "follower": {"type": "string", "enum": _FOLLOWERS},
+                        "centre": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
+                        "base_radius": {"type": "number"},
+                        "roller_radius": {"type": "number"},
+                        "offset": {"type": "number"},
+                        "arm": {"type": "number"},
+                        "pivot_distance": {"type": "number"},
+                        "max_pressure_angle_deg": {"type": "number"},
+                        "frames": _FRAMES,
+                        "angles_deg": {
+                            "type": "array",
+                            "items": {"type": "number"},
+                            "minItems": 2,
+                            "maxItems": 3600,
+                            "description": "the cam's angle at each frame (a cam turning with a link), not with frames",
+                        },
+                    },
+                    required=(),
+                ),
+                extra_codes=("413",),
+            )
         },
         "/api/parse": {
             "post": _op("TOML text to the model as JSON, dof and inputs", _obj({"model": _MODEL}), extra_codes=("413",))
@@ -808,8 +876,17 @@ OPENAPI = {
         },
         "/api/export/{format}": {
             "post": _op(
-                "the model as a file (svg, png, gif, csv, html, toml; dxf and svg-outline at the pose of inputs)",
-                _obj({"model": _MODEL, "frames": _FRAMES, "inputs": _NUMS}),
+                "the model as a file (svg, png, gif, csv, html, toml; dxf and svg-outline at the pose of inputs, "
+                "with the cam's profile on a layer of its own when cam is given)",
+                _obj(
+                    {
+                        "model": _MODEL,
+                        "frames": _FRAMES,
+                        "inputs": _NUMS,
+                        "cam": {"type": "string", "maxLength": 100000, "description": "a CAM.toml text (cam_toml)"},
+                        "cam_angle_deg": {"type": "number", "description": "the cam's turn in the frame drawn"},
+                    }
+                ),
                 answer="the file",
                 extra_codes=("404", "413"),
                 params=[
@@ -860,7 +937,7 @@ OPENAPI = {
                 params=[("id", {"type": "string"})],
             )
         },
-        "/api/files": {"get": _op("the workspace's model files")},
+        "/api/files": {"get": _op("the workspace's model files and cam files (kind: model or cam)")},
         "/api/files/{name}": {
             "get": _op("a file's text, with its ETag", extra_codes=("404",), params=[("name", {"type": "string"})]),
             "put": _op(

@@ -23,9 +23,14 @@ line naming the field, and for a TOML syntax error the line.
 - :func:`flip_branch`: the sketch moved onto another assembly branch of a dyad.
 - :func:`structure`, :func:`forces`, :func:`export` (DXF and outline SVG by
   :mod:`gearlever.export`).
-- :func:`check_job` and :func:`run_job`: the synthesis kinds path, curve,
-  function, motion and law, with a ``progress(stage, done, total)`` callback
-  and a cancel flag, answering ranked designs as model TOML texts.
+- :func:`check_job` and :func:`run_job`: the synthesis families path, curve,
+  function, motion and law, each job's kind the one synthesis registry's
+  (:mod:`gearlever.synthesis.registry`), with a ``progress(stage, done,
+  total)`` callback and a cancel flag, answering ranked designs as model TOML
+  texts.
+- :func:`cam`, :func:`law_examples`: a disc cam and its follower for a motion
+  law, sized and designed by :mod:`gearlever.cams` (a mechanism of its own:
+  the model file has no cam pair).
 
 Caps (each named in the refusal): :data:`MAX_MODEL_CHARS` characters of
 model text, :data:`MAX_LINKS` moving links, :data:`MAX_POINTS` points,
@@ -40,8 +45,10 @@ the workbench, an application like the command line, imports it from there.
 
 from __future__ import annotations
 
+import collections
 import functools
 import math
+import re
 import tomllib
 
 import numpy as np
@@ -63,6 +70,8 @@ __all__ = [
     "run_job",
     "examples",
     "example",
+    "cam",
+    "law_examples",
     "EXPORT_FORMATS",
     "JOB_KINDS",
     "MAX_MODEL_CHARS",
@@ -130,8 +139,6 @@ def _toml(text: str, where: str = "model") -> dict:
         msg = str(exc).splitlines()[0] if str(exc) else "invalid TOML"
         line = getattr(exc, "lineno", None)
         if line is None:
-            import re
-
             found = re.search(r"line (\d+)", msg)
             line = (
                 int(found.group(1)) if found else (max(1, len(text.splitlines())) if "end of document" in msg else None)
@@ -171,12 +178,25 @@ def load(text, where: str = "model"):
     scrubbed or re-solved from another start is parsed once); a
     :class:`~gearlever.mechanism.Mechanism` is not changed by solving it.
     """
-    return _load_cached(_text(where, text), where)
+    text = _text(where, text)
+    key = (text, where)
+    mech = _CACHE.get(key)
+    if mech is None:
+        mech = _remember(key, _mechanism(_toml(text, where), where))
+    else:
+        _CACHE.move_to_end(key)
+    return mech
 
 
-@functools.lru_cache(maxsize=CACHED_MODELS)
-def _load_cached(text: str, where: str):
-    return _mechanism(_toml(text, where), where)
+#: ``(text, where) -> Mechanism``, the newest last (:func:`load`).
+_CACHE: collections.OrderedDict = collections.OrderedDict()
+
+
+def _remember(key: tuple, mech):
+    _CACHE[key] = mech
+    while len(_CACHE) > CACHED_MODELS:
+        _CACHE.popitem(last=False)
+    return mech
 
 
 def _jsonable(v):
@@ -250,14 +270,15 @@ def dump(obj) -> str:
 
     if not isinstance(obj, dict):
         raise WorkbenchError(f"model must be a JSON object of the model file's tables, got {type(obj).__name__}")
-    _mechanism(obj)
+    mech = _mechanism(obj)  # the edit's one build: every refusal names its element
     try:
         text = model_toml(obj, exact=True)
     except GearleverError as exc:
         raise WorkbenchError(f"model: {exc}") from None
-    # the written text must read back as the same model; read through the cache, so that the page's solve
-    # of this text, which follows its dump, finds it compiled (when it reaches the same worker)
-    load(text)
+    # the text holds the model exactly (every float in its shortest exact form), so the mechanism built from
+    # the object is the text's: kept under it, the page's solve of this text, which follows its dump, finds it
+    # compiled (``Mechanism.loads(m.dumps())`` is the same model: the library's round-trip tests)
+    _remember((_text("model", text), "model"), mech)
     return text
 
 
@@ -976,7 +997,7 @@ def _safe_name(name: str) -> str:
     return keep or "mechanism"
 
 
-def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
+def export(text, fmt: str, frames: int = 360, inputs=None, cam=None, cam_angle_deg=0.0) -> tuple:
     """The model as a file: ``(body bytes, content type, file name)``.
 
     ``fmt``: ``svg``, ``png`` (the drawing of ``gearlever mechanism draw``),
@@ -986,7 +1007,12 @@ def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
     ``dxf`` and ``svg-outline`` (every link's outline, pin holes and gears for
     CAD, :func:`gearlever.export.mechanism_drawing`, one layer or group per
     link) at the pose of ``inputs`` (``{input: deg, or length for a
-    slider}``, as for :func:`solve_frames`; default the sketch).
+    slider}``, as for :func:`solve_frames`; default the sketch).  ``cam``, a
+    CAM.toml text (the bench's cam, :func:`cam`'s ``cam_toml``), adds the
+    cam's profile to those two as a part of its own (layer ``cam``): the
+    library's surface (:func:`gearlever.cams.load_cam`) turned
+    counterclockwise by ``cam_angle_deg`` about its ``centre``, with a bore
+    of the pin diameter there.
     """
     if fmt not in EXPORT_FORMATS:
         raise WorkbenchError(f"format must be one of {', '.join(EXPORT_FORMATS)}, got {fmt!r}")
@@ -995,7 +1021,9 @@ def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
     _work(mech, frames)
     stem = _safe_name(mech.model.name or "mechanism")
     if fmt in ("dxf", "svg-outline"):
-        return _cad(mech, fmt, stem, inputs)
+        return _cad(mech, fmt, stem, inputs, cam, cam_angle_deg)
+    if cam is not None:
+        raise WorkbenchError(f"cam: the cam's profile is drawn in the dxf and svg-outline formats, not {fmt}")
     if inputs is not None:
         raise WorkbenchError(f"inputs: a pose is for the dxf and svg-outline formats, not {fmt}")
     if fmt == "toml":
@@ -1036,9 +1064,10 @@ def export(text, fmt: str, frames: int = 360, inputs=None) -> tuple:
     return data, ctype, f"{stem}.{fmt}"
 
 
-def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
-    """DXF or outline SVG of the mechanism at a pose (:mod:`gearlever.export`)."""
+def _cad(mech, fmt: str, stem: str, inputs, cam=None, cam_angle_deg=0.0) -> tuple:
+    """DXF or outline SVG of the mechanism at a pose (:mod:`gearlever.export`), with the bench's cam if given."""
     import tempfile
+    from dataclasses import replace
     from pathlib import Path
 
     from gearlever.export import FORMATS, mechanism_drawing
@@ -1049,6 +1078,9 @@ def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
         drawing = mechanism_drawing(mech, pose)
     except GearleverError as exc:
         raise WorkbenchError(f"inputs: {exc}") from None
+    if cam is not None:
+        taken = {p.name for p in drawing.parts}
+        drawing = replace(drawing, parts=(*drawing.parts, cam_part(cam, cam_angle_deg, drawing.pin_diameter, taken)))
     suffix = "dxf" if fmt == "dxf" else "svg"
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / f"m.{suffix}"
@@ -1057,6 +1089,373 @@ def _cad(mech, fmt: str, stem: str, inputs) -> tuple:
     if fmt == "dxf":
         return data, "application/dxf", f"{stem}.dxf"
     return data, "image/svg+xml", f"{stem}_outline.svg"
+
+
+def cam_part(text, angle_deg=0.0, bore: float = 0.0, taken=()):
+    """The bench's cam as a part of a CAD drawing: its profile and its bore, on a layer of its own.
+
+    Parameters
+    ----------
+    text : str
+        The CAM.toml text (:func:`cam`'s ``cam_toml``), read by
+        :func:`gearlever.cams.load_cam` (the profile) and
+        :func:`gearlever.cams.cam_centre` (where its pivot is).
+    angle_deg : float
+        The cam's turn (counterclockwise, deg), as the frame drawn.
+    bore : float
+        Diameter of the hole at the pivot (0: none).
+    taken : collection of str
+        Names of the drawing's parts: the layer is ``cam``, or ``cam_2``... when a link holds that name.
+
+    Returns
+    -------
+    gearlever.export.outline.Part
+
+    Examples
+    --------
+    >>> p = cam_part(cam({"example": "law_lift", "centre": [100, 0], "frames": 36})["cam_toml"], 0.0, 4.0)
+    >>> p.name, p.outlines[0].shape, p.holes
+    ('cam', (36, 2), (((100.0, 0.0), 2.0),))
+    """
+    import tempfile
+    from pathlib import Path
+
+    from gearlever.cams import cam_centre, load_cam
+    from gearlever.export.outline import Part
+
+    try:
+        cam_file_params(text)  # every refusal of the CAM format, named
+    except WorkbenchError as exc:
+        raise WorkbenchError("cam: " + str(exc).removeprefix("file: ")) from None
+    a = _float({"cam_angle_deg": angle_deg}, "cam_angle_deg", 0.0, -1e6, 1e6)
+    with tempfile.TemporaryDirectory() as tmp:
+        p = Path(tmp) / "cam.toml"
+        p.write_text(text, encoding="utf-8")
+        design, centre = load_cam(p), np.array(cam_centre(p))
+    t = math.radians(a)
+    turn = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+    outline = design.surface @ turn.T + centre
+    name, k = "cam", 1
+    while name in taken:
+        k += 1
+        name = f"cam_{k}"
+    holes = (((float(centre[0]), float(centre[1])), bore / 2),) if bore > 0 else ()
+    return Part(name, (outline,), holes, origin=(float(centre[0]), float(centre[1])), angle=t)
+
+
+# --------------------------------------------------------------------------- cams
+#: Follower kinds of :func:`cam` (the library's registry, :data:`gearlever.cams.FOLLOWERS`).
+CAM_KEYS = (
+    "law",
+    "example",
+    "file",
+    "follower",
+    "centre",
+    "base_radius",
+    "roller_radius",
+    "offset",
+    "arm",
+    "pivot_distance",
+    "max_pressure_angle_deg",
+    "frames",
+    "angles_deg",
+)
+#: Profile points of a cam turned by given angles (``angles_deg``): each frame is the nearest of them (0.1 deg).
+CAM_POINTS = 3600
+#: Most profile points answered (the drawing's polygon).
+CAM_PROFILE = 720
+#: Default bound on the pressure angle of a roller follower when the bench sizes the base circle (deg):
+#: the common design limit for translating roller followers (R. L. Norton, *Design of Machinery*, sec. 8.6).
+CAM_PRESSURE_DEG = 30.0
+
+
+def law_examples() -> list:
+    """The shipped example laws (files of ``gearlever/data/examples`` holding a ``[law]`` table).
+
+    >>> [(e["name"], e["output"]) for e in law_examples()][:2]
+    [('law_dwell_rocker', 'angle'), ('law_lift', 'displacement')]
+    """
+    from importlib import resources
+
+    out = []
+    folder = resources.files("gearlever.data").joinpath("examples")
+    for entry in sorted(folder.iterdir(), key=lambda e: e.name):
+        if not entry.name.endswith(".toml"):
+            continue
+        text = entry.read_text(encoding="utf-8")
+        try:
+            d = tomllib.loads(text)
+        except tomllib.TOMLDecodeError:
+            continue
+        law = d.get("law")
+        if not isinstance(law, dict) or "segment" not in law:
+            continue
+        first = text.splitlines()[0].lstrip("# ").strip() if text.startswith("#") else ""
+        name = entry.name[: -len(".toml")]
+        out.append({"name": name, "output": str(law.get("output", "")), "title": first or name})
+    return out
+
+
+def _cam_law(params: dict):
+    """The law of a cam request: its TOML text (``law``) or a shipped example's name (``example``)."""
+    from importlib import resources
+
+    if ("law" in params) == ("example" in params):
+        raise WorkbenchError("law: give the law's TOML text (law) or a shipped example law's name (example), one")
+    if "example" in params:
+        names = [e["name"] for e in law_examples()]
+        if not isinstance(params["example"], str) or params["example"] not in names:
+            raise WorkbenchError(f"example: unknown law {str(params['example'])[:60]!r} (laws: {', '.join(names)})")
+        text = resources.files("gearlever.data").joinpath("examples", f"{params['example']}.toml")
+        return _law(text.read_text(encoding="utf-8"))
+    law = params["law"]
+    if not isinstance(law, str) or not 0 < len(law) <= 100_000:
+        raise WorkbenchError("law must be the TOML text of a [law] table (at most 100000 characters)")
+    return _law(law)
+
+
+def cam(params) -> dict:
+    """A disc cam and its follower for a motion law, placed on a ground pivot: one turn of frames.
+
+    Parameters
+    ----------
+    params : dict
+        ``law`` (a LAW.toml text with ``[[law.segment]]`` tables) or
+        ``example`` (a name of :func:`law_examples`) or ``file`` (a CAM.toml
+        text, as the bench saves it: its law, follower, dimensions and
+        ``centre``, each overridden by the same key given beside it); ``follower`` (a kind of
+        :data:`gearlever.cams.FOLLOWERS`; default ``translating-roller`` for a
+        displacement law, ``oscillating-roller`` for an angle law);
+        ``centre`` ``[x, y]`` (the cam's pivot, default the origin);
+        ``roller_radius``, ``offset``, ``arm``, ``pivot_distance`` (the
+        follower's dimensions; defaults: a roller of a quarter of the stroke,
+        for an oscillating follower an arm of 40 and a pivot 100 from the cam
+        centre, in the law's units); ``base_radius`` (default: sized by
+        :func:`gearlever.cams.size_base_radius`, the smallest base circle with
+        a roller's pressure angle at most ``max_pressure_angle_deg``,
+        default :data:`CAM_PRESSURE_DEG`, and no undercut); ``frames`` (one
+        turn in equal steps), or ``angles_deg``, the cam's angle at each frame
+        (a cam rigid on a link turns with it: the link's angle from its first
+        frame; each frame is the nearest of :data:`CAM_POINTS` cam angles).
+
+    Returns
+    -------
+    dict
+        ``profile`` (the cam surface at the first frame, model coordinates),
+        ``cam_angle_deg`` (the cam's turn at each frame: the page turns the
+        profile about ``centre`` by it), ``s`` (the follower's output, law
+        units, per frame), ``contact``, ``roller_centre`` (rollers),
+        ``follower`` (the follower's body per frame: a polyline of points),
+        ``face`` (flat followers: the face segment per frame), ``pivot``
+        (oscillating followers), the dimensions, ``pressure_angle_deg`` per
+        frame and its maximum, ``undercut``, ``message`` and ``cam_toml``,
+        the CAM.toml text of this cam (:func:`gearlever.cams.cam_toml`, its
+        pivot as ``[cam] centre``) that the bench saves beside the model.
+
+    Notes
+    -----
+    The profile, the contact and the pressure angle are
+    :func:`gearlever.cams.design_cam`'s (R. L. Norton, *Design of Machinery*,
+    sec. 8.6): the cam turns counterclockwise by the input angle, the
+    follower's guide (or pivot) is fixed.  The model file has no cam pair
+    (the schema of :mod:`gearlever.mechanism.schema` has no cam-follower
+    higher pair and the solver no contact constraint), so the cam and its
+    follower are a mechanism of their own beside the linkage.
+
+    Examples
+    --------
+    >>> c = cam({"example": "law_lift", "centre": [100, 0], "frames": 36})
+    >>> c["follower_kind"], round(c["base_radius"], 3), len(c["s"]), c["s"][0]
+    ('translating-roller', 30.019, 36, 0.0)
+    """
+    from gearlever.cams import FOLLOWERS, design_cam, size_base_radius
+
+    if not isinstance(params, dict):
+        raise WorkbenchError("the cam must be a JSON object with a law or an example")
+    unknown = [k for k in params if k not in CAM_KEYS]
+    if unknown:
+        raise WorkbenchError(f"{str(unknown[0])[:40]}: not a parameter of a cam ({', '.join(CAM_KEYS)})")
+    if "file" in params:
+        if "law" in params or "example" in params:
+            raise WorkbenchError("file: a CAM.toml text holds its law; give file, law or example, one")
+        params = {**cam_file_params(params["file"]), **{k: v for k, v in params.items() if k != "file"}}
+    angles = params.get("angles_deg")
+    if angles is not None:
+        if (
+            not isinstance(angles, list)
+            or not 2 <= len(angles) <= MAX_FRAMES
+            or not all(not isinstance(a, bool) and isinstance(a, (int, float)) and math.isfinite(a) for a in angles)
+            or not all(abs(a) <= 1e6 for a in angles)
+        ):
+            raise WorkbenchError(f"angles_deg must be a list of 2 to {MAX_FRAMES} finite angles of at most 1e6 deg")
+        if "frames" in params:
+            raise WorkbenchError("frames: give frames or angles_deg, not both")
+        frames, points = len(angles), CAM_POINTS
+        rows = np.rint(np.mod(np.radians(angles), 2 * np.pi) / (2 * np.pi) * points).astype(int) % points
+    else:
+        frames = points = _frames(params.get("frames", 360))
+        rows = np.arange(frames)
+    law = _cam_law(params)
+    angle_law = law.output == "angle"
+    default = "oscillating-roller" if angle_law else "translating-roller"
+    kind = params.get("follower", default)
+    if not isinstance(kind, str) or kind not in FOLLOWERS:
+        raise WorkbenchError(f"follower must be one of {', '.join(FOLLOWERS)}, got {str(kind)[:40]!r}")
+    fk = FOLLOWERS[kind]
+    if (fk.law_output == "angle") != angle_law:
+        raise WorkbenchError(f"follower: {kind} follows an {fk.law_output} law; this law's output is {law.output}")
+    centre = _pair_xy(params, "centre")
+    stroke = float(np.ptp(law.evaluate(np.linspace(0, 2 * np.pi, 721)).s))
+    length = 40.0 if angle_law else stroke
+    dims = {
+        "roller_radius": _float(params, "roller_radius", length / 4 if fk.contact == "roller" else 0.0, 0.0, 1e6),
+        "offset": _float(params, "offset", 0.0, -1e6, 1e6),
+        "arm": _float(params, "arm", 40.0 if kind == "oscillating-roller" else None, 1e-9, 1e6),
+        "pivot_distance": _float(params, "pivot_distance", 100.0 if angle_law else None, 1e-9, 1e6),
+    }
+    if fk.contact == "flat":
+        dims["roller_radius"] = 0.0
+    phi = _float(params, "max_pressure_angle_deg", CAM_PRESSURE_DEG, 1.0, 89.0)
+    rb = _float(params, "base_radius", None, 1e-9, 1e6)
+    try:
+        sized = rb is None
+        if sized:
+            roller = fk.contact == "roller"
+            bound = {"max_pressure_angle": math.radians(phi)} if roller else {"min_curvature_radius": 0.0}
+            rb = size_base_radius(law, kind, **dims, **bound)
+        c = design_cam(law, kind, base_radius=rb, points=points, **dims)
+    except GearleverError as exc:  # the library names the command line's flags: the bench's fields instead
+        raise WorkbenchError("cam: " + re.sub(r"--([a-z]+)-?([a-z]*)", _field_name, str(exc))) from None
+    L = max(rb + stroke if not angle_law else dims["pivot_distance"], 1e-9)
+    shift = np.asarray(centre)
+    every = max(1, points // CAM_PROFILE)
+    theta, s, contact = c.theta[rows], c.s[rows], c.contact[rows]
+    out = {
+        "follower_kind": kind,
+        "law_output": law.output,
+        "units": law.units,
+        "centre": list(centre),
+        "frames": frames,
+        "base_radius": float(rb),
+        "sized": sized,
+        "roller_radius": dims["roller_radius"],
+        "offset": dims["offset"],
+        "arm": dims["arm"],
+        "pivot_distance": dims["pivot_distance"],
+        "stroke": math.degrees(stroke) if angle_law else stroke,
+        "cam_angle_deg": _num(np.degrees(theta)),
+        "s": _num(np.degrees(s) if angle_law else s),
+        "profile": _xy(c.surface[::every] + shift, L),
+        "contact": _xy(contact + shift, L),
+        "pressure_angle_deg": _num(np.degrees(c.pressure_angle[rows])),
+        "pressure_angle_max_deg": math.degrees(c.pressure_angle_max),
+        "undercut": bool(c.undercut),
+        "roller_centre": None,
+        "face": None,
+        "pivot": None,
+    }
+    up = np.array([0.0, 1.0])
+    if fk.contact == "roller":
+        q = fk.path(s, _follower_params(dims), rb)[0]
+        out["roller_centre"] = _xy(q + shift, L)
+        tip = q
+    else:
+        beta = fk.face(s, _follower_params(dims), rb)[0]
+        n = np.stack([np.cos(beta), np.sin(beta)], axis=1)
+        t = np.stack([-n[:, 1], n[:, 0]], axis=1)
+        fp = fk.face_position(contact, beta, _follower_params(dims))
+        ref = fk.face_position(contact + t, beta, _follower_params(dims)) - fp
+        t = t * np.sign(ref)[:, None]  # along the face, the way the library measures the contact's place
+        foot = contact - fp[:, None] * t
+        margin = 0.15 * max(c.face_width, rb)
+        lo, hi = c.face_contact_min - margin, c.face_contact_max + margin
+        out["face"] = [_xy(foot + lo * t + shift, L), _xy(foot + hi * t + shift, L)]
+        tip = foot
+    if angle_law:
+        pivot = np.array([dims["pivot_distance"], 0.0])
+        out["pivot"] = list(_xy((pivot + shift)[None, :], L)[0])
+        out["follower"] = [_xy(np.broadcast_to(pivot, tip.shape) + shift, L), _xy(tip + shift, L)]
+    else:
+        out["follower"] = [_xy(tip + shift, L), _xy(tip + rb * up + shift, L)]
+    how = (
+        f"sized for a pressure angle of at most {phi:g} deg and no undercut"
+        if sized and fk.contact == "roller"
+        else ("sized for no undercut" if sized else "as given")
+    )
+    u = f" {law.units}" if law.units and not angle_law else ""
+    out["message"] = (
+        f"cam: {kind} follower, base radius {rb:.4g}{u} ({how}); pressure angle at most "
+        f"{math.degrees(c.pressure_angle_max):.3g} deg; drawn as its own mechanism (the model file has no cam pair)"
+    )
+    from gearlever.cams import cam_toml
+
+    report = {"pressure_angle_max_deg": math.degrees(c.pressure_angle_max), "undercut": bool(c.undercut)}
+    out["cam_toml"] = cam_toml(c, law.to_dict(), report, "Written by the gearlever workbench", centre=centre)
+    return out
+
+
+def cam_file_params(text) -> dict:
+    """The cam parameters of a CAM.toml text (law, follower, dimensions, ``centre``), checked by the library.
+
+    The text is read by :func:`gearlever.cams.load_cam` (every refusal of the
+    CAM format, named) and :func:`gearlever.cams.cam_centre`; the answer is
+    what :func:`cam` takes: ``law`` (the text itself, which reads as a
+    LAW.toml), ``follower``, ``base_radius`` and the follower's dimensions
+    given in the file, and ``centre``.
+
+    >>> c = cam({"example": "law_lift", "centre": [100, 0], "frames": 36})
+    >>> p = cam_file_params(c["cam_toml"])
+    >>> p["follower"], p["centre"], round(p["base_radius"], 3)
+    ('translating-roller', [100.0, 0.0], 30.019)
+    """
+    import tempfile
+    from pathlib import Path
+
+    from gearlever.cams import cam_centre, load_cam
+
+    if not isinstance(text, str) or not 0 < len(text) <= 100_000:
+        raise WorkbenchError("file must be the TOML text of a CAM file ([cam] and [law], at most 100000 characters)")
+    d = _toml(text, "file")
+    if isinstance(d.get("law"), dict) and "samples" in d["law"]:
+        raise WorkbenchError("file: the law's samples name a CSV file; the bench takes [[law.segment]] tables")
+    with tempfile.TemporaryDirectory() as tmp:
+        p = Path(tmp) / "cam.toml"
+        p.write_text(text, encoding="utf-8")
+        try:
+            load_cam(p, points=360)
+            centre = cam_centre(p)
+        except GearleverError as exc:
+            raise WorkbenchError(
+                "file: " + str(exc).replace(str(p) + ": ", "").replace(str(p), "the CAM file")
+            ) from None
+    table = d["cam"]
+    out = {"law": text, "follower": table["follower"], "centre": list(centre)}
+    for key in ("base_radius", "roller_radius", "offset", "arm", "pivot_distance"):
+        if key in table:
+            out[key] = float(table[key])
+    return out
+
+
+def _field_name(m) -> str:
+    return m.group(1) + ("_" + m.group(2) if m.group(2) else "")
+
+
+def _follower_params(dims: dict):
+    from gearlever.cams import FollowerParams
+
+    return FollowerParams(dims["roller_radius"], dims["offset"], dims["arm"], dims["pivot_distance"])
+
+
+def _pair_xy(params: dict, key: str) -> tuple:
+    v = params.get(key, [0.0, 0.0])
+    if (
+        not isinstance(v, list)
+        or len(v) != 2
+        or not all(not isinstance(c, bool) and isinstance(c, (int, float)) and math.isfinite(c) for c in v)
+        or not all(abs(c) <= 1e9 for c in v)
+    ):
+        raise WorkbenchError(f"{key} must be [x, y], two finite numbers of at most 1e9 in size, got {v!r}"[:200])
+    return float(v[0]), float(v[1])
 
 
 # --------------------------------------------------------------------------- examples
@@ -1173,9 +1572,7 @@ def check_job(params) -> dict:
         out["target"] = _points(params, "target", 3, MAX_TARGET)
         out["budget"] = _int(params, "budget", 2000, 480, min(MAX_BUDGET, 200_000))
         out["seed"] = _int(params, "seed", 0, 0, 2**31 - 1)
-        out["type"] = params.get("type", "fourbar")
-        if out["type"] not in ("fourbar", "geared-fivebar", "sixbar", "auto"):
-            raise WorkbenchError(f"type must be fourbar, geared-fivebar, sixbar or auto, got {out['type']!r}")
+        out["type"] = _type(params, "path", "fourbar", auto=True)
     elif kind == "curve":
         out["target"] = _points(params, "target", 3, MAX_TARGET)
         out["time"] = _float(params, "time", 20.0, 1.0, 600.0)
@@ -1200,9 +1597,7 @@ def check_job(params) -> dict:
         out["input_range_deg"] = _pair(params, "input_range_deg")
         out["output_range_deg"] = _pair(params, "output_range_deg")
         out["points"] = _int(params, "points", 3, 3, 50)
-        out["type"] = params.get("type", "fourbar")
-        if out["type"] not in ("fourbar", "slider-crank"):
-            raise WorkbenchError(f"type must be fourbar or slider-crank, got {out['type']!r}")
+        out["type"] = _type(params, "function", "fourbar")
     elif kind == "motion":
         poses = _points(params, "poses", 3, 5, width=3)
         out["poses"] = poses
@@ -1214,19 +1609,27 @@ def check_job(params) -> dict:
         if len(poses) > 3 and ("fixed_pivots" in out or "moving_pivots" in out):
             raise WorkbenchError("fixed_pivots/moving_pivots are for three poses only")
     else:
-        from gearlever.synthesis.law import KINDS
         from gearlever.synthesis.law.driver import DEFAULT_BUDGET, MAX_BUDGET
 
         law = params.get("law")
         if not isinstance(law, str) or not 0 < len(law) <= 100_000:
             raise WorkbenchError("law must be the TOML text of a [law] table (at most 100000 characters)")
         out["law_obj"] = _law(law)
-        out["type"] = params.get("type", "auto")
-        if out["type"] not in tuple(KINDS) + ("auto",):
-            raise WorkbenchError(f"type must be one of auto, {', '.join(KINDS)}, got {out['type']!r}")
+        out["type"] = _type(params, "law", "auto", auto=True)
         out["budget"] = _int(params, "budget", DEFAULT_BUDGET, 1, MAX_BUDGET)
         out["seed"] = _int(params, "seed", 0, 0, 2**31 - 1)
     return out
+
+
+def _type(params: dict, family: str, default: str, auto: bool = False) -> str:
+    """The job's ``type``: a kind of ``family`` in the one registry of synthesis kinds (or ``auto``)."""
+    from gearlever.synthesis.registry import names
+
+    known = names(family) + (("auto",) if auto else ())
+    v = params.get("type", default)
+    if v not in known:
+        raise WorkbenchError(f"type must be one of {', '.join(known)}, got {v!r}")
+    return v
 
 
 def _law(text: str):
@@ -1258,8 +1661,101 @@ def _result(rank: int, score: dict, model: dict, comment: str) -> dict:
     }
 
 
+def _problem(params: dict) -> tuple:
+    """``(family, kind name, args, kwargs)`` of a checked job: what the family's driver is called with.
+
+    The kind's name is the job's ``type`` (``auto``: every kind of the family,
+    the driver's choice); a motion job's kind is told by its number of poses.
+    """
+    family = params["kind"]
+    if family == "path":
+        return family, params["type"], (params["target"],), {}
+    if family == "curve":
+        kw = {"max_joints": params["max_joints"], "designs": params["designs"], "time_limit": params["time"]}
+        return family, "topology", (params["target"],), kw
+    if family == "function":
+        from gearlever.synthesis.function import function_targets
+
+        slider = params["type"] == "slider-crank"
+        orange = params["output_range_deg"] if slider else np.radians(params["output_range_deg"])
+        tg = function_targets(
+            params["expr"], params["x_range"], np.radians(params["input_range_deg"]), orange, params["points"]
+        )
+        kw = {"desired": tg.desired, "input_range": tg.input_range}
+        return family, params["type"], (tg.input_angle, tg.output), kw
+    if family == "motion":
+        poses = params["poses"]
+        kw = {k: params.get(k) for k in ("fixed_pivots", "moving_pivots")}
+        return family, f"{len(poses)}-poses", (poses[:, :2], np.radians(poses[:, 2])), kw
+    return family, params["type"], (params["law_obj"],), {}
+
+
+def _designs(family: str, res, params: dict) -> list:
+    """``[(score, model dict, comment)]`` of a family's result, best first (what the bench lists)."""
+    if family == "path":
+        if not res.feasible:
+            raise WorkbenchError("target: no buildable linkage passes near these points; draw them again")
+        comment = f"gearlever workbench: path synthesis ({res.kind}, seed {params['seed']})"
+        return [({"objective": res.objective, "kind": res.kind}, res.model(), comment)]
+    if family == "curve":
+        from gearlever.curves.model import linkage_model
+
+        if not len(res.designs):
+            raise WorkbenchError(
+                "target: no linkage was found within the search's time; give it more time (time) or draw again"
+            )
+        return [
+            (
+                {"distance": float(d), "material": float(mt), "joints": lk.n_joints, "links": len(lk.edges)},
+                linkage_model(lk),
+                f"gearlever workbench: curve synthesis, design {n} (distance {d:.6g}, material {mt:.6g})",
+            )
+            for n, (lk, d, mt) in enumerate(zip(res.designs, res.distance, res.material), 1)
+        ]
+    if family == "function":
+        if res.defect:
+            raise WorkbenchError(f"function: refused, {res.defect}; change the ranges or the points")
+        score = {"structural_error_max": res.structural_error_max, "grashof": getattr(res, "grashof", "")}
+        return [(score, res.model, f"gearlever workbench: function y = {params['expr']}")]
+    if family == "motion":
+        good = [s for s in res.solutions if not s.defect] or list(res.solutions)
+        if not good:
+            raise WorkbenchError("poses: no four-bar guides the coupler through these poses")
+        return [
+            (
+                {"residual": s.residual, "grashof": s.grashof, "defect": s.defect},
+                s.model,
+                f"gearlever workbench: motion synthesis ({res.method}), solution {n}",
+            )
+            for n, s in enumerate(good, 1)
+        ]
+    return [({"kind": res.kind}, res.model(), f"gearlever workbench: law synthesis ({res.kind})")]
+
+
+def _driver(family: str, name: str):
+    """The registered kind ``name`` of ``family`` (:mod:`gearlever.synthesis.registry`), ``(call, searched)``.
+
+    ``auto`` is every kind of the family: the family's driver with ``kind="auto"``.
+    """
+    import importlib
+
+    from gearlever.synthesis import registry
+
+    if name == "auto":
+        k = registry.kinds(family)[0]
+        module, _, fn = k.entry.partition(":")
+        return functools.partial(getattr(importlib.import_module(module), fn), **{k.kind_arg: "auto"}), k.searched
+    k = registry.get(family, name)
+    return k.synthesize, k.searched
+
+
 def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None = None) -> list:
     """Run a synthesis job checked by :func:`check_job`; answer its ranked designs.
+
+    The job's family and kind are looked up in the one registry of synthesis
+    kinds (:func:`gearlever.synthesis.registry.kinds`): its driver is called
+    once, with the seed, budget, scheduler and progress of a searched kind,
+    and its designs are wrapped as model texts.
 
     Parameters
     ----------
@@ -1288,119 +1784,23 @@ def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None =
         if progress is not None:
             progress(str(stage), int(done), int(total))
 
-    kind = params["kind"]
+    family = params["kind"]
     tick("start", 0, 1)
     try:
-        if kind == "path":
-            from gearlever.synthesis.path import synthesize_path
-
-            res = synthesize_path(
-                params["target"],
-                kind=params["type"],
-                seed=params["seed"],
-                budget=params["budget"],
-                scheduler=scheduler,
-                progress=tick,
-                workers=1,
-            )
-            tick("done", 1, 1)
-            if not res.feasible:
-                raise WorkbenchError("target: no buildable linkage passes near these points; draw them again")
-            return [
-                _result(
-                    1,
-                    {"objective": res.objective, "kind": res.kind},
-                    res.model(),
-                    f"gearlever workbench: path synthesis ({res.kind}, seed {params['seed']})",
-                )
-            ]
-        if kind == "curve":
-            from gearlever.curves.model import linkage_model
-            from gearlever.curves.search import synthesize_curve
-
-            res = synthesize_curve(
-                params["target"],
-                max_joints=params["max_joints"],
-                designs=params["designs"],
-                budget=params["budget"],
-                time_limit=params["time"],
-                seed=params["seed"],
-                scheduler=scheduler,
-                progress=tick,
-                workers=1,
-            )
-            tick("done", 1, 1)
-            if not len(res.designs):
-                raise WorkbenchError(
-                    "target: no linkage was found within the search's time; give it more time (time) or draw again"
-                )
-            return [
-                _result(
-                    n,
-                    {"distance": float(d), "material": float(mt), "joints": lk.n_joints, "links": len(lk.edges)},
-                    linkage_model(lk),
-                    f"gearlever workbench: curve synthesis, design {n} (distance {d:.6g}, material {mt:.6g})",
-                )
-                for n, (lk, d, mt) in enumerate(zip(res.designs, res.distance, res.material), 1)
-            ][:MAX_RESULTS]
-        if kind == "function":
-            from gearlever.synthesis.function import function_targets, synthesize_function
-
-            slider = params["type"] == "slider-crank"
-            orange = params["output_range_deg"] if slider else np.radians(params["output_range_deg"])
-            tg = function_targets(
-                params["expr"], params["x_range"], np.radians(params["input_range_deg"]), orange, params["points"]
-            )
+        name_, args, kw = _problem(params)[1:]
+        call, searched = _driver(family, name_)
+        if searched:
+            kw.update(seed=params["seed"], budget=params["budget"], scheduler=scheduler, progress=tick, workers=1)
+        else:
             tick("synthesis", 0, 1)
-            res = synthesize_function(
-                tg.input_angle, tg.output, kind=params["type"], desired=tg.desired, input_range=tg.input_range
-            )
-            tick("done", 1, 1)
-            if res.defect:
-                raise WorkbenchError(f"function: refused, {res.defect}; change the ranges or the points")
-            score = {"structural_error_max": res.structural_error_max, "grashof": getattr(res, "grashof", "")}
-            return [_result(1, score, res.model, f"gearlever workbench: function y = {params['expr']}")]
-        if kind == "motion":
-            from gearlever.synthesis.motion import synthesize_motion
-
-            poses = params["poses"]
-            tick("synthesis", 0, 1)
-            res = synthesize_motion(
-                poses[:, :2],
-                np.radians(poses[:, 2]),
-                fixed_pivots=params.get("fixed_pivots"),
-                moving_pivots=params.get("moving_pivots"),
-            )
-            tick("done", 1, 1)
-            good = [s for s in res.solutions if not s.defect] or list(res.solutions)
-            if not good:
-                raise WorkbenchError("poses: no four-bar guides the coupler through these poses")
-            return [
-                _result(
-                    n,
-                    {"residual": s.residual, "grashof": s.grashof, "defect": s.defect},
-                    s.model,
-                    f"gearlever workbench: motion synthesis ({res.method}), solution {n}",
-                )
-                for n, s in enumerate(good[:MAX_RESULTS], 1)
-            ]
-        from gearlever.synthesis.law import synthesize_law
-
-        res = synthesize_law(
-            params["law_obj"],
-            kind=params["type"],
-            seed=params["seed"],
-            budget=params["budget"],
-            scheduler=scheduler,
-            progress=tick,
-            workers=1,
-        )
+        res = call(*args, **kw)
         tick("done", 1, 1)
-        return [_result(1, {"kind": res.kind}, res.model(), f"gearlever workbench: law synthesis ({res.kind})")]
+        designs = _designs(family, res, params)[:MAX_RESULTS]
+        return [_result(n, score, model, comment) for n, (score, model, comment) in enumerate(designs, 1)]
     except GearleverError as exc:
         if isinstance(exc, WorkbenchError):
             raise
-        raise WorkbenchError(f"{kind}: {exc}") from None
+        raise WorkbenchError(f"{family}: {exc}") from None
     finally:
         if cancelled is not None and cancelled():
             STOP.set()

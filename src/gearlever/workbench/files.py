@@ -22,7 +22,7 @@ import threading
 import tomllib
 from pathlib import Path
 
-__all__ = ["Workspace", "MAX_FILE_BYTES", "MAX_FILES", "SUFFIXES"]
+__all__ = ["Workspace", "CAM_SUFFIX", "MAX_FILE_BYTES", "MAX_FILES", "SUFFIXES"]
 
 #: Largest file the bench reads or writes (bytes).
 MAX_FILE_BYTES = 1_000_000
@@ -30,6 +30,8 @@ MAX_FILE_BYTES = 1_000_000
 MAX_FILES = 2000
 #: File name endings the bench opens and saves.
 SUFFIXES = (".links.json", ".toml")
+#: Ending of a cam file: the bench saves the cam of ``NAME.toml`` (or ``NAME.links.json``) as ``NAME.cam.toml``.
+CAM_SUFFIX = ".cam.toml"
 _NAME = re.compile(r"[^\W][\w.\- ]{0,199}", re.UNICODE)
 
 
@@ -82,7 +84,7 @@ class Workspace:
         return p
 
     def listing(self) -> list:
-        """``[{"name", "size", "mtime"}]`` of the model files, by name."""
+        """``[{"name", "size", "mtime", "kind"}]``: model files (kind ``model``) and cam files (``cam``), by name."""
         out = []
         with os.scandir(self.root) as it:
             for entry in it:
@@ -96,7 +98,8 @@ class Workspace:
                 except Exception:  # noqa: BLE001 - a name the bench would refuse is not listed
                     continue
                 if entry.is_file():
-                    out.append({"name": entry.name, "size": st.st_size, "mtime": st.st_mtime})
+                    kind = "cam" if entry.name.endswith(CAM_SUFFIX) else "model"
+                    out.append({"name": entry.name, "size": st.st_size, "mtime": st.st_mtime, "kind": kind})
         return sorted(out, key=lambda f: f["name"])
 
     def read(self, name: str) -> tuple:
@@ -118,7 +121,7 @@ class Workspace:
         return text, etag_of(data)
 
     def write(self, name: str, text: str, if_match: str | None) -> tuple:
-        """Write ``text`` atomically; ``(created, etag, size)``.
+        """Write ``text`` atomically; ``(created, etag, size)`` (a cam file is checked by the app first).
 
         A ``.toml`` must be TOML and a ``.links.json`` a JSON object (a half
         typed model is kept by the page, not written); 428 when the file

@@ -6,7 +6,7 @@
 import * as api from "./api.js";
 import * as M from "./model.js";
 import { drawPlot, el } from "./plots.js";
-import { modelFromFragment, shareUrl } from "./share.js";
+import { sharedFromFragment, shareUrl } from "./share.js";
 
 const FRAMES = 360;
 const POSE_PX = 36; // drawn length of a pose's direction
@@ -31,7 +31,10 @@ const S = {
   draftLink: null, // {first: joint} or {link: name} while the link tool grows a link
   lastGear: null,
   curve: [],
-  poses: [], // motion synthesis poses [x, y, angle_deg] placed with the pose tool
+  cam: null, // {centre: [x, y], law: "example:NAME" | "file:NAME", follower}: a cam placed with the cam tool
+  camFrames: null, // the last /api/cam answer for S.cam
+  camRevision: -1,
+  camError: "",
   dof: null,
   redundant: null,
   inputs: [],
@@ -74,9 +77,20 @@ function snap([x, y]) {
 function fit() {
   const r = svg().getBoundingClientRect();
   let box = null;
-  if (S.frames && S.frames.extent && S.frames.extent.every(Number.isFinite)) box = S.frames.extent;
-  else {
+  const cams = S.camFrames && S.cam ? [...S.camFrames.profile.filter(Boolean), ...S.camFrames.follower.flat().filter(Boolean)] : [];
+  if (S.frames && S.frames.extent && S.frames.extent.every(Number.isFinite)) {
+    box = [...S.frames.extent];
+    if (cams.length) {
+      // the cam turns: the circle of its profile about its pivot, and its follower
+      const [cx, cy] = S.camFrames.centre;
+      const R = Math.max(...S.camFrames.profile.filter(Boolean).map(([x, y]) => Math.hypot(x - cx, y - cy)));
+      for (const [x, y] of [...cams, [cx - R, cy - R], [cx + R, cy + R]]) {
+        box = [Math.min(box[0], x), Math.min(box[1], y), Math.max(box[2], x), Math.max(box[3], y)];
+      }
+    }
+  } else {
     const pts = Object.values(S.model.points || {});
+    pts.push(...cams);
     if (pts.length) {
       const xs = pts.map((p) => p[0]);
       const ys = pts.map((p) => p[1]);
@@ -99,6 +113,23 @@ function fit() {
 }
 
 // ---------------------------------------------------------------- what is drawn where
+
+/** The motion poses of the model ([[poses]]: point, angle_deg) as [x, y, angle_deg]. */
+function poses() {
+  return (S.model.poses || []).map((p) => [p.point[0], p.point[1], p.angle_deg]);
+}
+
+/** A pose as the model keeps it: the pointer's place to 6 significant digits (what a user would type). */
+function setPose(k, [x, y, a]) {
+  const tidy = (v) => Number(Number(v).toPrecision(6));
+  S.model.poses[k] = { point: [tidy(x), tidy(y)], angle_deg: tidy(a) };
+}
+
+/** Frames of the cycle drawn: the mechanism's, else the cam's when a cam is alone on the bench. */
+function frameCount() {
+  if (S.frames && !S.stale) return S.frames.frames;
+  return S.camFrames && S.camRevision === S.revision ? S.camFrames.frames : 0;
+}
 
 function poseIndex() {
   if (!S.frames || S.stale || !S.frames.frames) return null;
@@ -181,7 +212,7 @@ function ensureDefs() {
   if ($("#canvas defs")) return;
   const defs = el("defs");
   svg().insertBefore(defs, svg().firstChild);
-  for (const [id, color] of [["arrow-v", "#2e7d32"], ["arrow-a", "#b3261e"], ["arrow-f", "#5e35b1"], ["arrow-p", "#00695c"]]) {
+  for (const [id, color] of [["arrow-v", "#2e7d32"], ["arrow-a", "#b3261e"], ["arrow-f", "#5e35b1"], ["arrow-p", "#00695c"], ["arrow-l", "#e65100"]]) {
     const m = el("marker", { id, viewBox: "0 0 10 10", refX: 9, refY: 5, markerWidth: 7, markerHeight: 7, orient: "auto-start-reverse" }, defs);
     el("path", { d: "M0,0 L10,5 L0,10 z", fill: color }, m);
   }
@@ -244,7 +275,7 @@ function render() {
     el("polyline", { points: S.curve.map((p) => toPx(...p).map((v) => v.toFixed(1)).join(",")).join(" "), class: "target-curve" }, curve);
   }
   // motion poses: the coupler point and the coupler's direction
-  S.poses.forEach(([x, y, a], k) => {
+  poses().forEach(([x, y, a], k) => {
     const [px, py] = toPx(x, y);
     const r = (a * Math.PI) / 180;
     const grp = el("g", { class: "pose", "data-pose": k }, curve);
@@ -272,6 +303,8 @@ function render() {
     const a = ((ang || 0) * Math.PI) / 180;
     el("line", { x1: cx, y1: cy, x2: cx + radius * S.view.s * Math.cos(a), y2: cy - radius * S.view.s * Math.sin(a), class: "gear-mark" }, grp);
   }
+  // the cam and its follower (their own mechanism, from POST /api/cam)
+  if (S.cam && S.camFrames && S.camRevision === S.revision) drawCam(links, S.frame % S.camFrames.frames);
   // links
   let k = 0;
   for (const [name, pts] of Object.entries(model.links || {})) {
@@ -357,8 +390,9 @@ function render() {
     if ($("#show-kennedy").checked && S.frames.kennedy) drawKennedy(centres, i);
     if ($("#show-forces").checked) drawForces(arrows, i);
     else $("#torque").textContent = "";
+    drawLoads(arrows, labels);
   }
-  $("#empty").hidden = Object.keys(model.points || {}).length > 0;
+  $("#empty").hidden = Object.keys(model.points || {}).length > 0 || !!S.cam || poses().length > 0;
   updatePlayUi();
 }
 
@@ -396,16 +430,60 @@ function drawKennedy(layer, i) {
   }
 }
 
+/** A unit as a user writes it: the CSV column's "N_mm" is shown "N·mm". */
+const unitText = (u) => String(u || "").replace(/_/g, "·");
+
+/** The arrows' scale (px per force unit): the largest pin reaction of the cycle and the largest load are 70 px. */
+function forceScale() {
+  const F = S.forces && S.forcesRevision === S.revision && !S.forces.error && $("#show-forces").checked ? S.forces : null;
+  let max = 0;
+  if (F) for (const series of Object.values(F.pin)) for (const v of series) if (v && v[0] !== null) max = Math.max(max, Math.hypot(v[0], v[1]));
+  for (const l of S.model.loads || []) if (Array.isArray(l.force)) max = Math.max(max, Math.hypot(l.force[0], l.force[1]));
+  return max > 0 ? 70 / max : 0;
+}
+
+/** Where a load's point is drawn now: a named point where it is solved, or a sketch location carried rigidly by
+ * the load's link (moved with the link's first two points). */
+function loadAt(load) {
+  if (typeof load.point === "string") return pos(load.point);
+  if (!Array.isArray(load.point)) return null;
+  const [a, b] = S.model.links?.[load.link] || [];
+  const [A0, B0, A, B] = [S.model.points[a], S.model.points[b], pos(a), pos(b)];
+  if (!A0 || !A) return load.point;
+  if (!B0 || !B) return [A[0] + load.point[0] - A0[0], A[1] + load.point[1] - A0[1]];
+  const t = Math.atan2(B[1] - A[1], B[0] - A[0]) - Math.atan2(B0[1] - A0[1], B0[0] - A0[0]);
+  const [dx, dy] = [load.point[0] - A0[0], load.point[1] - A0[1]];
+  return [A[0] + Math.cos(t) * dx - Math.sin(t) * dy, A[1] + Math.sin(t) * dx + Math.cos(t) * dy];
+}
+
+/** The model's loads: each force an arrow ending at its point, on the pin forces' scale, labelled with its size
+ * and unit (the forces' unit when the server answered them, else N, the model file's). */
+function drawLoads(layer, labels) {
+  const scale = forceScale();
+  const unit = unitText(S.forces?.units?.force || "N");
+  (S.model.loads || []).forEach((l, k) => {
+    if (!Array.isArray(l.force)) return;
+    const p = loadAt(l);
+    const size = Math.hypot(l.force[0], l.force[1]);
+    if (!p || !(size > 0) || !(scale > 0)) return;
+    const [x, y] = toPx(...p);
+    const [dx, dy] = [l.force[0] * scale, -l.force[1] * scale];
+    el("line", { x1: x - dx, y1: y - dy, x2: x, y2: y, class: "arrow load", "marker-end": "url(#arrow-l)", "data-load": k }, layer);
+    const t = el("text", { x: x - dx / 2 + 6, y: y - dy / 2, class: "load-label", "data-load-label": k }, labels);
+    t.textContent = `${Number(size.toPrecision(4))} ${unit}`;
+  });
+}
+
 /** Pin reactions at frame i as arrows at their pins (the force on the pin's second link), scaled so that the
- * largest of the cycle is 70 px; the input torque in the play bar. Both from POST /api/forces. */
+ * largest of the cycle is 70 px (the loads on the same scale); the input torque in the play bar. Both from
+ * POST /api/forces. */
 function drawForces(layer, i) {
   const F = S.forces;
   const out = $("#torque");
   if (!F || S.forcesRevision !== S.revision) { out.textContent = ""; return; }
   if (F.error) { out.textContent = `forces: ${F.error}`; return; }
-  let max = 0;
-  for (const series of Object.values(F.pin)) for (const v of series) if (v && v[0] !== null) max = Math.max(max, Math.hypot(v[0], v[1]));
-  const scale = max > 0 ? 70 / max : 0;
+  const scale = forceScale();
+
   for (const [key, series] of Object.entries(F.pin)) {
     const v = series[i];
     const p = pos(key.split(":")[0]);
@@ -415,7 +493,158 @@ function drawForces(layer, i) {
     if (Math.hypot(dx, dy) < 2) continue;
     el("line", { x1: x, y1: y, x2: x + dx, y2: y + dy, class: "arrow force", "marker-end": "url(#arrow-f)", "data-force": key }, layer);
   }
-  out.textContent = Object.entries(F.torque).map(([n, t]) => `T ${n} ${t[i] === null ? "–" : Number(t[i].toPrecision(4))} ${F.units.torque}`).join(" · ");
+  out.textContent = Object.entries(F.torque).map(([n, t]) => `T ${n} ${t[i] === null ? "–" : Number(t[i].toPrecision(4))} ${unitText(F.units.torque)}`).join(" · ");
+}
+
+/** The cam at frame i: its profile turned about its pivot by the cam's angle, the follower where the server
+ * places it (roller, face, stem, arm), all from POST /api/cam. */
+function drawCam(layer, i) {
+  const C = S.camFrames;
+  const [cx, cy] = C.centre;
+  const a = (C.cam_angle_deg[i] * Math.PI) / 180;
+  const [c, s] = [Math.cos(a), Math.sin(a)];
+  const turn = ([x, y]) => toPx(cx + c * (x - cx) - s * (y - cy), cy + s * (x - cx) + c * (y - cy));
+  const px = (p) => toPx(p[0], p[1]);
+  const grp = el("g", { class: "cam", "data-cam": C.follower_kind }, layer);
+  el("polygon", { points: C.profile.filter(Boolean).map((p) => turn(p).map((v) => v.toFixed(1)).join(",")).join(" "), class: "cam-profile" }, grp);
+  const [hx, hy] = px([cx, cy]);
+  const [mx, my] = turn([cx + 0.6 * C.base_radius, cy]);
+  el("line", { x1: hx, y1: hy, x2: mx, y2: my, class: "cam-mark" }, grp);
+  const pivots = [[hx, hy], ...(C.pivot ? [px(C.pivot)] : [])];
+  for (const [x, y] of pivots) {
+    el("path", { d: `M${x},${y} l-9,13 h18 z`, class: "ground-mark" }, grp);
+    el("circle", { cx: x, cy: y, r: 4, class: "cam-hub" }, grp);
+  }
+  const f = el("g", { class: "follower", "data-follower": C.follower_kind }, layer);
+  const [p0, p1] = [C.follower[0][i], C.follower[1][i]];
+  if (p0 && p1) {
+    const [a0, b0] = [px(p0), px(p1)];
+    el("line", { x1: a0[0], y1: a0[1], x2: b0[0], y2: b0[1], class: "follower-body" }, f);
+  }
+  if (C.face && C.face[0][i] && C.face[1][i]) {
+    const [a0, b0] = [px(C.face[0][i]), px(C.face[1][i])];
+    el("line", { x1: a0[0], y1: a0[1], x2: b0[0], y2: b0[1], class: "follower-face" }, f);
+  }
+  if (C.roller_centre && C.roller_centre[i]) {
+    const [x, y] = px(C.roller_centre[i]);
+    el("circle", { cx: x, cy: y, r: Math.max(2, C.roller_radius * S.view.s), class: "follower-roller" }, f);
+  }
+}
+
+/** The cam's law as the server takes it: a shipped example by name, or a workspace file's text. */
+async function camLaw(spec) {
+  if (spec.file) return { file: spec.file }; // a saved cam (CAM.toml): its law, follower and dimensions
+  if (spec.lawText) return { law: spec.lawText };
+  if (spec.law.startsWith("example:")) return { example: spec.law.slice("example:".length) };
+  return { law: (await api.getFile(spec.law.slice("file:".length))).model };
+}
+
+/** Ask the server for the cam of S.cam (law, follower, pivot): sized and solved over one turn by the library;
+ * kept for the revision it was asked for. */
+async function syncCam() {
+  if (!S.cam) { S.camFrames = null; S.camError = ""; S.camRevision = S.revision; return; }
+  if (S.camRevision === S.revision) return;
+  const revision = S.revision;
+  const spec = S.cam;
+  try {
+    const body = { ...(await camLaw(spec)), centre: spec.centre };
+    const turns = spec.on && S.frames && !S.stale ? S.frames.angle_deg?.[spec.on] : null;
+    if (turns) {
+      // rigid on its link: the cam's angle at each frame is the link's turn from the first frame (the sketch)
+      let last = 0;
+      body.angles_deg = turns.map((a) => (a === null ? last : (last = a - turns[0])));
+    } else body.frames = FRAMES;
+    if (spec.follower) body.follower = spec.follower;
+    const answer = await api.post("/api/cam", body);
+    if (revision !== S.revision) return;
+    S.camFrames = answer;
+    S.camError = "";
+  } catch (e) {
+    if (revision !== S.revision) return;
+    S.camFrames = null;
+    S.camError = e.message;
+  }
+  S.camRevision = revision;
+  render();
+  setStatus();
+}
+
+/** The link a cam on the ground pivot `joint` is rigid on (an input first), or null. */
+function camCarrier(joint, model = S.model) {
+  const onGround = joint && M.isGround(model, joint);
+  const carriers = onGround ? Object.keys(model.links).filter((l) => l !== "ground" && model.links[l].includes(joint)) : [];
+  const inputs = inputLinks();
+  return carriers.find((l) => inputs.includes(l)) || carriers[0] || null;
+}
+
+/** The cam file saved beside a model file: NAME.toml (or NAME.links.json) -> NAME.cam.toml. */
+function camFileOf(name) {
+  return `${name.replace(/(\.cam)?(\.toml|\.links\.json)$/, "")}.cam.toml`;
+}
+
+/** The cam of a CAM.toml text, as the bench keeps it: its pivot (the file's [cam] centre) and follower read by the
+ * server (the library's reader), the text itself sent back to draw it (exact dimensions); rigid on the link whose
+ * ground pivot it sits on in `model`. */
+async function camFromFile(text, model) {
+  const c = await api.post("/api/cam", { file: text, frames: FRAMES });
+  const joint = Object.keys(model.points || {}).find((j) => M.isGround(model, j)
+    && Math.abs(model.points[j][0] - c.centre[0]) < 1e-9 && Math.abs(model.points[j][1] - c.centre[1]) < 1e-9);
+  return { centre: c.centre, law: "cam", file: text, follower: c.follower_kind, on: joint ? camCarrier(joint, model) : null };
+}
+
+/** The cam tool's click: a cam on a ground pivot at xy, of the law and follower chosen beside the tool (one undo step). */
+function placeCam(xy, joint) {
+  const law = $("#cam-law").value;
+  if (!law) { notify("choose the cam's law first (the list beside the cam tool)"); return Promise.resolve(); }
+  // on a ground pivot of a moving link (an input first) the cam is rigid on that link and turns with it
+  const on = camCarrier(joint);
+  const before = snapshot();
+  S.cam = { centre: xy, law, follower: $("#cam-follower").value || null, on };
+  pushUndo(before);
+  return changed();
+}
+
+/** A new law or follower chosen while a cam is on the bench: the cam is made again (one undo step). */
+function camChoice() {
+  if (!S.cam) return;
+  const before = snapshot();
+  const law = $("#cam-law").value;
+  const next = { ...S.cam, law: law || S.cam.law, follower: $("#cam-follower").value || null };
+  if (next.file) { next.lawText = law ? undefined : next.file; delete next.file; } // a saved cam's law, new follower
+  if (law) delete next.lawText;
+  S.cam = next;
+  pushUndo(before);
+  changed();
+}
+
+/** The law list beside the cam tool: the shipped laws and the workspace's files, asked again each time the cam
+ * tool is chosen (a law saved since the page opened is listed); the choice is kept when it is still listed. */
+let lawsAsked = null;
+async function loadLaws() {
+  const sel = $("#cam-law");
+  const asked = (lawsAsked = Symbol("laws"));
+  const [laws, listing] = await Promise.all([api.get("/api/laws"), api.get("/api/files")]);
+  if (asked !== lawsAsked) return; // a newer refresh is under way
+  const kept = sel.value;
+  for (const g of [...sel.querySelectorAll("optgroup")]) g.remove();
+  const add = (group, value, text) => {
+    const o = document.createElement("option");
+    o.value = value;
+    o.textContent = text;
+    group.appendChild(o);
+  };
+  const shipped = document.createElement("optgroup");
+  shipped.label = "shipped laws";
+  for (const e of laws.examples) add(shipped, `example:${e.name}`, `${e.name} (${e.output})`);
+  sel.appendChild(shipped);
+  const files = listing.files.filter((f) => f.name.endsWith(".toml"));
+  if (files.length) {
+    const ws = document.createElement("optgroup");
+    ws.label = "workspace";
+    for (const f of files) add(ws, `file:${f.name}`, f.name);
+    sel.appendChild(ws);
+  }
+  sel.value = [...sel.options].some((o) => o.value === kept) ? kept : "";
 }
 
 let forcing = null;
@@ -489,7 +718,9 @@ function arrowScale(kind) {
 
 function setStatus() {
   const parts = [];
-  if (!Object.keys(S.model.points || {}).length) parts.push("Empty bench: pick an example, or place two ground pivots (G) to start.");
+  if (!Object.keys(S.model.points || {}).length) {
+    if (!S.cam) parts.push("Empty bench: pick an example, or place two ground pivots (G) to start.");
+  }
   else if (!M.solvable(S.model)) {
     if (!S.model.links?.ground?.length) parts.push("Place a ground pivot (G).");
     else if (Object.keys(S.model.links).length < 2) parts.push("Join joints into links (L): click them one after another, Enter ends.");
@@ -502,6 +733,11 @@ function setStatus() {
       parts.push(`assembles ${closed}/${S.frames.frames}`);
     }
   }
+  if (S.cam) {
+    const served = S.camFrames && S.camRevision === S.revision ? S.camFrames.message : "";
+    const note = S.camError ? `cam: ${S.camError}` : (served && S.cam.on ? `${served}; it turns with ${S.cam.on}` : served);
+    if (note) parts.push(note);
+  }
   const status = $("#status");
   const msg = S.error || S.message;
   status.textContent = parts.join(" · ") + (msg ? ` · ${msg}` : "");
@@ -509,13 +745,16 @@ function setStatus() {
 }
 
 function updatePlayUi() {
-  const n = S.frames && !S.stale ? S.frames.frames : 0;
+  const n = frameCount();
   const scrub = $("#scrub");
   scrub.max = String(Math.max(0, n - 1));
   if (Number(scrub.value) !== S.frame) scrub.value = String(S.frame);
   const inp = S.frames && !S.stale && S.frames.input_deg ? S.frames.input_deg[S.frame] : null;
   const kind = S.frames?.input_kind?.[S.inputs[0]];
-  $("#angle").textContent = inp === null || inp === undefined ? "" : `${S.inputs[0] || "input"} ${inp.toFixed(1)}${kind === "slider" ? "" : "°"}`;
+  const camDeg = !inp && n && S.camFrames ? S.camFrames.cam_angle_deg[S.frame % S.camFrames.frames] : null;
+  $("#angle").textContent = inp === null || inp === undefined
+    ? (camDeg === null || camDeg === undefined ? "" : `cam ${camDeg.toFixed(1)}°`)
+    : `${S.inputs[0] || "input"} ${inp.toFixed(1)}${kind === "slider" ? "" : "°"}`;
   const label = S.playing ? "pause" : "play";
   $("#play").textContent = S.playing ? "❚❚" : "▶";
   $('[data-action="play"]').textContent = label;
@@ -550,7 +789,7 @@ function linkSeries(f, ln, q) {
   if (q === "alpha" && f.alpha?.[ln]) return [{ label: `${ln} α (rad/s² per (input rad/s)²)`, ys: f.alpha[ln] }];
   if (q === "torque") {
     const F = S.forces && S.forcesRevision === S.revision && !S.forces.error ? S.forces : null;
-    return F ? Object.entries(F.torque).map(([n, ys]) => ({ label: `input ${n} torque (${F.units.torque}) at ${S.rpm} rpm`, ys })) : [];
+    return F ? Object.entries(F.torque).map(([n, ys]) => ({ label: `input ${n} torque (${unitText(F.units.torque)}) at ${S.rpm} rpm`, ys })) : [];
   }
   return [{ label: `${ln} angle (deg)`, ys: f.angle_deg[ln] }];
 }
@@ -571,8 +810,15 @@ function refill(select, names, preferred) {
 
 // ---------------------------------------------------------------- model changes, undo, sync with the server
 
+/** The undoable state: the model and the cam beside it (the model file has no cam pair). */
 function snapshot() {
-  return JSON.stringify(S.model);
+  return JSON.stringify({ model: S.model, cam: S.cam });
+}
+
+function restore(text) {
+  const snap = JSON.parse(text);
+  S.model = snap.model;
+  S.cam = snap.cam;
 }
 
 function pushUndo(before) {
@@ -597,7 +843,9 @@ function changed(opts = {}) {
   render();
   renderProps();
   setStatus();
-  return requestSync(opts);
+  // a cam on a link turns with it: asked for once the link's angles of this revision are solved (finishSync)
+  const cam = S.cam?.on && M.solvable(S.model) ? null : syncCam();
+  return requestSync(opts).then(() => cam);
 }
 
 let syncing = null;
@@ -706,6 +954,7 @@ function takeFrames(f) {
 }
 
 function finishSync() {
+  if (S.cam?.on) syncCam();
   fillKennedy();
   render();
   drawPlots();
@@ -717,7 +966,7 @@ function finishSync() {
 function undo() {
   if (!S.undo.length) return Promise.resolve();
   S.redo.push(snapshot());
-  S.model = JSON.parse(S.undo.pop());
+  restore(S.undo.pop());
   S.selected = null;
   return changed();
 }
@@ -725,16 +974,17 @@ function undo() {
 function redo() {
   if (!S.redo.length) return Promise.resolve();
   S.undo.push(snapshot());
-  S.model = JSON.parse(S.redo.pop());
+  restore(S.redo.pop());
   S.selected = null;
   return changed();
 }
 
 /** Replace the model by a TOML text (one undo step); resolves once it is solved. */
-async function load(text, { fitView = true } = {}) {
+async function load(text, { fitView = true, cam } = {}) {
   const parsed = await api.post("/api/parse", { model: text });
   const before = snapshot();
   S.model = parsed.model;
+  if (cam !== undefined) S.cam = cam; // a file opened with its cam (or without one): the same undo step
   pushUndo(before);
   S.selected = null; S.draftLink = null; S.frame = 0;
   clearTomlError();
@@ -819,11 +1069,11 @@ function onPointerDown(ev) {
   } else if (S.tool === "pose") {
     const hit = poseAt(px, py);
     if (hit) Object.assign(gesture, hit);
-    else if (S.poses.length >= 5) { gesture.kind = "none"; notify("five poses at most: drag one, or clear them in the synthesis panel"); }
+    else if (poses().length >= 5) { gesture.kind = "none"; notify("five poses at most: drag one, or clear them in the synthesis panel"); }
     else {
-      const [x, y] = toModel(px, py);
-      S.poses.push([x, y, 0]);
-      Object.assign(gesture, { kind: "pose-turn", index: S.poses.length - 1 });
+      (S.model.poses ||= []).push(null);
+      setPose(S.model.poses.length - 1, [...toModel(px, py), 0]);
+      Object.assign(gesture, { kind: "pose-turn", index: S.model.poses.length - 1, added: true });
       render();
     }
   } else if (S.tool === "input") {
@@ -834,8 +1084,9 @@ function onPointerDown(ev) {
 
 /** The pose under the pixel: its point (drag moves it) or the tip of its direction (drag turns it). */
 function poseAt(px, py) {
-  for (let k = S.poses.length - 1; k >= 0; k--) {
-    const [x, y, a] = S.poses[k];
+  const all = poses();
+  for (let k = all.length - 1; k >= 0; k--) {
+    const [x, y, a] = all[k];
     const [qx, qy] = toPx(x, y);
     const r = (a * Math.PI) / 180;
     if (Math.hypot(qx + POSE_PX * Math.cos(r) - px, qy - POSE_PX * Math.sin(r) - py) <= HIT_PX) return { kind: "pose-turn", index: k };
@@ -871,12 +1122,12 @@ function onPointerMove(ev) {
     turnInputTo(gesture.joint, toModel(px, py));
   } else if (gesture.kind === "pose-move" && gesture.moved) {
     const [x, y] = snap(toModel(px, py));
-    S.poses[gesture.index] = [x, y, S.poses[gesture.index][2]];
+    setPose(gesture.index, [x, y, poses()[gesture.index][2]]);
     render();
   } else if (gesture.kind === "pose-turn" && gesture.moved) {
-    const [x, y] = S.poses[gesture.index];
+    const [x, y] = poses()[gesture.index];
     const [mx, my] = toModel(px, py);
-    S.poses[gesture.index][2] = Number(((Math.atan2(my - y, mx - x) * 180) / Math.PI).toFixed(2));
+    setPose(gesture.index, [x, y, Number(((Math.atan2(my - y, mx - x) * 180) / Math.PI).toFixed(2))]);
     render();
   }
 }
@@ -901,8 +1152,15 @@ function onPointerUp(ev) {
     return;
   }
   if (g.kind === "pose-move" || g.kind === "pose-turn" || g.kind === "none") {
-    const p = S.poses[g.index];
-    if (p) notify(`pose ${g.index + 1} of ${S.poses.length}: (${Number(p[0].toPrecision(5))}, ${Number(p[1].toPrecision(5))}) at ${p[2]}°`);
+    const all = poses();
+    const p = all[g.index];
+    if (p) {
+      S.selected = { kind: "pose", index: g.index };
+      renderProps();
+      // a pose added, moved or turned is one undo step, saved with the model ([[poses]])
+      if (g.moved || g.added) { pushUndo(g.before); changed(); }
+      notify(`pose ${g.index + 1} of ${all.length}: (${Number(p[0].toPrecision(5))}, ${Number(p[1].toPrecision(5))}) at ${p[2]}°`);
+    }
     return;
   }
   if (g.kind === "pan" || g.kind === "turn") {
@@ -916,6 +1174,9 @@ function onPointerUp(ev) {
 function click(px, py, joint, link) {
   const xy = snap(toModel(px, py));
   switch (S.tool) {
+    case "cam":
+      placeCam(joint ? [...S.model.points[joint]] : xy, joint);
+      break;
     case "select":
       S.selected = link ? { kind: "link", name: link } : null;
       renderProps(); render();
@@ -1012,7 +1273,7 @@ function onWheel(ev) {
 let last = 0;
 function tick(t) {
   if (!S.playing) return;
-  const n = S.frames && !S.stale ? S.frames.frames : 0;
+  const n = frameCount();
   if (n) {
     const dt = last ? Math.min(0.1, (t - last) / 1000) : 0;
     S.frameF = ((S.frameF ?? S.frame) + dt * S.speed * (n / 4)) % n;
@@ -1025,7 +1286,7 @@ function tick(t) {
 
 function play() {
   if (S.playing) { stop(); return; }
-  if (!S.frames || S.stale) { notify("nothing to play yet: the model needs an input"); return; }
+  if (!frameCount()) { notify("nothing to play yet: the model needs an input"); return; }
   S.playing = true;
   S.frameF = S.frame;
   last = 0;
@@ -1073,6 +1334,18 @@ function renderProps() {
   clear(box);
   const m = S.model;
   const sel = S.selected;
+  if (sel?.kind === "pose" && m.poses?.[sel.index]) {
+    const h = document.createElement("h3");
+    h.textContent = `pose ${sel.index + 1} (motion synthesis)`;
+    box.appendChild(h);
+    const [x, y, a] = poses()[sel.index];
+    const put = (v, k) => Number.isFinite(v) && edit(() => { const p = poses()[sel.index]; p[k] = v; setPose(sel.index, p); });
+    field(box, "x", x, (v) => put(v, 0), { attrs: { "data-field": "pose-x" } });
+    field(box, "y", y, (v) => put(v, 1), { attrs: { "data-field": "pose-y" } });
+    field(box, "angle (deg)", a, (v) => put(v, 2), { attrs: { "data-field": "pose-angle" } });
+    button(box, "delete pose", () => { edit((mm) => M.deletePose(mm, sel.index)); S.selected = null; renderProps(); }, { "data-action-pose": "delete" });
+    return;
+  }
   if (sel?.kind === "joint" && m.points?.[sel.name]) {
     const h = document.createElement("h3");
     h.textContent = `joint ${sel.name}`;
@@ -1236,6 +1509,7 @@ function setTool(tool) {
   for (const b of $$("[data-tool]")) b.setAttribute("aria-pressed", String(b.dataset.tool === tool));
   svg().dataset.tool = tool;
   document.body.classList.remove("tools-open");
+  if (tool === "cam") loadLaws().catch((e) => notify(`laws: ${e.message}`));
 }
 
 function endLink() {
@@ -1264,6 +1538,11 @@ async function exportAs(format) {
       const k = S.frames.closed[S.frame] ? S.frame : lastClosed(S.frame);
       body.inputs = Object.fromEntries(Object.entries(S.frames.inputs_deg).map(([n, v]) => [n, v[k]]));
     }
+    // the cam on the bench: its profile on a layer of its own, turned as in the frame shown
+    if ((format === "dxf" || format === "svg-outline") && S.cam && S.camFrames && S.camRevision === S.revision) {
+      body.cam = S.camFrames.cam_toml;
+      body.cam_angle_deg = S.camFrames.cam_angle_deg[S.frame % S.camFrames.frames];
+    }
     const { blob, filename } = await api.postFile(`/api/export/${format}`, body);
     const base = (S.file.name || S.model.mechanism?.name || "mechanism").replace(/\.toml$/, "").replace(/[^\p{L}\p{N}_.-]+/gu, "_");
     download(blob, filename || `${base}.${format}`);
@@ -1276,7 +1555,8 @@ async function exportAs(format) {
 }
 
 async function openShare() {
-  const link = await shareUrl(S.toml);
+  if (S.cam && S.camRevision !== S.revision) await syncCam();
+  const link = await shareUrl(S.toml, S.cam ? S.camFrames?.cam_toml : null);
   $("#share-link").value = link;
   window.history.replaceState(null, "", new URL(link).hash);
   try { await navigator.clipboard.writeText(link); notify("share link copied"); } catch { notify("share link in the export panel"); }
@@ -1306,22 +1586,83 @@ async function listFiles() {
 }
 
 async function openFile(name) {
+  if (name.endsWith(".cam.toml")) return openCam(name);
   const { model, etag } = await api.getFile(name);
-  await load(model);
-  S.file = { name, etag };
+  // the cam saved beside the model comes back with it (a model without one: no cam)
+  let cam = null;
+  let camEtag = null;
+  try {
+    const { files } = await api.get("/api/files");
+    if (files.some((f) => f.name === camFileOf(name))) {
+      const got = await api.getFile(camFileOf(name));
+      cam = await camFromFile(got.model, (await api.post("/api/parse", { model })).model);
+      camEtag = got.etag;
+    }
+  } catch (e) {
+    notify(`${camFileOf(name)}: ${e.message}`);
+  }
+  await load(model, { cam });
+  if (cam) { await syncCam(); fit(); render(); } // the view takes in the cam too
+  S.file = { name, etag, camEtag };
   $("#file-name").value = name;
   $("#dlg-files").close();
   notify(`opened ${name}`);
 }
 
+/** A CAM.toml opened alone: an empty bench with the cam at its pivot (one undo step). */
+async function openCam(name) {
+  const { model } = await api.getFile(name);
+  const cam = await camFromFile(model, M.EMPTY());
+  stop();
+  const before = snapshot();
+  S.model = M.EMPTY();
+  S.cam = cam;
+  pushUndo(before);
+  S.selected = null; S.draftLink = null; S.frame = 0;
+  await changed();
+  fit();
+  render();
+  S.file = { name: null, etag: null, camEtag: null };
+  $("#dlg-files").close();
+  notify(`opened the cam ${name}`);
+}
+
+/** Save the bench's cam as the CAM.toml beside the model file `name` (If-Match: the cam file's ETag when it was
+ * opened or saved with this model); the new ETag, or null after a conflict (shown). */
+async function saveCam(name, force = null) {
+  const file = camFileOf(name);
+  if (S.camRevision !== S.revision) await syncCam();
+  if (!S.camFrames?.cam_toml) throw new Error(`the cam is not drawn (${S.camError || "not solved"}): ${file} not written`);
+  try {
+    S.file.camEtag = await api.putFile(file, S.camFrames.cam_toml, force || S.file.camEtag);
+    return S.file.camEtag;
+  } catch (e) {
+    if (e.status === 412 || e.status === 428) {
+      showConflict(file, e.status, { overwrite: (tag) => saveCam(name, tag), mine: name });
+      if (!$("#dlg-files").open) $("#dlg-files").showModal();
+      return null;
+    }
+    throw e;
+  }
+}
+
 async function saveFile(name, { force = false } = {}) {
   name = name || S.file.name || "design.toml";
+  if (name.endsWith(".cam.toml")) {
+    notify(`${name}: a .cam.toml name is the cam's; save the bench as a model (.toml), its cam goes beside it`);
+    return null;
+  }
   const etag = S.file.name === name ? S.file.etag : null;
   $("#file-conflict").hidden = true;
   try {
     const newTag = await api.putFile(name, S.toml, force ? force : etag);
-    S.file = { name, etag: newTag };
-    notify(`saved ${name}`);
+    const camEtag = S.file.name === name ? S.file.camEtag : null;
+    S.file = { name, etag: newTag, camEtag };
+    if (S.cam && (await saveCam(name)) === null) return null;
+    // a cam file left beside a model saved without a cam would bring a cam back when it is opened: say so
+    const stray = !S.cam && (await api.get("/api/files")).files.some((f) => f.name === camFileOf(name));
+    notify(S.cam ? `saved ${name} and its cam ${camFileOf(name)}`
+      : (stray ? `saved ${name}; ${camFileOf(name)} beside it is left as it was (it opens with ${name})` : `saved ${name}`));
     listFiles();
     return name;
   } catch (e) {
@@ -1335,22 +1676,25 @@ async function saveFile(name, { force = false } = {}) {
   }
 }
 
-function showConflict(name, status) {
+function showConflict(name, status, { overwrite = null, mine = null } = {}) {
   $("#file-conflict").hidden = false;
   $("#file-conflict-text").textContent = status === 412
     ? `${name} changed in the workspace since you opened it: nothing was written. Keep which?`
     : `${name} already exists in the workspace: nothing was written. Keep which?`;
-  $("#conflict-overwrite").onclick = async () => { const { etag } = await api.getFile(name); await saveFile(name, { force: etag }); };
+  $("#conflict-overwrite").onclick = async () => {
+    const { etag } = await api.getFile(name);
+    await (overwrite ? overwrite(etag) : saveFile(name, { force: etag }));
+  };
   $("#conflict-copy").onclick = async () => {
     const { files } = await api.get("/api/files");
     const names = new Set(files.map((f) => f.name));
-    const stem = name.replace(/\.toml$/, "");
+    const stem = (mine || name).replace(/\.toml$/, ""); // a cam's conflict: the bench saved as a new model
     let k = 2;
     while (names.has(`${stem}-${k}.toml`)) k++;
     S.file = { name: null, etag: null };
     await saveFile(`${stem}-${k}.toml`);
   };
-  $("#conflict-theirs").onclick = () => openFile(name);
+  $("#conflict-theirs").onclick = () => openFile(mine || name);
 }
 
 // synthesis
@@ -1391,11 +1735,11 @@ function synthParams(kind) {
     const ta = document.createElement("textarea");
     ta.id = "synth-poses";
     ta.rows = 5;
-    ta.value = S.poses.length ? S.poses.map((p) => p.map((v) => Number(v.toPrecision(8))).join(", ")).join("\n") : "0, 0, 0\n20, 10, 30\n40, 10, 60";
+    ta.value = poses().length ? poses().map((p) => p.map((v) => Number(v.toPrecision(8))).join(", ")).join("\n") : "0, 0, 0\n20, 10, 30\n40, 10, 60";
     box.appendChild(ta);
     const row = document.createElement("div");
     row.className = "row";
-    button(row, "clear poses", () => { S.poses = []; render(); synthParams(kind); }, { id: "synth-clear-poses" });
+    button(row, "clear poses", () => { edit((m) => { delete m.poses; }); synthParams(kind); }, { id: "synth-clear-poses" });
     box.appendChild(row);
   } else if (kind === "law") {
     note.textContent = "the [law] table of a cam law file";
@@ -1445,8 +1789,9 @@ function jobBody(kind, opts = {}) {
   }
   if (kind === "motion") {
     const typed = $("#synth-poses") ? val("#synth-poses", "").split("\n").filter((l) => l.trim()).map(nums) : [];
-    const poses = opts.poses ?? (S.poses.length >= 3 && !$("#dlg-synth").open ? S.poses : (typed.length ? typed : S.poses));
-    const body = { kind, poses: poses.map((p) => p.map((v) => Number(Number(v).toPrecision(10)))) };
+    const placed = poses();
+    const chosen = opts.poses ?? (placed.length >= 3 && !$("#dlg-synth").open ? placed : (typed.length ? typed : placed));
+    const body = { kind, poses: chosen.map((p) => p.map((v) => Number(Number(v).toPrecision(10)))) };
     if (body.poses.length === 3) body.moving_pivots = opts.moving_pivots ?? movingPivots(body.poses);
     return body;
   }
@@ -1589,12 +1934,13 @@ const SHORTCUTS = [
   ["I", "input", () => setTool("input")],
   ["C", "curve (freehand target)", () => setTool("curve")],
   ["M", "motion pose (press at the point, drag along the coupler)", () => setTool("pose")],
+  ["K", "cam and follower (the law and follower chosen beside the tool)", () => setTool("cam")],
   ["Space", "play / pause", () => play()],
   ["← →", "previous / next frame", null],
   ["Ctrl+Z", "undo", () => undo()],
   ["Ctrl+Shift+Z, Ctrl+Y", "redo", () => redo()],
   ["Ctrl+S", "save into the workspace", null],
-  ["Delete", "delete the selected joint or link", null],
+  ["Delete", "delete the selected joint, link or pose", null],
   ["F", "fit the drawing", null],
   ["N", "new empty bench", null],
   ["?", "this help", null],
@@ -1612,13 +1958,14 @@ function onKey(ev) {
   if (ev.key === "Escape" || ev.key === "Enter") { if (S.draftLink) { endLink(); ev.preventDefault(); } return; }
   if (ev.key === " ") { ev.preventDefault(); play(); return; }
   if (ev.key === "ArrowRight" || ev.key === "ArrowLeft") {
-    const n = S.frames && !S.stale ? S.frames.frames : 0;
+    const n = frameCount();
     if (n) { S.frame = (S.frame + (ev.key === "ArrowRight" ? 1 : n - 1)) % n; render(); }
     return;
   }
   if (ev.key === "Delete" || ev.key === "Backspace") {
     const sel = S.selected;
-    if (sel?.kind === "joint") edit((m) => M.deletePoint(m, sel.name));
+    if (sel?.kind === "pose") edit((m) => M.deletePose(m, sel.index));
+    else if (sel?.kind === "joint") edit((m) => M.deletePoint(m, sel.name));
     else if (sel?.kind === "link") edit((m) => M.deleteLink(m, sel.name));
     S.selected = null;
     renderProps();
@@ -1628,15 +1975,14 @@ function onKey(ev) {
   if (k === "f") { fit(); render(); return; }
   if (k === "n") { newBench(); return; }
   if (ev.key === "?") { $("#dlg-help").showModal(); return; }
-  const tool = { v: "select", g: "ground", p: "pin", l: "link", s: "slider", e: "gear", o: "point", i: "input", c: "curve", m: "pose" }[k];
+  const tool = { v: "select", g: "ground", p: "pin", l: "link", s: "slider", e: "gear", o: "point", i: "input", c: "curve", m: "pose", k: "cam" }[k];
   if (tool) setTool(tool);
 }
 
 function newBench() {
   stop();
-  edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); });
+  edit((m) => { for (const key of Object.keys(m)) delete m[key]; Object.assign(m, M.EMPTY()); S.cam = null; });
   S.curve = [];
-  S.poses = [];
   S.selected = null;
   S.file = { name: null, etag: null };
   fit();
@@ -1738,15 +2084,23 @@ function wire() {
     runJob(body).catch((e) => { $("#synth-stage").textContent = e.message; $("#synth-run").disabled = false; });
   });
   $("#synth-cancel").addEventListener("click", cancelJob);
+  $("#cam-law").addEventListener("change", camChoice);
+  $("#cam-follower").addEventListener("change", camChoice);
   window.addEventListener("resize", () => { render(); drawPlots(); });
   window.addEventListener("hashchange", () => fromFragment());
 }
 
 async function fromFragment() {
-  let text = null;
-  try { text = await modelFromFragment(); } catch (e) { notify(`share link: ${e.message}`); return false; }
-  if (text === null) return false;
-  try { await load(text); notify("opened from the share link"); return true; } catch (e) { notify(`share link: ${e.message}`); return false; }
+  let shared = null;
+  try { shared = await sharedFromFragment(); } catch (e) { notify(`share link: ${e.message}`); return false; }
+  if (shared === null) return false;
+  try {
+    const cam = shared.cam ? await camFromFile(shared.cam, (await api.post("/api/parse", { model: shared.model })).model) : null;
+    await load(shared.model, { cam });
+    if (cam) { await syncCam(); fit(); render(); }
+    notify(shared.cam ? "opened from the share link, with its cam" : "opened from the share link");
+    return true;
+  } catch (e) { notify(`share link: ${e.message}`); return false; }
 }
 
 window.workbench = {
@@ -1768,7 +2122,7 @@ window.workbench = {
   // for tests and scripts
   play: () => { if (!S.playing) play(); }, pause: stop, setFrame: (i) => { S.frame = i; render(); },
   setTool, fit: () => { fit(); render(); }, save: (name) => saveFile(name), open: openFile,
-  share: openShare, export: exportAs, curve: () => S.curve.map((p) => [...p]), poses: () => S.poses.map((p) => [...p]), branch: (joint) => setBranch(joint),
+  share: openShare, export: exportAs, curve: () => S.curve.map((p) => [...p]), poses: () => poses(), cam: () => (S.camRevision === S.revision ? S.camFrames : null), view: () => ({ ...S.view }), branch: (joint) => setBranch(joint),
 };
 
 async function start() {
@@ -1781,6 +2135,7 @@ async function start() {
   setStatus();
   drawPlots();
   await loadExamples();
+  await loadLaws().catch((e) => notify(`laws: ${e.message}`));
   const opened = await fromFragment();
   const name = new URL(window.location.href).searchParams.get("open");
   if (name && !opened) {

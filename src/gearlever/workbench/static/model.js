@@ -5,7 +5,7 @@ export const EMPTY = () => ({ mechanism: { name: "mechanism", units: "mm" }, poi
 
 export const clone = (m) => JSON.parse(JSON.stringify(m));
 
-const TABLE_ORDER = ["mechanism", "points", "links", "sliders", "gears", "meshes", "inputs", "masses", "loads", "lengths"];
+const TABLE_ORDER = ["mechanism", "points", "links", "sliders", "gears", "meshes", "inputs", "masses", "loads", "lengths", "poses"];
 
 function key(k) {
   return /^[A-Za-z0-9_-]+$/.test(k) ? k : JSON.stringify(k);
@@ -184,8 +184,14 @@ export function deletePoint(model, name) {
   tidy(model);
 }
 
+/** Delete the motion pose at index k of [[poses]]. */
+export function deletePose(model, k) {
+  if (model.poses) model.poses.splice(k, 1);
+  tidy(model);
+}
+
 function tidy(model) {
-  for (const t of ["inputs", "sliders", "meshes", "loads"]) if (Array.isArray(model[t]) && model[t].length === 0) delete model[t];
+  for (const t of ["inputs", "sliders", "meshes", "loads", "poses"]) if (Array.isArray(model[t]) && model[t].length === 0) delete model[t];
   for (const t of ["gears", "masses"]) if (model[t] && Object.keys(model[t]).length === 0) delete model[t];
 }
 

@@ -1,5 +1,6 @@
 // A share link: the model's TOML text, deflate-raw compressed and base64url encoded, in the URL fragment
-// (#m=...). Nothing is stored on the server; the fragment never reaches it.
+// (#m=...), and the cam's CAM.toml text the same way after it (&c=...) when a cam is on the bench.
+// Nothing is stored on the server; the fragment never reaches it.
 
 function toBase64Url(bytes) {
   let bin = "";
@@ -33,15 +34,23 @@ export async function decodeModel(fragment) {
   return new TextDecoder("utf-8", { fatal: true }).decode(bytes);
 }
 
-export async function shareUrl(toml) {
+/** The share link of a model (and of its cam: the CAM.toml text, compressed the same way, as &c=...). */
+export async function shareUrl(toml, cam = null) {
   const url = new URL(window.location.href);
   url.search = "";
-  url.hash = `m=${await encodeModel(toml)}`;
+  url.hash = `m=${await encodeModel(toml)}` + (cam ? `&c=${await encodeModel(cam)}` : "");
   return url.toString();
 }
 
 /** The model text carried by the current URL's fragment, or null. */
 export async function modelFromFragment() {
-  const m = /^#m=([A-Za-z0-9_-]+)$/.exec(window.location.hash);
-  return m ? decodeModel(m[1]) : null;
+  const shared = await sharedFromFragment();
+  return shared ? shared.model : null;
+}
+
+/** {model, cam} carried by the current URL's fragment (cam null when the link has none), or null. */
+export async function sharedFromFragment() {
+  const m = /^#m=([A-Za-z0-9_-]+)(?:&c=([A-Za-z0-9_-]+))?$/.exec(window.location.hash);
+  if (!m) return null;
+  return { model: await decodeModel(m[1]), cam: m[2] ? await decodeModel(m[2]) : null };
 }
