@@ -113,7 +113,7 @@ def _log10():
     t = function_targets(
         LOG10["expression"], LOG10["x_range"], np.radians(LOG10["input_deg"]), np.radians(LOG10["output_deg"])
     )
-    return t, synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    return t, synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
 
 
 def _poses_path() -> Path:
@@ -148,7 +148,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     err = ax.twinx()
     (line,) = err.plot(
         np.degrees(r.dense_input),
-        np.degrees(r.dense_achieved - r.dense_desired),
+        np.degrees(r.dense_achieved - r.dense_target),
         color="0.45",
         lw=1,
         label="structural error (right axis)",

@@ -1341,7 +1341,7 @@ def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None =
                     linkage_model(lk),
                     f"gearlever workbench: curve synthesis, design {n} (distance {d:.6g}, material {mt:.6g})",
                 )
-                for n, (lk, d, mt) in enumerate(zip(res.designs, res.distance, res.material), 1)
+                for n, (lk, d, mt) in enumerate(zip(res.designs, res.error, res.material), 1)
             ][:MAX_RESULTS]
         if kind == "function":
             from gearlever.synthesis.function import function_targets, synthesize_function
@@ -1353,7 +1353,7 @@ def run_job(params: dict, progress=None, cancelled=None, scheduler: str | None =
             )
             tick("synthesis", 0, 1)
             res = synthesize_function(
-                tg.input_angle, tg.output, kind=params["type"], desired=tg.desired, input_range=tg.input_range
+                tg.input_angle, tg.target, kind=params["type"], target_at=tg.target_at, input_range=tg.input_range
             )
             tick("done", 1, 1)
             if res.defect:
