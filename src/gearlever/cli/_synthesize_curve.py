@@ -30,6 +30,7 @@ still 0 (the run itself succeeded).
 
 from __future__ import annotations
 
+from gearlever._io import table_text
 from gearlever._progress import TerminalProgress
 from gearlever.cli._common import (
     capped_float,
@@ -37,7 +38,6 @@ from gearlever.cli._common import (
     check_output,
     check_output_folder,
     emit,
-    table_text,
     to_json,
 )
 from gearlever.errors import GearleverError
