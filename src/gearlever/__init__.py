@@ -16,7 +16,7 @@ imports matplotlib or pandas:
   gears read from model files: structure, positions, velocities, accelerations,
   instant centres, assembly from lengths, inverse and forward dynamics for any
   number of inputs.
-- :mod:`gearlever.dynamics`: flywheels and the published textbook problems.
+- :mod:`gearlever.flywheels`: flywheels and the published textbook problems.
 - :mod:`gearlever.synthesis`: dimensional synthesis (function, motion and path
   generation) written as model files, scaled out on dask.
 
@@ -36,8 +36,8 @@ is the same function, kept for existing code: a mechanism's motion is
 __version__ = "0.1.0"
 
 from gearlever._result import Result  # noqa: E402
-from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
+from gearlever.flywheels.flywheel import flywheel  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
 from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate  # noqa: E402
 from gearlever.gears.chariot import simulate as simulate_chariot  # noqa: E402
