@@ -127,8 +127,10 @@ def _read_poses(path: Path):
     """Poses of a CSV ``x, y, angle_deg``: ``(points (N, 2), angles (N,) in radians)``."""
     import numpy as np
 
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return data[:, :2], np.radians(data[:, 2])
+    from gearlever._io import read_csv_table
+
+    cols = read_csv_table(path, "poses", columns=("x", "y", "angle_deg")).columns(["x", "y", "angle_deg"])
+    return np.column_stack([cols["x"], cols["y"]]), np.radians(cols["angle_deg"])
 
 
 def run(tables_dir: Path, figures_dir: Path) -> list[str]:
