@@ -9,7 +9,7 @@
 # `make reproduce && git diff --exit-code --stat tables figures` (module paths are in no output).
 set -eu
 test -d src/gearlever/curves || { echo "src/gearlever/curves is gone already" >&2; exit 1; }
-test -z "$(git status --porcelain)" || { echo "commit or stash first: the tree is not clean" >&2; exit 1; }
+test -z "$(git status --porcelain --untracked-files=no)" || { echo "commit or stash first: the tree is not clean" >&2; exit 1; }
 
 git mv src/gearlever/curves src/gearlever/synthesis/curve
 git mv tests/curves tests/synthesis/curve
