@@ -14,7 +14,7 @@ test -z "$(git status --porcelain --untracked-files=no)" || { echo "commit or st
 git mv src/gearlever/curves src/gearlever/synthesis/curve
 git mv tests/curves tests/synthesis/curve
 
-# module paths, in code and prose (docs, benchmarks, the changelog's new entry is added by hand below)
+# module paths, in code and prose (docs, benchmarks; the changelog's history is left as it was)
 files=$(git grep -l -E 'gearlever\.curves\b|gearlever/curves\b|tests\.curves\b|tests/curves\b' -- \
     src tests docs benchmarks README.md pyproject.toml Makefile ':!CHANGELOG.md' || true)
 for f in $files; do
@@ -47,12 +47,32 @@ for line in p.read_text().splitlines(keepends=True):
         rest = ", ".join(f"``{i}``" for i in items) if items else m.group(3)
         line = f"``{m.group(1)}``".ljust(15) + rest + "\n"
     out.append(line)
-p.write_text("".join(out))
+s = "".join(out)
+a = s.index("- ``curves``: topology synthesis")
+b = s.index("- ``tables``:", a)
+s = s[:a] + s[b:]
+s = s.replace(
+    "- ``synthesis``: function, motion, path and law synthesis, written as model\n  files;",
+    "- ``synthesis``: function, motion, path, law and curve synthesis (``synthesis.curve``: the topology\n"
+    "  synthesis of a linkage for a traced curve), written as model files;",
+)
+p.write_text(s)
+
+p = pathlib.Path("CHANGELOG.md")
+s = p.read_text()
+head = "### Moved (old -> new)\n\n"
+s = s.replace(
+    head,
+    head + "- `gearlever.curves` -> `gearlever.synthesis.curve` (the topology synthesis of a linkage for a traced\n"
+    "  curve, beside `gearlever.synthesis.law`: every family of `gearlever.synthesis.kinds()` in one package).\n",
+    1,
+)
+p.write_text(s)
 EOF
 
 # imports re-sorted (gearlever.synthesis.curve sorts elsewhere than gearlever.curves), then formatted
 .venv/bin/ruff check --fix --select I src tests benchmarks docs/gallery
 .venv/bin/ruff format src tests benchmarks docs/gallery
 
-echo "moved; now edit by hand: the architecture page's 'Where things live' (the curves item goes under"
-echo "synthesis), and a CHANGELOG line under 'Moved (old -> new)': gearlever.curves -> gearlever.synthesis.curve"
+echo "moved: gearlever.curves -> gearlever.synthesis.curve (architecture page and CHANGELOG updated); run the checks"
+echo "named at the top of this script, then commit"
