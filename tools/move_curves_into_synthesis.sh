@@ -51,10 +51,18 @@ s = "".join(out)
 a = s.index("- ``curves``: topology synthesis")
 b = s.index("- ``tables``:", a)
 s = s[:a] + s[b:]
+old = (
+    "- ``synthesis``: function, motion, path and law synthesis, written as model\n"
+    "  files; ``synthesis.report`` checks target pairs and summarizes a function\n"
+    "  synthesis.\n"
+)
+assert s.count(old) == 1, "the synthesis item of the architecture page changed: edit it by hand"
 s = s.replace(
-    "- ``synthesis``: function, motion, path and law synthesis, written as model\n  files;",
-    "- ``synthesis``: function, motion, path, law and curve synthesis (``synthesis.curve``: the topology\n"
-    "  synthesis of a linkage for a traced curve), written as model files;",
+    old,
+    "- ``synthesis``: function, motion, path, law and curve synthesis\n"
+    "  (``synthesis.curve``: the topology synthesis of a linkage for a traced\n"
+    "  curve), written as model files; ``synthesis.report`` checks target pairs\n"
+    "  and summarizes a function synthesis.\n",
 )
 p.write_text(s)
 
