@@ -72,7 +72,7 @@ def run(name, curve, budget, seed=0):
     t0 = time.perf_counter()
     r = S.synthesize_curve(curve, budget=budget, seed=seed, workers=1)
     dt = time.perf_counter() - t0
-    best = float(r.distance[0]) if len(r.designs) else float("nan")
+    best = float(r.error[0]) if len(r.designs) else float("nan")
     least = float(r.material.min()) if len(r.designs) else float("nan")
     print(f"| {name} | {r.hypervolume:.3f} | {best:.4f} | {least:.3f} | {len(r.designs)} | {dt:.0f} |", flush=True)
     return r.hypervolume, best, dt

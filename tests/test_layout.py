@@ -13,7 +13,7 @@ import gearlever
 SRC = pathlib.Path(gearlever.__file__).parent
 
 #: Subpackages of the numeric core: arrays in, arrays out, never pandas or pyplot.
-CORE = ["gears", "trains", "zrdpm", "loops", "mechanism", "dynamics", "synthesis", "laws", "cams"]
+CORE = ["gears", "trains", "zrdpm", "loops", "mechanism", "flywheels", "synthesis", "laws", "cams"]
 #: Every subpackage of gearlever.
 SUBPACKAGES = sorted(p.parent.name for p in SRC.glob("*/__init__.py"))
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from gearlever.data import example_path
-from gearlever.dynamics.flywheel import flywheel
+from gearlever.flywheels.flywheel import flywheel
 from gearlever.mechanism import Mechanism
 from gearlever.plotting.dynamics import forces_figure, turning_moment_figure
 

@@ -21,7 +21,7 @@ from gearlever.synthesis import function_targets, synthesize_function
 from gearlever.synthesis.path import synthesize_path
 
 t = function_targets("log10(x)", (1.0, 2.0), np.radians((45.0, 105.0)), np.radians((135.0, 225.0)))
-fn = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+fn = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
 print("lengths:", {k: round(v, 6) for k, v in fn.lengths.items()}, fn.grashof)
 print(f"structural error: max {np.degrees(fn.structural_error_max):.4f} deg over {fn.dense_input.size} crank angles")
 

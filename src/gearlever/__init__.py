@@ -16,16 +16,15 @@ imports matplotlib or pandas:
   gears read from model files: structure, positions, velocities, accelerations,
   instant centres, assembly from lengths, inverse and forward dynamics for any
   number of inputs.
-- :mod:`gearlever.dynamics`: flywheels and the published textbook problems.
+- :mod:`gearlever.flywheels`: flywheels and the published textbook problems.
 - :mod:`gearlever.synthesis`: dimensional synthesis (function, motion and path
   generation) written as model files, scaled out on dask.
 
 :mod:`gearlever.tables` (pandas) and :mod:`gearlever.plotting` (matplotlib)
 sit on top of them and are imported only when asked for; :mod:`gearlever.cli`
 is the command line.  ``gearlever.simulate_chariot`` is the chariot's
-simulation (:func:`gearlever.gears.chariot.simulate`); ``gearlever.simulate``
-is the same function, kept for existing code: a mechanism's motion is
-:meth:`Mechanism.simulate`.  Radians everywhere in the API; bad input raises
+simulation (:func:`gearlever.gears.chariot.simulate`); a mechanism's motion
+is :meth:`Mechanism.simulate`.  Radians everywhere in the API; bad input raises
 :class:`GearleverError` (a :class:`ValueError`).
 
 >>> import gearlever
@@ -36,10 +35,10 @@ is the same function, kept for existing code: a mechanism's motion is
 __version__ = "0.1.0"
 
 from gearlever._result import Result  # noqa: E402
-from gearlever.dynamics.flywheel import flywheel  # noqa: E402
 from gearlever.errors import ClosureError, GearleverError  # noqa: E402
+from gearlever.flywheels.flywheel import flywheel  # noqa: E402
 from gearlever.gears.car import car_differential  # noqa: E402
-from gearlever.gears.chariot import NuttallTeeth, design_nuttall, simulate  # noqa: E402
+from gearlever.gears.chariot import NuttallTeeth, design_nuttall  # noqa: E402
 from gearlever.gears.chariot import simulate as simulate_chariot  # noqa: E402
 from gearlever.gears.networks import Network  # noqa: E402
 from gearlever.loops import LoopSystem, Vector, fourbar, grashof  # noqa: E402
@@ -80,7 +79,6 @@ __all__ = [
     "Network",
     "NuttallTeeth",
     "design_nuttall",
-    "simulate",
     "simulate_chariot",
     "car_differential",
     "train_ratio",

@@ -20,19 +20,34 @@ key, mapped by its writer):
 =======================  ====================================================
 name                     quantity
 =======================  ====================================================
-``target``               what the design is asked for (a ratio, a law, points)
+``target``               what the design is asked for at the targets (a ratio,
+                         the wanted outputs of a function generator, the
+                         points of a path, a law over its samples);
+                         ``target_at(x)`` gives it elsewhere and
+                         ``dense_target`` over a dense sampling
 ``achieved``             what the design gives at the targets (the output of a
                          function generator, the traced points of a path
-                         generator, the law a linkage produces)
+                         generator, the law a linkage produces);
+                         ``achieved_at(x)`` and ``dense_achieved`` likewise
 ``error``                ``achieved - target`` at each target, or its size per
                          target (one array; a scalar error is ``max_error``
-                         or ``rms_error``)
+                         or ``rms_error``); in a search's front, each
+                         design's error (a curve synthesis: the distance of
+                         its traced curve to the target).  An error of one
+                         kind of quantity is qualified: ``point_error``,
+                         ``angle_error``, ``structural_error_max``
+``objective``            the number a search minimizes (a weighted sum or
+                         maximum of the errors)
 ``transmission_range``   ``(min, max)`` of the transmission angle over the
                          motion, rad
 ``model``                the model dict of a synthesized linkage (a method
                          ``model()`` where it is built on demand)
 ``designs``              the listed designs of a search, best first
 =======================  ====================================================
+
+The object a result was asked for, when it is kept, is named by its type
+(``law_target``: a :class:`~gearlever.synthesis.law.LawTarget`), never
+``target``, which is always the wanted values themselves.
 
 Imports only the standard library, numpy and :mod:`gearlever._format`.
 """

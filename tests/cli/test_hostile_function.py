@@ -53,7 +53,7 @@ def _check_written(files, rep, expr, x_range, input_deg, output, slider=False):
     conv = (lambda v: np.asarray(v, dtype=float)) if slider else np.radians
     t = function_targets(expr, x_range, np.radians(input_deg), conv(output), len(rep["targets"]))
     dense = np.linspace(min(np.radians(input_deg)), max(np.radians(input_deg)), DENSE_POINTS)
-    err_t, sem, margin = recompute(files["out"], t.input_angle, t.output, dense, t.desired(dense))
+    err_t, sem, margin = recompute(files["out"], t.input_angle, t.target, dense, t.target_at(dense))
     unit = "" if slider else "_deg"
     reported = rep[f"structural_error_max{unit}"]
     mine = float(sem) if slider else float(np.degrees(sem))

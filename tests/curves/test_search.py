@@ -61,7 +61,7 @@ def test_synthesis_recovers_the_suites_known_nine_joint_linkage_exactly():
     # the challenge's scoring: its designs are translated, never turned (a turned linkage is sampled at other
     # phases of its crank's absolute angles, which costs an exact recovery 0.01 to 0.07)
     r = S.synthesize_curve(curve, budget=1000, seed=0, workers=1, scoring="challenge")
-    assert r.distance[0] < 0.01  # 0.066 before issue 27 (budget 20 000)
+    assert r.error[0] < 0.01  # 0.066 before issue 27 (budget 20 000)
     assert r.material[0] < 10 and r.hypervolume > 6
 
 
@@ -79,12 +79,12 @@ def test_synthesis_is_feasible_rescorable_and_the_same_for_any_workers_and_on_a_
     assert [lk.x0.tolist() for lk in a.designs] == [lk.x0.tolist() for lk in b.designs]
     assert len(a.designs) >= 1 and a.hypervolume > 0
     assert a.scoring == "relative" and a.material_scale == pytest.approx(material_scale(egg))
-    for lk, d, m in zip(a.designs, a.distance, a.material):
+    for lk, d, m in zip(a.designs, a.error, a.material):
         assert d < 0.75 and m < 10 and lk.n_joints <= 20
         x = simulate(lk.x0[None], solve_plan(lk))[:, lk.target_joint]
         assert score_distance(x, egg)[0] == pytest.approx(d, rel=1e-12)
         assert material(lk.x0[None], lk.edges)[0] * a.material_scale == pytest.approx(m, rel=1e-12)
-    assert np.all(np.diff(a.distance) > 0) and np.all(np.diff(a.material) < 0)  # a front
+    assert np.all(np.diff(a.error) > 0) and np.all(np.diff(a.material) < 0)  # a front
 
 
 @pytest.mark.parametrize(

@@ -108,7 +108,7 @@ def test_a_curve_in_millimetres_gets_a_front_scored_in_its_own_size(d_mm):
     assert r.material_scale == pytest.approx(REFERENCE_RMS / rms_radius(closed(target)))
     s = r.summary()
     assert not s["empty"] and "0.191" in s["scoring_rule"]
-    for lk, d, m, f in zip(r.designs, r.distance, r.material, s["front"]):
+    for lk, d, m, f in zip(r.designs, r.error, r.material, s["front"]):
         assert d < 0.75 and m < 10
         assert material(lk.x0[None], lk.edges)[0] == pytest.approx(m / r.material_scale, rel=1e-9)
         assert f["material_in_target_units"] == pytest.approx(m / r.material_scale, rel=1e-9)
@@ -118,7 +118,7 @@ def test_a_curve_in_millimetres_gets_a_front_scored_in_its_own_size(d_mm):
 def test_every_design_traces_the_target_where_it_was_drawn_within_its_score(d_mm):
     target, r = d_mm
     rms = rms_radius(closed(target))
-    for lk, d, tf in zip(r.designs, r.distance, r.transforms):
+    for lk, d, tf in zip(r.designs, r.error, r.transforms):
         x = simulate(lk.x0[None], solve_plan(lk))[0, lk.target_joint]
         gap = _to_polyline(resample(x[None])[0], target)  # along the path by arc length, as the score samples it
         # the score's mean gap in the target's units is d rms / (2 pi): the drawn path is no farther

@@ -21,7 +21,7 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gearlever.cli._common import table_text
+from gearlever._io import table_text
 from gearlever.errors import GearleverError
 from gearlever.mechanism import Mechanism
 from gearlever.mechanism.loads import gravity_of, parse_loads, parse_masses, pressure_angle_of

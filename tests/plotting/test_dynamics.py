@@ -6,7 +6,7 @@ matplotlib.use("Agg")
 
 import numpy as np  # noqa: E402
 
-from gearlever.dynamics.flywheel import flywheel  # noqa: E402
+from gearlever.flywheels.flywheel import flywheel  # noqa: E402
 from gearlever.plotting import dynamics as plots  # noqa: E402
 from gearlever.plotting._common import save  # noqa: E402
 

@@ -18,7 +18,7 @@ from gearlever.synthesis import burmester_curves, function_targets, synthesize_f
 
 def test_function_figures_draw_targets_and_engine_curve():
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at)
     ax = function_curves(r)
     assert len(ax.lines) == 3
     np.testing.assert_allclose(ax.lines[2].get_xdata(), np.degrees(t.input_angle))

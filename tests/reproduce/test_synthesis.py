@@ -49,7 +49,7 @@ def test_synthesis_checks_table_agrees_with_the_library_and_the_data_file(step):
 def test_synthesis_step_lines_report_the_library_results(step):
     _, lines = step
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     assert f"max structural error {np.degrees(r.structural_error_max):.3f} deg over 45..105 deg" in lines[0]
     poses = pd.read_csv(example_path("motion_poses.csv"))
     m = synthesize_motion(poses[["x", "y"]].to_numpy(), np.radians(poses.angle_deg.to_numpy()))

@@ -3,7 +3,7 @@
 import pandas as pd
 
 from gearlever.data import read_records
-from gearlever.dynamics.published import ANSWERS
+from gearlever.flywheels.published import ANSWERS
 from gearlever.reproduce import textbook
 
 

@@ -16,7 +16,7 @@ from tests.synthesis._function_check import RECOMPUTE_TOL, recompute
 
 
 def _recompute(r):
-    return recompute(r.model, r.input_angle, r.output, r.dense_input, r.dense_desired)
+    return recompute(r.model, r.input_angle, r.target, r.dense_input, r.dense_target)
 
 
 def test_chebyshev_points_formula_freudenstein_1955():
@@ -44,7 +44,7 @@ def test_exact_recovery_of_a_known_fourbar(n, d, a, b, c, branch):
 
 def test_freudenstein_identity_holds_along_the_engine_motion():
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at)
     K1, K2, K3 = r.coefficients
     phi, psi = r.dense_input, r.dense_achieved
     lhs = K1 * np.cos(psi) - K2 * np.cos(phi) + K3
@@ -57,12 +57,12 @@ def test_freudenstein_identity_holds_along_the_engine_motion():
 def test_log10_three_chebyshev_points_met_exactly_and_structural_error_from_engine():
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
     np.testing.assert_allclose(np.degrees(t.input_angle), [49.0192378865, 75.0, 100.9807621135], atol=1e-9)
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at)
     # the error of the model as written: coordinates at 10 digits of its size (gearlever._format)
     assert np.abs(r.error).max() < 1e-8
     # the structural error vanishes at the precision points and is the engine's, over the range
     assert 0 < r.structural_error_max < np.radians(0.5)
-    at = np.interp(t.input_angle, r.dense_input, np.abs(r.dense_achieved - r.dense_desired))
+    at = np.interp(t.input_angle, r.dense_input, np.abs(r.dense_achieved - r.dense_target))
     assert at.max() < 1e-3 * r.structural_error_max + 1e-6
     m = Mechanism.from_dict(r.model)
     res = m.solve(m.sketch_inputs[None, :])
@@ -71,7 +71,7 @@ def test_log10_three_chebyshev_points_met_exactly_and_structural_error_from_engi
 
 def test_more_points_by_least_squares_do_not_meet_every_target():
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]), points=7)
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at)
     assert not r.exact and np.abs(r.error).max() > 1e-6 and r.defect == ""
 
 
@@ -132,18 +132,18 @@ def test_slider_crank_branch_defect_flagged():
 def test_input_range_extends_the_structural_error_to_the_ends_of_the_design_range():
     # Chebyshev targets lie inside the range: its ends (x = 1 and x = 2) must be in the structural error
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    inner = synthesize_function(t.input_angle, t.output, desired=t.desired)
-    full = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    inner = synthesize_function(t.input_angle, t.target, target_at=t.target_at)
+    full = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     np.testing.assert_allclose(full.dense_input[[0, -1]], np.radians([45, 105]), rtol=1e-15)
     np.testing.assert_allclose(inner.dense_input[[0, -1]], t.input_angle[[0, -1]], rtol=1e-15)
     np.testing.assert_array_equal(full.lengths["coupler"], inner.lengths["coupler"])
     # the engine's output at the range ends, against the formula: the worst error is at x = 1
-    end_err = full.dense_achieved[[0, -1]] - t.desired(np.radians([45, 105]))
-    assert full.structural_error_max == pytest.approx(np.abs(full.dense_achieved - full.dense_desired).max())
+    end_err = full.dense_achieved[[0, -1]] - t.target_at(np.radians([45, 105]))
+    assert full.structural_error_max == pytest.approx(np.abs(full.dense_achieved - full.dense_target).max())
     assert full.structural_error_max == pytest.approx(abs(end_err[0]), rel=1e-12)
     assert full.structural_error_max > 1.3 * inner.structural_error_max
     with pytest.raises(GearleverError, match="input_range"):
-        synthesize_function(t.input_angle, t.output, input_range=(1.0, 1.0))
+        synthesize_function(t.input_angle, t.target, input_range=(1.0, 1.0))
 
 
 # ---------------------------------------------------------------------------
@@ -185,7 +185,9 @@ def test_any_ranges_give_a_model_whose_structural_error_is_recomputed_or_a_clean
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", GearleverWarning)
-            r = synthesize_function(t.input_angle, t.output, kind=kind, desired=t.desired, input_range=t.input_range)
+            r = synthesize_function(
+                t.input_angle, t.target, kind=kind, target_at=t.target_at, input_range=t.input_range
+            )
     except GearleverError as exc:
         assert "\n" not in str(exc)
         return
@@ -215,7 +217,7 @@ def test_issue_case_x_to_the_1_5_has_the_structural_error_of_its_written_model()
     # issue 25: crank 2.24544, coupler 2.94696, rocker 0.89714 on ground 1 (Freudenstein's a and c negative),
     # structural error 0.619 deg; it was NaN (the engine asked a full turn away, through a dead point)
     t = function_targets("x**1.5", (1, 4), np.radians([30, 90]), np.radians([90, 180]))
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     assert r.coefficients[0] < 0 and r.coefficients[1] < 0  # K1 = d/a, K2 = d/c: both links reversed
     lengths = [r.lengths[k] for k in ("ground", "crank", "coupler", "rocker")]
     np.testing.assert_allclose(lengths, [1.0, 2.24544, 2.94696, 0.89714], atol=5e-6)
@@ -231,7 +233,7 @@ def test_issue_case_x_to_the_1_5_has_the_structural_error_of_its_written_model()
 def test_issue_ranges_are_checked_on_the_written_model(ranges, points):
     ir, orng = ranges
     t = function_targets("x**1.5", (1, 4), np.radians(ir), np.radians(orng), points)
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     assert r.defect == ""
     err_t, sem, _ = _recompute(r)
     assert r.structural_error_max == pytest.approx(sem, abs=RECOMPUTE_TOL)
@@ -241,7 +243,7 @@ def test_issue_ranges_are_checked_on_the_written_model(ranges, points):
 def test_dead_point_inside_the_range_is_a_defect_naming_where():
     # x**1.5 with the crank 30 -> 90 deg and the rocker 10 -> 70 deg: the linkage folds flat near 89.2 deg
     t = function_targets("x**1.5", (1, 4), np.radians([30, 90]), np.radians([10, 70]))
-    r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    r = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     assert "dead point between the input angles 89.1" in r.defect
     d, a, b, c = (r.lengths[k] for k in ("ground", "crank", "coupler", "rocker"))
     phi = np.radians(np.linspace(89.0, 89.3, 31))
@@ -266,18 +268,18 @@ def test_reversed_slider_crank_crank_is_checked_on_the_written_model():
 def test_impractical_proportions_warn_with_the_ratio():
     t = function_targets("x**1.5", (1, 4), np.radians([300, 400]), np.radians([90, 180]))
     with pytest.warns(GearleverWarning, match=r"impractical proportions: the coupler is 27.7 times the ground"):
-        r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+        r = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     assert r.link_ratio == pytest.approx(27.716, abs=1e-3)
     lengths = [r.lengths[k] for k in ("ground", "crank", "coupler", "rocker")]
     assert r.link_ratio == pytest.approx(max(lengths) / min(lengths), rel=1e-12)
     # the ratios do not depend on the scale
     with pytest.warns(GearleverWarning, match=r"times the ground"):
-        r2 = synthesize_function(t.input_angle, t.output, desired=t.desired, ground=0.01, input_range=t.input_range)
+        r2 = synthesize_function(t.input_angle, t.target, target_at=t.target_at, ground=0.01, input_range=t.input_range)
     assert r2.link_ratio == pytest.approx(r.link_ratio, rel=1e-9)
     with warnings.catch_warnings():
         warnings.simplefilter("error", GearleverWarning)
         ok = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-        assert synthesize_function(ok.input_angle, ok.output).proportions() == ""
+        assert synthesize_function(ok.input_angle, ok.target).proportions() == ""
 
 
 _T = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
@@ -290,10 +292,10 @@ _T = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135
         ({"ground": "1"}, "ground must be a positive length (a number), got the text '1'"),
         ({"ground": 0.0}, "ground must be a positive"),
         ({"ground": float("inf")}, "ground must be a positive"),
-        ({"desired": "x"}, "desired must be a callable giving the wanted output"),
-        ({"desired": 3.0}, "desired must be a callable"),
-        ({"desired": lambda q: q[:2]}, "desired must give a finite output"),
-        ({"desired": lambda q: 1 / 0}, "desired must give a number"),
+        ({"target_at": "x"}, "target_at must be a callable giving the wanted output"),
+        ({"target_at": 3.0}, "target_at must be a callable"),
+        ({"target_at": lambda q: q[:2]}, "target_at must give a finite output"),
+        ({"target_at": lambda q: 1 / 0}, "target_at must give a number"),
         ({"kind": "crank"}, "kind must be one of"),
         ({"kind": None}, "kind must be one of"),
         ({"input_range": "12"}, "input_range must be two numbers"),
@@ -306,7 +308,7 @@ _T = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135
 )
 def test_api_bad_parameters_refused_naming_them(kwargs, needle):
     with pytest.raises(GearleverError, match=re.escape(needle)):
-        synthesize_function(_T.input_angle, _T.output, **kwargs)
+        synthesize_function(_T.input_angle, _T.target, **kwargs)
 
 
 @pytest.mark.parametrize(

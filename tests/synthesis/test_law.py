@@ -100,7 +100,7 @@ def test_written_model_reproduces_the_achieved_law_to_1e_9():
     law = law_from_segments("angle", "deg", DWELL)
     res = synthesize_law(law, kind="geared-fourbar", budget=3000, workers=1)
     ml = mechanism_law(Mechanism.from_dict(res.model()), "output", 720)
-    want = res.generated(ml.theta) - res.generated(np.zeros(1))[0]
+    want = res.achieved_at(ml.theta) - res.achieved_at(np.zeros(1))[0]
     assert ml.closed.all() and np.abs(ml.s - want).max() < 1e-9
     rep = law_report(res)
     assert rep["transmission_deg"][0] >= 20 - 1e-9
@@ -119,7 +119,7 @@ def test_slider_crank_meets_a_harmonic_stroke_exactly():
     res = synthesize_law(law, kind="slider-crank", budget=3000, workers=1)
     assert res.feasible and np.abs(res.error).max() < 0.1 * 40
     ml = mechanism_law(Mechanism.from_dict(res.model()), "output", 360)
-    assert np.abs(ml.s - (res.generated(ml.theta) - res.generated(np.zeros(1))[0])).max() < 1e-9
+    assert np.abs(ml.s - (res.achieved_at(ml.theta) - res.achieved_at(np.zeros(1))[0])).max() < 1e-9
 
 
 def test_same_result_for_one_or_two_workers():

@@ -259,7 +259,7 @@ def test_a_closing_target_repeating_the_first_is_met_one_crank_turn_later():
 
     t = [[1.0, 2.0], [1.5, 2.4], [1.8, 3.0], [1.2, 3.5], [0.8, 2.9], [1.0, 2.0]]
     r = synthesize_path(t, length_range=(0.2, 5), coord_range=(-5, 5), budget=4000, workers=1)
-    assert r.targets.shape == (6, 2) and r.error.shape == (6,)
+    assert r.target.shape == (6, 2) and r.error.shape == (6,)
     assert r.error[-1] == r.error[0] and np.allclose(r.achieved[-1], r.achieved[0])
     assert math.isclose(r.crank_angles[-1] - r.crank_angles[0], 2 * math.pi)
     assert math.isclose(r.objective, float(np.sum(r.error**2)), rel_tol=1e-12)

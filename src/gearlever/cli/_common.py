@@ -38,8 +38,6 @@ import re
 import sys
 
 from gearlever import _io
-from gearlever._format import format_number  # noqa: F401  (imported from here by the commands)
-from gearlever._io import table_text  # noqa: F401  (the one table writer, in the library)
 from gearlever._progress import PROGRESS_DELAY, TerminalProgress
 from gearlever.errors import GearleverError
 

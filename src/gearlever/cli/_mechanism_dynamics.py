@@ -69,7 +69,8 @@ import sys
 import numpy as np
 
 from gearlever._format import DIGITS_FORCES, DIGITS_SIMULATE
-from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress, table_text
+from gearlever._io import table_text
+from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress
 from gearlever.cli._shared import load_model
 from gearlever.errors import GearleverError
 from gearlever.mechanism.sweep import MAX_POINTS

@@ -30,6 +30,7 @@ still 0 (the run itself succeeded).
 
 from __future__ import annotations
 
+from gearlever._io import table_text
 from gearlever._progress import TerminalProgress
 from gearlever.cli._common import (
     capped_float,
@@ -37,7 +38,6 @@ from gearlever.cli._common import (
     check_output,
     check_output_folder,
     emit,
-    table_text,
     to_json,
 )
 from gearlever.errors import GearleverError
@@ -155,7 +155,7 @@ def _run(args) -> int:
     out = Path(args.out)
     names = []
     spent = f"budget {budget}" if budget is not None else f"time limit {args.time:g} s"
-    for n, (lk, d, m) in enumerate(zip(res.designs, res.distance, res.material), 1):
+    for n, (lk, d, m) in enumerate(zip(res.designs, res.error, res.material), 1):
         name = f"{n:04d}"
         comment = (
             f"Synthesized by gearlever synthesize curve (seed {args.seed}, {spent}, {args.scoring} scoring); "
@@ -171,7 +171,7 @@ def _run(args) -> int:
         names.append(name)
     cols = {
         "design": names,
-        "distance": res.distance,
+        "distance": res.error,
         "material": res.material,
         "joints": [lk.n_joints for lk in res.designs],
         "links": [len(lk.edges) for lk in res.designs],
@@ -190,7 +190,7 @@ def _run(args) -> int:
 
         fig = curve_synthesis_plot(res, target)
         save(fig, args.figure)
-    best = f"best distance {res.distance[0]:.4g}, least material {res.material.min():.4g}" if names else "none"
+    best = f"best distance {res.error[0]:.4g}, least material {res.material.min():.4g}" if names else "none"
     emit(f"{len(names)} designs on the front (hypervolume {res.hypervolume:.4f}; {best}) in {out}")
     if not names:
         import sys

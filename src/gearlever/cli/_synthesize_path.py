@@ -232,7 +232,7 @@ def _run(args) -> int:
     finally:
         bar.close()
     rep = res.summary()  # rounded by the digits rule
-    S = float(np.hypot(*np.ptp(res.targets, axis=0))) or 1.0
+    S = float(np.hypot(*np.ptp(res.target, axis=0))) or 1.0
     rep["time_s"] = round(float(res.seconds), 2)
     if not res.feasible:  # a command writes all its files or none
         raise GearleverError("no buildable linkage meets the constraints: nothing was written")

@@ -31,7 +31,8 @@ folder and each stored library: size, seed, entries, file bytes.  See
 
 from __future__ import annotations
 
-from gearlever.cli._common import capped_int, emit, table_text
+from gearlever._io import table_text
+from gearlever.cli._common import capped_int, emit
 
 #: Most designs scored at once.
 MAX_DESIGNS = 10_000

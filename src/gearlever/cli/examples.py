@@ -18,7 +18,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from gearlever.cli._common import check_output_folder, commit_outputs, emit, table_text
+from gearlever._io import table_text
+from gearlever.cli._common import check_output_folder, commit_outputs, emit
 from gearlever.errors import GearleverError
 
 #: What a file of each suffix holds.

@@ -1,7 +1,7 @@
 """``gearlever flywheel --torque-file F --rpm N (--fluctuation CS | --inertia I) [--format table|json]``.
 
 Integrate a turning-moment diagram over one cycle (see
-:func:`gearlever.dynamics.flywheel.flywheel`) and size the flywheel that
+:func:`gearlever.flywheels.flywheel.flywheel`) and size the flywheel that
 holds a coefficient of fluctuation of speed, or give the fluctuation a
 flywheel of known inertia allows.
 
@@ -9,7 +9,7 @@ The torque file is a CSV: crank angle in degrees, driving torque, and
 optionally a third column, the resisting torque (default: constant, the mean
 driving torque).  Lines starting with ``#`` are comments; a first line that
 is not numeric is a header.  Caps: :data:`MAX_FILE_BYTES` bytes and
-:data:`gearlever.dynamics.flywheel.MAX_SAMPLES` rows.  Bad input ends with
+:data:`gearlever.flywheels.flywheel.MAX_SAMPLES` rows.  Bad input ends with
 exit 2 and one line naming the flag or the CSV row and column.
 """
 
@@ -41,7 +41,7 @@ def register(sub) -> None:
     g.add_argument("--inertia", type=positive_float, metavar="I", help="flywheel moment of inertia (kg m^2)")
     p.add_argument(
         "--period-deg",
-        type=capped_float(360_000.0),  # 1000 turns: gearlever.dynamics.flywheel.MAX_PERIOD
+        type=capped_float(360_000.0),  # 1000 turns: gearlever.flywheels.flywheel.MAX_PERIOD
         default=None,
         metavar="DEG",
         help="cycle length (deg) when the last row does not close it, e.g. 720 for rows 0..710",
@@ -53,7 +53,7 @@ def register(sub) -> None:
 
 def read_torque_file(path: str, max_rows: int | None = None):
     """Crank angles (deg), driving torque and resisting torque (or None) from the CSV ``path``."""
-    from gearlever.dynamics.flywheel import MAX_SAMPLES
+    from gearlever.flywheels.flywheel import MAX_SAMPLES
 
     max_rows = MAX_SAMPLES if max_rows is None else max_rows
     where = f"--torque-file {path!r}"
@@ -107,7 +107,7 @@ def read_torque_file(path: str, max_rows: int | None = None):
 def _run(args) -> int:
     import numpy as np
 
-    from gearlever.dynamics.flywheel import flywheel
+    from gearlever.flywheels.flywheel import flywheel
 
     theta_deg, torque, load = read_torque_file(args.torque_file)
     try:

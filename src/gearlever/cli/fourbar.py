@@ -7,7 +7,8 @@ import sys
 
 import numpy as np
 
-from gearlever.cli._common import capped_int, emit, positive_float, progress, table_text, to_json
+from gearlever._io import table_text
+from gearlever.cli._common import capped_int, emit, positive_float, progress, to_json
 
 COLUMNS = (
     "theta2_deg",

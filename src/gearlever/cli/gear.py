@@ -309,7 +309,7 @@ def _profile(args) -> int:
     except GearleverError as exc:
         raise _flagged(exc) from None
     if suffix == ".csv":
-        from gearlever.cli._common import format_number
+        from gearlever._format import format_number
 
         rows = ["x_mm,y_mm"] + [f"{format_number(x, 12)},{format_number(y, 12)}" for x, y in xy]
         emit("\n".join(rows), args.out)

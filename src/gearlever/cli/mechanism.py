@@ -53,7 +53,8 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever.cli._common import emit, finite_float, named_values, positive_int, table_text, to_json
+from gearlever._io import table_text
+from gearlever.cli._common import emit, finite_float, named_values, positive_int, to_json
 from gearlever.cli._shared import load_model as _load
 from gearlever.errors import GearleverError
 from gearlever.mechanism.sweep import (

@@ -172,7 +172,7 @@ def _function(args) -> int:
 
 
 def _function_targets(args, slider: bool) -> tuple:
-    """``(input angles, outputs, desired function or None, FunctionTargets or None)`` from PAIRS.csv or --expr."""
+    """``(input angles, outputs, target function or None, FunctionTargets or None)`` from PAIRS.csv or --expr."""
     import numpy as np
 
     from gearlever.synthesis.function import function_targets
@@ -195,7 +195,7 @@ def _function_targets(args, slider: bool) -> tuple:
         raise GearleverError(f"--points must be at least 3, got {args.points}")
     orange = args.output_range if slider else np.radians(args.output_range)
     targets = function_targets(args.expr, args.x_range, np.radians(args.input_range), orange, args.points, args.spacing)
-    return targets.input_angle, targets.output, targets.desired, targets
+    return targets.input_angle, targets.target, targets.target_at, targets
 
 
 def _function_result(args, slider: bool) -> tuple:
@@ -207,7 +207,7 @@ def _function_result(args, slider: bool) -> tuple:
     if (args.pairs is None) == (args.expr is None):
         raise GearleverError("give either PAIRS.csv or --expr with --x-range, --input-range, --output-range")
     try:
-        phi, out, desired, targets = _function_targets(args, slider)
+        phi, out, target_at, targets = _function_targets(args, slider)
         with warnings.catch_warnings():
             # the library's warning is replaced by the line below, which names the flags
             warnings.filterwarnings("ignore", message="impractical proportions", category=GearleverWarning)
@@ -216,7 +216,7 @@ def _function_result(args, slider: bool) -> tuple:
                 out,
                 kind=args.kind,
                 ground=args.ground,
-                desired=desired,
+                target_at=target_at,
                 input_range=None if targets is None else targets.input_range,
             )
     except GearleverError as exc:
@@ -246,7 +246,7 @@ def _function_lines(args, res, rep: dict, offsets: dict, slider: bool) -> list:
 
     unit = "" if slider else "_deg"
     phi0 = math.degrees(res.input_angle[0])
-    out_scale = float(np.ptp([float(v) if slider else math.degrees(v) for v in res.output])) or 1.0
+    out_scale = float(np.ptp([float(v) if slider else math.degrees(v) for v in res.target])) or 1.0
     model_at = f"crank angle at target 1: {phi0:.10g} deg"
     if offsets["crank"]:
         model_at += f"; the model's crank angle there: {phi0 + offsets['crank']:.10g} deg"

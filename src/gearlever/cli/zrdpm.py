@@ -5,13 +5,13 @@ from __future__ import annotations
 import argparse
 import math
 
+from gearlever._io import table_text
 from gearlever.cli._common import (
     emit,
     finite_float,
     positive_float,
     positive_int,
     progress,
-    table_text,
     to_json,
 )
 from gearlever.errors import GearleverError

@@ -586,14 +586,15 @@ def curve_start(make, seed: int, k: int, evals: int, method: str = "nsga2") -> S
 
 @dataclass(frozen=True, eq=False)
 class CurveSynthesis(Result):
-    """Result of :func:`synthesize_curve`: the Pareto designs (distance ascending) and the run's facts.
+    """Result of :func:`synthesize_curve`: the Pareto designs (error ascending) and the run's facts.
 
     Attributes
     ----------
     designs : tuple of gearlever.mechanism.linkage.Linkage
-        The front, distance ascending.
-    distance, material : ndarray
-        Their challenge distance and material (:mod:`gearlever.curves.score`).
+        The front, error (distance) ascending.
+    error, material : ndarray
+        Their error (the challenge's distance of the traced curve to the target) and material
+        (:mod:`gearlever.curves.score`).
     hypervolume : float
         Of the front against the reference (:data:`~gearlever.curves.score.MAX_DISTANCE`,
         :data:`~gearlever.curves.score.MAX_MATERIAL`).
@@ -619,7 +620,7 @@ class CurveSynthesis(Result):
     """
 
     designs: tuple
-    distance: np.ndarray
+    error: np.ndarray
     material: np.ndarray
     hypervolume: float
     evaluations: int
@@ -656,7 +657,7 @@ class CurveSynthesis(Result):
             "seed": self.seed,
             "starts": self.starts,
             "library_size": self.library_size,
-            "best_distance": float(self.distance[0]) if len(self.designs) else None,
+            "best_distance": float(self.error[0]) if len(self.designs) else None,
             "least_material": float(self.material.min()) if len(self.designs) else None,
             "front": [
                 {
@@ -671,7 +672,7 @@ class CurveSynthesis(Result):
                         "translation": [float(t[2]), float(t[3])],
                     },
                 }
-                for d, m, lk, t in zip(self.distance, self.material, self.designs, tf)
+                for d, m, lk, t in zip(self.error, self.material, self.designs, tf)
             ],
         }
 

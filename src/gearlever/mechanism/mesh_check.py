@@ -26,7 +26,7 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever.errors import GearleverError
-from gearlever.mechanism.model import MechanismModel, Mesh
+from gearlever.mechanism.schema import MechanismModel, MeshSpec
 
 __all__ = ["ADDENDUM", "DEDENDUM", "MeshGeometry", "MeshCheck", "mesh_geometry", "check_mechanism", "involute"]
 
@@ -300,7 +300,7 @@ class MeshCheck(Result):
         return not self.flags
 
 
-def _pair_geometry(model: MechanismModel, module: float, mesh: Mesh, alpha: float, center_distance) -> MeshGeometry:
+def _pair_geometry(model: MechanismModel, module: float, mesh: MeshSpec, alpha: float, center_distance) -> MeshGeometry:
     ga, gb = model.gears[mesh.a], model.gears[mesh.b]
     widths = [w for w in (ga.face_width, gb.face_width) if w is not None]
     try:

@@ -95,11 +95,11 @@ from gearlever.mechanism.schema import (
     MAX_SHIFT,
     MAX_TEETH,
     NAME_PATTERN,
-    Gear,
+    GearSpec,
     InputSpec,
     Link,
     MechanismModel,
-    Mesh,
+    MeshSpec,
     Slider,
 )
 
@@ -109,8 +109,8 @@ __all__ = [
     "parse_poses",
     "Link",
     "Slider",
-    "Gear",
-    "Mesh",
+    "GearSpec",
+    "MeshSpec",
     "tight_centre_distance",
     "InputSpec",
     "MechanismModel",
@@ -538,7 +538,7 @@ def _read_sliders(d, points: dict, links: dict) -> list:
 
 
 def _read_gears(d, points: dict, links: dict) -> dict:
-    """Gear name -> :class:`Gear`, from ``[gears]``."""
+    """Gear name -> :class:`GearSpec`, from ``[gears]``."""
     gtab = d.get("gears", {})
     if not isinstance(gtab, dict):
         raise GearleverError("[gears] must be a table of NAME = { link, centre, teeth }")
@@ -573,12 +573,12 @@ def _read_gears(d, points: dict, links: dict) -> dict:
         helix = _num(f"{where}.helix", t["helix"]) if "helix" in t else 0.0
         if not 0.0 <= helix < MAX_HELIX_DEG:
             raise GearleverError(f"{where}.helix must be in [0, {MAX_HELIX_DEG:g}) deg, got {_short(t['helix'])}")
-        gears[gname] = Gear(gname, link, centre, int(z), internal, shift, width, math.radians(helix))
+        gears[gname] = GearSpec(gname, link, centre, int(z), internal, shift, width, math.radians(helix))
     return gears
 
 
 def _read_meshes(d, points: dict, links: dict, gears: dict, module) -> list:
-    """The :class:`Mesh` of each ``[[meshes]]`` (carrier found, centre distance checked against the module)."""
+    """The :class:`MeshSpec` of each ``[[meshes]]`` (carrier found, centre distance checked against the module)."""
     meshes = []
     mech = d.get("mechanism") if isinstance(d.get("mechanism"), dict) else {}
     pa = mech.get("pressure_angle", 20.0)  # validated later (loads.validate_extra); 20 deg meanwhile if out of range
@@ -615,11 +615,11 @@ def _read_meshes(d, points: dict, links: dict, gears: dict, module) -> list:
             eff = _num(f"{where}.efficiency", t["efficiency"])
             if not 0.0 < eff <= 1.0:
                 raise GearleverError(f"{where}.efficiency must be in (0, 1], got {t['efficiency']!r}")
-        meshes.append(Mesh(f"{a}-{b}", a, b, carrier, eff))
+        meshes.append(MeshSpec(f"{a}-{b}", a, b, carrier, eff))
     return meshes
 
 
-def _mesh_carrier(where: str, t: dict, links: dict, ga: Gear, gb: Gear) -> str:
+def _mesh_carrier(where: str, t: dict, links: dict, ga: GearSpec, gb: GearSpec) -> str:
     """The mesh's carrier: the one given, or the one link carrying both centres."""
     centres = {ga.centre, gb.centre}
     if "carrier" in t:
@@ -637,7 +637,7 @@ def _mesh_carrier(where: str, t: dict, links: dict, ga: Gear, gb: Gear) -> str:
     return cands[0]
 
 
-def _check_module(where: str, points: dict, module: float, ga: Gear, gb: Gear, alpha: float) -> None:
+def _check_module(where: str, points: dict, module: float, ga: GearSpec, gb: GearSpec, alpha: float) -> None:
     """Refuse a centre distance that is not the pair's tight one to 1e-6 relative.
 
     Unshifted spur gears: ``m (z_a +- z_b) / 2``; with shifts or a helix, the
@@ -702,7 +702,7 @@ def _link_input(where: str, t: dict, links: dict) -> InputSpec:
     return InputSpec("link", lname, rel)
 
 
-def tight_centre_distance(module: float, ga: Gear, gb: Gear, alpha: float = math.radians(20.0)) -> float:
+def tight_centre_distance(module: float, ga: GearSpec, gb: GearSpec, alpha: float = math.radians(20.0)) -> float:
     """The zero-backlash working centre distance of gears ``ga``, ``gb`` (shifts, helix) at normal module ``module``.
 
     Notes
@@ -715,7 +715,7 @@ def tight_centre_distance(module: float, ga: Gear, gb: Gear, alpha: float = math
 
     Examples
     --------
-    >>> g1, g2 = Gear("a", "l1", "O", 12, shift=0.6), Gear("b", "l2", "C", 24, shift=0.36)
+    >>> g1, g2 = GearSpec("a", "l1", "O", 12, shift=0.6), GearSpec("b", "l2", "C", 24, shift=0.36)
     >>> round(tight_centre_distance(3.0, g1, g2), 4)      # KHK's shifted spur example prints 56.4999 mm
     56.4999
     """

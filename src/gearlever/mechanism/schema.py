@@ -11,7 +11,7 @@ One description serves three readers:
   holds the page to :data:`TABLES`).
 
 It also holds the parsed model's data types (:class:`MechanismModel`,
-:class:`Link`, :class:`Slider`, :class:`Gear`, :class:`Mesh`,
+:class:`Link`, :class:`Slider`, :class:`GearSpec`, :class:`MeshSpec`,
 :class:`InputSpec`), so that the loader and the masses-and-loads reader both
 import this leaf and not each other.
 
@@ -42,12 +42,12 @@ from dataclasses import dataclass, field
 
 __all__ = [
     "GROUND",
-    "Gear",
+    "GearSpec",
     "InputSpec",
     "Key",
     "Link",
     "MechanismModel",
-    "Mesh",
+    "MeshSpec",
     "Slider",
     "TABLES",
     "Table",
@@ -420,8 +420,10 @@ class Slider:
 
 
 @dataclass(frozen=True)
-class Gear:
-    """A gear rigid on ``link``, centred at ``centre``; ``internal`` for a ring.
+class GearSpec:
+    """A gear of the model file: rigid on ``link``, centred at ``centre``; ``internal`` for a ring.
+
+    (The gear of a gear network, by tooth numbers alone, is :class:`gearlever.gears.networks.Gear`.)
 
     ``shift`` is the profile shift coefficient x, ``face_width`` the face
     width (model units, None when not given), ``helix`` the helix angle (rad).
@@ -438,8 +440,11 @@ class Gear:
 
 
 @dataclass(frozen=True)
-class Mesh:
-    """A gear mesh (higher pair) of gears ``a`` and ``b`` whose centres ``carrier`` carries."""
+class MeshSpec:
+    """A gear mesh (higher pair) of the model file: gears ``a`` and ``b`` whose centres ``carrier`` carries.
+
+    (The mesh of a gear network is :class:`gearlever.gears.networks.Mesh`.)
+    """
 
     name: str
     a: str
@@ -490,8 +495,8 @@ class MechanismModel:
         links gives ``k - 1`` pairs, all with its first carrier.
     sliders : tuple of Slider
     gears : dict
-        Gear name -> :class:`Gear`.
-    meshes : tuple of Mesh
+        Gear name -> :class:`GearSpec`.
+    meshes : tuple of MeshSpec
     inputs : tuple of InputSpec
     extra : dict
         Raw values of the tables and keys this loader keeps but does not
@@ -526,7 +531,7 @@ class MechanismModel:
         """Links carrying ``point``, in file order."""
         return tuple(name for name, link in self.links.items() if point in link.local)
 
-    def mesh_internal(self, mesh: Mesh) -> bool:
+    def mesh_internal(self, mesh: MeshSpec) -> bool:
         """True when one gear of ``mesh`` is internal (a ring)."""
         return self.gears[mesh.a].internal or self.gears[mesh.b].internal
 

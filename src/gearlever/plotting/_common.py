@@ -1,4 +1,4 @@
-"""Shared figure helpers: new axes, deterministic atomic saving; the size caps of :mod:`._limits`."""
+"""Shared figure helpers: new axes, deterministic atomic saving (the size caps live in :mod:`._limits`)."""
 
 from __future__ import annotations
 
@@ -8,19 +8,6 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from gearlever._io import atomic_path
-from gearlever.plotting._limits import (  # noqa: F401 - the figure sizes and caps, shared
-    ANIMATION_DPI,
-    ANIMATION_SIZE,
-    DRAWING_SIZE,
-    MAX_ANIMATION_PIXELS,
-    MAX_DPI,
-    MAX_PIXELS,
-    MAX_SIZE_IN,
-    MIN_SIZE_IN,
-    check_figure,
-    check_frames,
-    pixels,
-)
 
 #: PNG metadata left out so that re-running writes the same bytes.
 _PNG_METADATA = {"Software": None}

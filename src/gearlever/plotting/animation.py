@@ -16,7 +16,7 @@ import numpy as np
 
 from gearlever._validate import positive_int
 from gearlever.errors import GearleverError
-from gearlever.plotting._common import ANIMATION_DPI, ANIMATION_SIZE
+from gearlever.plotting._limits import ANIMATION_DPI, ANIMATION_SIZE
 
 __all__ = ["fourbar_mechanism", "animate_fourbar"]
 

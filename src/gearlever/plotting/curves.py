@@ -19,7 +19,7 @@ def curve_synthesis_plot(result, target, fig=None, best: int = 3):
 
     fig = fig or plt.figure(figsize=(13.0, 4.3))
     a1, a2, a3 = fig.subplots(1, 3)
-    d, m = np.asarray(result.distance), np.asarray(result.material)
+    d, m = np.asarray(result.error), np.asarray(result.material)
     a1.step(d, m, where="post", color="C0")
     a1.plot(d, m, "o", ms=3, color="C0")
     a1.axvline(REFERENCE[0], color="0.6", ls="--")

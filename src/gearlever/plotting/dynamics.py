@@ -21,7 +21,7 @@ def plot_turning_moment(res, ax=None):
 
     Parameters
     ----------
-    res : gearlever.dynamics.flywheel.Flywheel
+    res : gearlever.flywheels.flywheel.Flywheel
     ax : matplotlib Axes, optional
 
     Returns

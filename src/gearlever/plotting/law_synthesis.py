@@ -19,12 +19,12 @@ def law_synthesis_figure(result, fig=None):
     if fig is None:
         fig = plt.figure(figsize=(7.5, 5.5), layout="constrained")
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    t = result.target
+    t = result.law_target
     ang = t.output == "angle"
     conv = np.degrees if ang else (lambda x: x)
     unit = "deg" if ang else t.units
     th = np.degrees(result.theta)
-    ax1.plot(th, conv(result.wanted), color="k", lw=1.5, label="wanted")
+    ax1.plot(th, conv(result.target), color="k", lw=1.5, label="wanted")
     ax1.plot(th, conv(result.achieved), color="tab:blue", lw=1.2, ls="--", label=f"{result.kind} (achieved)")
     ax2.plot(th, conv(result.error), color="tab:red", lw=1.0)
     for k, motion in enumerate(t.motions):

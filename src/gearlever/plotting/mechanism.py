@@ -34,15 +34,8 @@ from matplotlib.patches import Polygon
 from gearlever._io import atomic_path
 from gearlever._validate import positive_int
 from gearlever.errors import GearleverError
-from gearlever.plotting._common import (
-    ANIMATION_DPI,
-    ANIMATION_SIZE,
-    DRAWING_SIZE,
-    axes,
-    check_figure,
-    check_frames,
-    plt,
-)
+from gearlever.plotting._common import axes, plt
+from gearlever.plotting._limits import ANIMATION_DPI, ANIMATION_SIZE, DRAWING_SIZE, check_figure, check_frames
 
 __all__ = ["draw_mechanism", "animate_mechanism"]
 

@@ -44,9 +44,9 @@ def function_curves(result, ax=None):
     deg = result.kind == "fourbar"
     conv = np.degrees if deg else (lambda v: np.asarray(v))
     x = np.degrees(result.dense_input)
-    ax.plot(x, conv(result.dense_desired), color="tab:blue", lw=2, label="wanted")
+    ax.plot(x, conv(result.dense_target), color="tab:blue", lw=2, label="wanted")
     ax.plot(x, conv(result.dense_achieved), "--", color="tab:red", lw=1.5, label="generated (engine)")
-    ax.plot(np.degrees(result.input_angle), conv(result.output), "ko", ms=5, label="targets")
+    ax.plot(np.degrees(result.input_angle), conv(result.target), "ko", ms=5, label="targets")
     ax.set_xlabel("crank angle (deg)")
     ax.set_ylabel("rocker angle (deg)" if deg else "slider travel")
     err = conv(result.structural_error_max)

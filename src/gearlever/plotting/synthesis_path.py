@@ -20,7 +20,7 @@ def path_synthesis_plot(result, ax=None):
     ax = axes(ax, figsize=(6.5, 6.0))
     curve = result.curve()
     ax.plot(curve[:, 0], curve[:, 1], color="tab:blue", lw=1.2, label="coupler curve")
-    T = result.targets
+    T = result.target
     ax.plot(T[:, 0], T[:, 1], "o", mfc="none", mec="tab:red", ms=8, label="targets")
     ax.plot(result.achieved[:, 0], result.achieved[:, 1], "x", color="tab:blue", ms=6, label="coupler point at targets")
     for i, (x, y) in enumerate(T):

@@ -17,7 +17,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     import numpy as np
 
     from gearlever.data import example_path
-    from gearlever.dynamics.flywheel import flywheel
+    from gearlever.flywheels.flywheel import flywheel
     from gearlever.mechanism import Mechanism
     from gearlever.plotting._common import save
     from gearlever.plotting.dynamics import forces_figure, turning_moment_figure

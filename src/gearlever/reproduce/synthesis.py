@@ -113,7 +113,7 @@ def _log10():
     t = function_targets(
         LOG10["expression"], LOG10["x_range"], np.radians(LOG10["input_deg"]), np.radians(LOG10["output_deg"])
     )
-    return t, synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    return t, synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
 
 
 def _poses_path() -> Path:
@@ -127,8 +127,10 @@ def _read_poses(path: Path):
     """Poses of a CSV ``x, y, angle_deg``: ``(points (N, 2), angles (N,) in radians)``."""
     import numpy as np
 
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return data[:, :2], np.radians(data[:, 2])
+    from gearlever._io import read_csv_table
+
+    cols = read_csv_table(path, "poses", columns=("x", "y", "angle_deg")).columns(["x", "y", "angle_deg"])
+    return np.column_stack([cols["x"], cols["y"]]), np.radians(cols["angle_deg"])
 
 
 def run(tables_dir: Path, figures_dir: Path) -> list[str]:
@@ -148,7 +150,7 @@ def run(tables_dir: Path, figures_dir: Path) -> list[str]:
     err = ax.twinx()
     (line,) = err.plot(
         np.degrees(r.dense_input),
-        np.degrees(r.dense_achieved - r.dense_desired),
+        np.degrees(r.dense_achieved - r.dense_target),
         color="0.45",
         lw=1,
         label="structural error (right axis)",

@@ -211,7 +211,7 @@ def fivebar_result(pb: GearedFiveBarPathProblem, w, mode, evals, seed, starts, s
     z1, z2 = RATIOS[k // 2]
     return PathSynthesis(
         kind="geared-fivebar",
-        targets=pb.targets.copy(),
+        target=pb.targets.copy(),
         achieved=traced,
         error=err,
         objective=float(np.sum(err**2)),

@@ -113,7 +113,7 @@ class FunctionTargets(Result):
         Precision points.
     input_angle : ndarray
         Crank angles at the precision points, radians.
-    output : ndarray
+    target : ndarray
         Wanted outputs there (radians for a four-bar, length for a slider).
     x_range, input_range, output_range : tuple of float
 
@@ -127,12 +127,12 @@ class FunctionTargets(Result):
     expression: str
     x: np.ndarray
     input_angle: np.ndarray
-    output: np.ndarray
+    target: np.ndarray
     x_range: tuple
     input_range: tuple
     output_range: tuple
 
-    def desired(self, input_angle) -> np.ndarray:
+    def target_at(self, input_angle) -> np.ndarray:
         """The wanted output at crank angles (radians) by the formula and the two linear maps."""
         f = parse_expression(self.expression)
         (xa, xb), (pa, pb), (oa, ob) = self.x_range, self.input_range, self.output_range
@@ -191,7 +191,7 @@ def function_targets(
     Examples
     --------
     >>> t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    >>> np.round(np.degrees(t.input_angle), 3).tolist(), np.round(np.degrees(t.output), 3).tolist()
+    >>> np.round(np.degrees(t.input_angle), 3).tolist(), np.round(np.degrees(t.target), 3).tolist()
     ([49.019, 75.0, 100.981], [143.419, 187.647, 220.577])
     """
     f = parse_expression(expression)
@@ -216,7 +216,7 @@ def function_targets(
         raise GearleverError(f"expression {shown(expression)!r} is not finite everywhere in x_range {xr}")
     t = FunctionTargets(expression, x, np.empty(0), np.empty(0), xr, ir, orng)
     phi = ir[0] + (x - xr[0]) / (xr[1] - xr[0]) * (ir[1] - ir[0])
-    return FunctionTargets(expression, x, phi, t.desired(phi), xr, ir, orng)
+    return FunctionTargets(expression, x, phi, t.target_at(phi), xr, ir, orng)
 
 
 @dataclass(frozen=True)
@@ -228,12 +228,12 @@ class FunctionSynthesis(Result):
     kind : {"fourbar", "slider-crank"}
     input_angle : ndarray
         Crank angles of the targets, radians (the design's input angle).
-    output : ndarray
+    target : ndarray
         Wanted outputs: rocker angle (radians) or slider travel (length).
     achieved : ndarray
         The engine's output at the targets (solving :attr:`model`).
     error : ndarray
-        ``achieved - output`` (four-bar: wrapped to ``(-pi, pi]``, a rocker
+        ``achieved - target`` (four-bar: wrapped to ``(-pi, pi]``, a rocker
         angle being a pose).
     coefficients : ndarray
         ``(K1, K2, K3)`` of the design equation (see :func:`synthesize_function`).
@@ -246,7 +246,7 @@ class FunctionSynthesis(Result):
     model : dict
         Model dict assembled at the first target (:mod:`gearlever.synthesis.model`),
         exactly as :func:`~gearlever.mechanism.modelfile.model_toml` writes it (coordinates at 10 digits of the size).
-    dense_input, dense_desired, dense_achieved : ndarray
+    dense_input, dense_target, dense_achieved : ndarray
         The input range sampled, wanted output and engine output there.
     structural_error_max, structural_error_rms : float
         Over the dense samples (output units); NaN only with a :attr:`defect`.
@@ -281,14 +281,14 @@ class FunctionSynthesis(Result):
     Examples
     --------
     >>> t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    >>> r = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    >>> r = synthesize_function(t.input_angle, t.target, target_at=t.target_at)
     >>> r.kind, r.exact, r.grashof
     ('fourbar', True, 'triple-rocker')
     """
 
     kind: str
     input_angle: np.ndarray
-    output: np.ndarray
+    target: np.ndarray
     achieved: np.ndarray
     error: np.ndarray
     coefficients: np.ndarray
@@ -296,7 +296,7 @@ class FunctionSynthesis(Result):
     branch: str
     model: dict
     dense_input: np.ndarray
-    dense_desired: np.ndarray
+    dense_target: np.ndarray
     dense_achieved: np.ndarray
     structural_error_max: float
     structural_error_rms: float
@@ -314,7 +314,7 @@ class FunctionSynthesis(Result):
         unit = "rad" if self.kind == "fourbar" else "length"
         return {
             "input_angle_rad": self.input_angle,
-            f"output_{unit}": self.output,
+            f"output_{unit}": self.target,
             f"achieved_{unit}": self.achieved,
             f"error_{unit}": self.error,
         }
@@ -325,7 +325,7 @@ class FunctionSynthesis(Result):
         Examples
         --------
         >>> t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-        >>> synthesize_function(t.input_angle, t.output, desired=t.desired).proportions()
+        >>> synthesize_function(t.input_angle, t.target, target_at=t.target_at).proportions()
         ''
         """
         if not self.link_ratio > PRACTICAL_LINK_RATIO:
@@ -396,24 +396,26 @@ def _solve_linear(M, rhs, what):
     return K
 
 
-def _desired_values(desired, dense):
-    """The wanted output over ``dense`` from the caller's ``desired``, refused naming it when it is not usable."""
-    if isinstance(desired, str) or not callable(desired):
+def _target_values(target_at, dense):
+    """The wanted output over ``dense`` from the caller's ``target_at``, refused naming it when it is not usable."""
+    if isinstance(target_at, str) or not callable(target_at):
         hint = (
-            " (for a formula in x, pass function_targets(expression, ...).desired)" if isinstance(desired, str) else ""
+            " (for a formula in x, pass function_targets(expression, ...).target_at)"
+            if isinstance(target_at, str)
+            else ""
         )
         raise GearleverError(
-            "desired must be a callable giving the wanted output at an array of crank angles (radians), "
-            f"e.g. FunctionTargets.desired, or None; got {type(desired).__name__} {desired!r:.40}{hint}"
+            "target_at must be a callable giving the wanted output at an array of crank angles (radians), "
+            f"e.g. FunctionTargets.target_at, or None; got {type(target_at).__name__} {target_at!r:.40}{hint}"
         )
     try:
-        want = np.asarray(desired(dense), dtype=float)
+        want = np.asarray(target_at(dense), dtype=float)
     except (TypeError, ValueError, ArithmeticError) as exc:
         raise GearleverError(
-            f"desired must give a number at every crank angle of the range (it raised {type(exc).__name__})"
+            f"target_at must give a number at every crank angle of the range (it raised {type(exc).__name__})"
         ) from None
     if want.shape != dense.shape or not np.all(np.isfinite(want)):
-        raise GearleverError("desired must give a finite output at every crank angle of the range")
+        raise GearleverError("target_at must give a finite output at every crank angle of the range")
     return want
 
 
@@ -423,7 +425,7 @@ def synthesize_function(
     *,
     kind: str = "fourbar",
     ground: float = 1.0,
-    desired: Callable | None = None,
+    target_at: Callable | None = None,
     input_range=None,
     dense_points: int = DENSE_POINTS,
     name: str = "",
@@ -445,10 +447,10 @@ def synthesize_function(
         Scale: the ground link ``|O2 O4|`` of the four-bar, a positive
         length (not a bool, not text); the slider-crank is scaled by its
         travels and ignores it.
-    desired : callable, optional
+    target_at : callable, optional
         Wanted output as a function of an array of crank angles (radians)
         for the structural error over the range, e.g.
-        :meth:`FunctionTargets.desired`; default: straight lines between the
+        :meth:`FunctionTargets.target_at`; default: straight lines between the
         targets in order of input angle (four-bar: each rocker angle taken
         within half a turn of the one before).
     input_range : pair of float, optional
@@ -509,12 +511,12 @@ def synthesize_function(
     Examples
     --------
     >>> t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    >>> r = synthesize_function(t.input_angle, t.output, desired=t.desired)
+    >>> r = synthesize_function(t.input_angle, t.target, target_at=t.target_at)
     >>> bool(np.abs(r.error).max() < 1e-9), r.grashof, r.defect
     (True, 'triple-rocker', '')
     >>> round(float(np.degrees(r.structural_error_max)), 3)
     0.127
-    >>> r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+    >>> r = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     >>> round(float(np.degrees(r.structural_error_max)), 3)  # the ends of the range 45..105 deg too
     0.169
     """
@@ -539,13 +541,13 @@ def synthesize_function(
             "so the span must be less than 360 deg"
         )
     dense = np.linspace(lo, hi, int(dense_points))
-    if desired is None:
+    if target_at is None:
         order = np.argsort(phi)
         # rocker angles are poses: a target given a turn away from its neighbour is the same pose
         seq = np.unwrap(out[order]) if kind == "fourbar" else out[order]
         want = np.interp(dense, phi[order], seq)
     else:
-        want = _desired_values(desired, dense)
+        want = _target_values(target_at, dense)
     solve, default_name = _SOLVERS[kind]
     r = solve(phi, out, d, dense, want, name or default_name)
     note = "" if r.defect else r.proportions()
@@ -780,7 +782,7 @@ _SOLVERS = {
 def _example_fourbar() -> tuple:
     """Three Chebyshev precision points of ``log10`` on 1..2 (crank 45..105 deg, rocker 135..225 deg)."""
     t = function_targets("log10(x)", (1, 2), np.radians([45, 105]), np.radians([135, 225]))
-    return (t.input_angle, t.output), {"desired": t.desired}
+    return (t.input_angle, t.target), {"target_at": t.target_at}
 
 
 def _example_slider() -> tuple:

@@ -420,7 +420,7 @@ def _closed(res: PathSynthesis, targets, tried: dict) -> tuple:
     e0 = float(res.error[0])
     res = replace(
         res,
-        targets=targets.copy(),
+        target=targets.copy(),
         achieved=np.vstack([res.achieved, res.achieved[:1]]),
         error=np.append(res.error, e0),
         objective=res.objective + e0 * e0,

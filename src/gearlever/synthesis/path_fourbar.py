@@ -652,7 +652,7 @@ def fourbar_result(pb: FourBarPathProblem, w, sigma, evals, seed, starts, second
     feasible = bool(ok[0]) and pb.feasible_w(w, sigma) and gk == "crank-rocker"
     return PathSynthesis(
         kind="fourbar",
-        targets=pb.targets.copy(),
+        target=pb.targets.copy(),
         achieved=traced,
         error=err,
         objective=float(np.sum(err**2)),

@@ -172,7 +172,7 @@ class PathSynthesis(Result):
     ----------
     kind : str
         Linkage type (a registered kind: ``"fourbar"``, ``"geared-fivebar"``, ``"sixbar"``).
-    targets, achieved : ndarray (N, 2)
+    target, achieved : ndarray (N, 2)
         Target points and the traced (coupler) point at the targets' crank angles.
     error : ndarray (N,)
         Distance target to traced point (the per-target error).
@@ -210,7 +210,7 @@ class PathSynthesis(Result):
     """
 
     kind: str
-    targets: np.ndarray
+    target: np.ndarray
     achieved: np.ndarray
     error: np.ndarray
     objective: float
@@ -289,7 +289,7 @@ class PathSynthesis(Result):
             "starts": self.starts,
             "time_s": round(float(self.seconds), 2),
         }
-        S = float(np.hypot(*np.ptp(np.asarray(self.targets, dtype=float), axis=0))) or 1.0
+        S = float(np.hypot(*np.ptp(np.asarray(self.target, dtype=float), axis=0))) or 1.0
         links = [abs(float(v)) for v in rep["links"].values() if isinstance(v, (int, float))]
         scales = {"objective": S * S, "per_target_error": S, "types_tried": S * S}
         scales["links"] = max(links) if links else 0.0

@@ -144,7 +144,7 @@ def function_summary(res, *, expression: str | None = None, x=None, warnings=(),
     conv = (lambda v: v) if slider else math.degrees
     unit = "" if slider else "_deg"
     offsets = angle_offsets(res)
-    out_scale = float(np.ptp([conv(float(v)) for v in res.output])) or 1.0  # errors: at digits of the output range
+    out_scale = float(np.ptp([conv(float(v)) for v in res.target])) or 1.0  # errors: at digits of the output range
     size = max(abs(v) for v in res.lengths.values())  # lengths: at digits of the largest
     D = DIGITS_DESIGN
     return {
@@ -166,7 +166,7 @@ def function_summary(res, *, expression: str | None = None, x=None, warnings=(),
                 "x": rounded(float(x[j]), D) if x is not None else None,
                 "input_deg": rounded(math.degrees(res.input_angle[j]), D),
                 "model_input_deg": rounded(math.degrees(res.input_angle[j]) + offsets["crank"], D),
-                f"output{unit}": rounded(float(conv(res.output[j])), D),
+                f"output{unit}": rounded(float(conv(res.target[j])), D),
                 f"generated{unit}": rounded(float(conv(res.achieved[j])), D),  # the report's key, the field achieved
                 f"error{unit}": rounded(float(conv(res.error[j])), D, out_scale),
             }

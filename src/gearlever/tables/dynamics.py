@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from gearlever.dynamics.published import TextbookCheck, textbook_checks
+from gearlever.flywheels.published import TextbookCheck, textbook_checks
 from gearlever.tables._common import frame
 
 #: The book the worked examples come from (edition of the pages cited).

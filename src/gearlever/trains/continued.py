@@ -169,6 +169,12 @@ class Approximant:
         j in (p_(k-2) + j p_(k-1)) / (q_(k-2) + j q_(k-1)); a_k for a convergent.
     error : Fraction
         fraction - target (signed, exact).
+
+    Examples
+    --------
+    >>> a = approximants("355/113")[0]
+    >>> a.fraction, a.kind, a.error
+    (Fraction(3, 1), 'convergent', Fraction(-16, 113))
     """
 
     fraction: Fraction

@@ -125,6 +125,12 @@ class TrainDesign(Result):
     multiplier : int
         lambda with prod(drivers) = lambda * B', prod(followers) = lambda * C',
         B'/C' the (possibly approximated) ratio in lowest terms.
+
+    Examples
+    --------
+    >>> d = exact_trains(12, 2, 12, 72)[0]
+    >>> d.drivers, d.followers, d.ratio, d.gcds
+    ((36, 48), (12, 12), Fraction(12, 1), (12, 12))
     """
 
     drivers: tuple[int, ...]

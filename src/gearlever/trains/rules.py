@@ -135,6 +135,11 @@ class PairCountBounds:
         The whole numbers of pairs to try, smallest first: those within
         [lower, upper]; when no whole number lies there, the next one above
         ``lower``; always at least 1.
+
+    Examples
+    --------
+    >>> pair_count_bounds("1/6.931").candidates  # Sandgren's ratio: two pairs
+    (2,)
     """
 
     lower: float

@@ -302,6 +302,12 @@ class TrainSolution(Result):
     drivers, followers : tuple of int
         Non-decreasing.
     ratio : Fraction
+
+    Examples
+    --------
+    >>> s = search_best("1/6.931", 2, 12, 60).solutions[0]  # Sandgren's gear-train problem
+    >>> s.drivers, s.followers, s.pairing
+    ((16, 19), (43, 49), ((16, 43), (19, 49)))
     """
 
     drivers: tuple[int, ...]

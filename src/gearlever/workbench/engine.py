@@ -1681,8 +1681,8 @@ def _problem(params: dict) -> tuple:
         tg = function_targets(
             params["expr"], params["x_range"], np.radians(params["input_range_deg"]), orange, params["points"]
         )
-        kw = {"desired": tg.desired, "input_range": tg.input_range}
-        return family, params["type"], (tg.input_angle, tg.output), kw
+        kw = {"target_at": tg.target_at, "input_range": tg.input_range}
+        return family, params["type"], (tg.input_angle, tg.target), kw
     if family == "motion":
         poses = params["poses"]
         kw = {k: params.get(k) for k in ("fixed_pivots", "moving_pivots")}
@@ -1710,7 +1710,7 @@ def _designs(family: str, res, params: dict) -> list:
                 linkage_model(lk),
                 f"gearlever workbench: curve synthesis, design {n} (distance {d:.6g}, material {mt:.6g})",
             )
-            for n, (lk, d, mt) in enumerate(zip(res.designs, res.distance, res.material), 1)
+            for n, (lk, d, mt) in enumerate(zip(res.designs, res.error, res.material), 1)
         ]
     if family == "function":
         if res.defect:

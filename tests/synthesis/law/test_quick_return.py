@@ -123,7 +123,7 @@ def test_the_written_quick_return_model_turned_by_the_engine_follows_the_reporte
     ml = mechanism_law(Mechanism.from_dict(res.model()), "output", res.theta.size)
     assert ml.closed.all()
     assert np.abs(ml.s - (res.achieved - res.achieved[0])).max() < 1e-8
-    assert np.abs(ml.s + res.achieved[0] - res.wanted).max() == pytest.approx(np.abs(res.error).max(), rel=1e-6)
+    assert np.abs(ml.s + res.achieved[0] - res.target).max() == pytest.approx(np.abs(res.error).max(), rel=1e-6)
 
 
 def test_the_lever_follows_an_angle_law_it_generates_to_rounding():

@@ -167,9 +167,9 @@ class LawSynthesis(Result):
     z : ndarray
         Design variables (:attr:`~gearlever.synthesis.law._core.LawKind.names`).
     offset : float
-        Output zero of the fit: the law's output is ``generated + offset``.
-    theta, wanted, achieved, error : ndarray (REPORT_SAMPLES,)
-        Law input (radians), wanted and achieved output, ``achieved - wanted``.
+        Output zero of the fit: the law's output is the kind's generated output plus ``offset``.
+    theta, target, achieved, error : ndarray (REPORT_SAMPLES,)
+        Law input (radians), wanted and achieved output, ``achieved - target``.
     objective : float
         Weighted maximum error over the search samples (dwell samples weigh more).
     feasible : bool
@@ -191,6 +191,9 @@ class LawSynthesis(Result):
         Evaluations allowed per kind.
     spent : dict
         Kind -> evaluations it spent (each at most ``budget``).
+    law_target : LawTarget
+        The law asked for, as sampled (:func:`~gearlever.synthesis.law.law_target`); :attr:`target` is it
+        over the report's samples.
 
     Examples
     --------
@@ -206,7 +209,7 @@ class LawSynthesis(Result):
     z: np.ndarray
     offset: float
     theta: np.ndarray
-    wanted: np.ndarray
+    target: np.ndarray
     achieved: np.ndarray
     error: np.ndarray
     objective: float
@@ -218,7 +221,7 @@ class LawSynthesis(Result):
     starts: int
     seconds: float = field(default=0.0, compare=False)
     tried: dict = field(default_factory=dict)
-    target: LawTarget = field(default=None, compare=False, repr=False)
+    law_target: LawTarget = field(default=None, compare=False, repr=False)
     not_tried: dict = field(default_factory=dict)
     dwell_tolerance: float | None = None
     budget: int = 0
@@ -226,11 +229,11 @@ class LawSynthesis(Result):
 
     def model(self) -> dict:
         """Model dict sketched at law input 0 (output link ``output``)."""
-        return kind_class(self.kind)(self.target).model(self.z, self.offset)
+        return kind_class(self.kind)(self.law_target).model(self.z, self.offset)
 
-    def generated(self, theta) -> np.ndarray:
+    def achieved_at(self, theta) -> np.ndarray:
         """The achieved output (with the fit's zero) at law inputs ``theta`` (closed form)."""
-        G, _ = kind_class(self.kind)(self.target).generate(self.z[None, :], np.asarray(theta, dtype=float))
+        G, _ = kind_class(self.kind)(self.law_target).generate(self.z[None, :], np.asarray(theta, dtype=float))
         return G[0] + self.offset
 
 
@@ -444,7 +447,7 @@ def _result(pb: LawProblem, z, off, f, seed, starts, law) -> LawSynthesis:
         z=z,
         offset=float(off),
         theta=th,
-        wanted=want,
+        target=want,
         achieved=ach,
         error=ach - want,
         objective=float(f),
@@ -454,5 +457,5 @@ def _result(pb: LawProblem, z, off, f, seed, starts, law) -> LawSynthesis:
         evaluations=0,
         seed=int(seed),
         starts=int(starts),
-        target=t,
+        law_target=t,
     )

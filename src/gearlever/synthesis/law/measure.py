@@ -268,7 +268,7 @@ def law_report(res, *, degrees: bool = True) -> dict:
     evaluations against the budget and, for ``auto``, why each kind not
     kept gave no design.
     """
-    t = res.target
+    t = res.law_target
     ang = t.output == "angle"
     conv = math.degrees if ang else float
     unit = "_deg" if ang else ""
@@ -301,7 +301,7 @@ def law_report(res, *, degrees: bool = True) -> dict:
     scale = t.scale
     excursions = [float(np.ptp(ach[seg == k])) for k, m in enumerate(t.motions) if m == "dwell" and (seg == k).any()]
     thr = DWELL_THRESHOLD if "dwell" in t.motions else 0.0
-    tr_want = _segment_time_ratio(t) or time_ratio(th, res.wanted, t.net, thr)
+    tr_want = _segment_time_ratio(t) or time_ratio(th, res.target, t.net, thr)
     tr_got = time_ratio(th, ach, t.net, thr)
     tol = res.dwell_tolerance
     return {

@@ -1,9 +1,13 @@
-"""Machine dynamics over a cycle: turning-moment diagrams and flywheels.
+"""Flywheels: turning-moment diagrams over a machine's cycle, and the textbook problems they are checked on.
 
-:mod:`gearlever.dynamics.flywheel` integrates a turning-moment (crank-effort)
+(The package was ``gearlever.dynamics``; it is named for what it holds.  The
+inverse and forward dynamics of a mechanism, which the engines here use, are
+:mod:`gearlever.mechanism.dynamics`.)
+
+:mod:`gearlever.flywheels.flywheel` integrates a turning-moment (crank-effort)
 diagram over one cycle and sizes the flywheel that holds the speed within a
 given coefficient of fluctuation (or gives the fluctuation of a given one).
-:mod:`gearlever.dynamics.published` solves published textbook problems of
+:mod:`gearlever.flywheels.published` solves published textbook problems of
 epicyclic holding torques, engine crank effort and flywheel sizing with the
 gear networks, the mechanism models and the flywheel, beside the printed
 answers kept in the package data files.
@@ -17,7 +21,7 @@ matplotlib.pyplot (tables and figures live in :mod:`gearlever.tables` and
 :mod:`gearlever.plotting`).
 """
 
-from gearlever.dynamics.flywheel import Flywheel, flywheel
-from gearlever.dynamics.published import TextbookCheck, textbook_checks
+from gearlever.flywheels.flywheel import Flywheel, flywheel
+from gearlever.flywheels.published import TextbookCheck, textbook_checks
 
 __all__ = ["Flywheel", "TextbookCheck", "flywheel", "textbook_checks"]

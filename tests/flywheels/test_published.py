@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from gearlever.data import read_records
-from gearlever.dynamics import published as P
-from gearlever.dynamics.flywheel import flywheel
 from gearlever.errors import GearleverError
+from gearlever.flywheels import published as P
+from gearlever.flywheels.flywheel import flywheel
 
 
 @pytest.fixture(scope="module")

@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 import gearlever
-from gearlever.dynamics.flywheel import flywheel
 from gearlever.errors import GearleverError
+from gearlever.flywheels.flywheel import flywheel
 
 
 @pytest.mark.parametrize("k, amp", [(1, 300.0), (2, 300.0), (3, 1500.0)])

@@ -8,7 +8,7 @@ come from :func:`~gearlever.gears.torques.network_torques`; each engine is built
 as a :class:`~gearlever.mechanism.Mechanism` (an in-line slider-crank with its
 masses, loads and gravity) and solved by
 :meth:`~gearlever.mechanism.Mechanism.inverse_dynamics`; each turning moment is
-sampled and integrated by :func:`~gearlever.dynamics.flywheel.flywheel`.
+sampled and integrated by :func:`~gearlever.flywheels.flywheel.flywheel`.
 :func:`textbook_checks` sets every computed value beside the published one.
 """
 
@@ -22,8 +22,8 @@ import numpy as np
 
 from gearlever._result import Result
 from gearlever.data import read_records, read_text
-from gearlever.dynamics.flywheel import flywheel
 from gearlever.errors import GearleverError
+from gearlever.flywheels.flywheel import flywheel
 
 __all__ = [
     "PROBLEMS",
@@ -282,7 +282,7 @@ def flywheel_problem(example: str) -> dict[str, float]:
     ``I = dE / (omega^2 Cs)``; Khurmi and Gupta, *Theory of Machines*,
     chapter 16.  The diagram is sampled every 0.01 deg and integrated
     exactly for a torque linear between samples (see
-    :func:`~gearlever.dynamics.flywheel.flywheel`).
+    :func:`~gearlever.flywheels.flywheel.flywheel`).
     """
     spec = _spec("flywheel", example)
     theta = np.linspace(0.0, 2.0 * np.pi, SAMPLES)
