@@ -61,7 +61,9 @@ def recompute(model, input_angle, output, dense_input, dense_desired):
     if "O4" in model["points"]:
         P = model["points"]
         th0 = np.arctan2(P["B"][1] - P["O4"][1], P["B"][0] - P["O4"][0])
-        off = np.pi * np.round((th0 - output[0]) / np.pi)  # the rocker's link angle minus the output
+        # the rocker's link angle minus the output (0 or pi): told by target 1 because the library refuses a
+        # four-bar missing a target by more than a quarter turn (past it, the nearest half turn is a guess)
+        off = np.pi * np.round((th0 - output[0]) / np.pi)
         err_t = np.angle(np.exp(1j * (gen_t - off - output)))
         # the output turns continuously with the crank, from target 1 (where it is the wanted output within pi)
         cont = np.unwrap(gen_d - off)

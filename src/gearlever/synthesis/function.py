@@ -65,6 +65,11 @@ MAX_LENGTH = 1e12
 #: An exact (three-target) synthesis must meet its targets to this fraction of the output range
 #: (or of a radian); more is a branch defect.
 _EXACT_TOL = 1e-9
+#: A four-bar target missed by more than a quarter turn (rad) is refused: its rocker is then nearer the
+#: wanted angle reversed than the wanted angle, so the half turn between the rocker link and the output
+#: (:attr:`FunctionSynthesis.output_offset`) is no longer told by the motion, and the least squares has not
+#: followed the output range (e.g. a rocker turning the other way from the targets over more than half a turn).
+_MAX_TARGET_MISS = math.pi / 2
 KINDS = ("fourbar", "slider-crank")
 
 
@@ -506,7 +511,11 @@ def synthesize_function(
     the sketch along its branch (:func:`gearlever.mechanism.solve.solve`):
     a row it cannot reach (a dead point or a branch change between the
     targets) is a :attr:`FunctionSynthesis.defect`, and the achieved
-    outputs and the structural error are the engine's.
+    outputs and the structural error are the engine's.  A four-bar that
+    misses a target by more than a quarter turn is refused (GearleverError
+    naming ``output``): its rocker is then nearer the reverse of the wanted
+    angle, the half turn between rocker link and output is no longer told
+    by the motion, and no error it could report would be the design's.
 
     Examples
     --------
@@ -670,6 +679,14 @@ def _fourbar(phi, psi, d, dense, want, name):
         if np.any(worse):
             j = int(np.flatnonzero(worse)[0])
             defect = f"target {j + 1} is reached only on the other assembly branch (branch defect)"
+    miss_t = np.abs(_wrap(gen_t - psi))
+    if not defect and np.nanmax(miss_t) > _MAX_TARGET_MISS:
+        j = int(np.nanargmax(miss_t))
+        raise GearleverError(
+            f"output: the synthesized four-bar misses target {j + 1} by {math.degrees(miss_t[j]):.4g} deg "
+            f"(more than a quarter turn: its rocker points nearer the reverse of the wanted angle), so it does not "
+            f"follow the wanted output over the range; change the output range, the input range or the points"
+        )
     mu = transmission_angle(d, A_, b, C_, dense + off_a)
     return FunctionSynthesis(
         "fourbar",
