@@ -236,7 +236,7 @@ def test_least_squares_fourbar_missing_a_target_by_more_than_a_quarter_turn_is_r
     # so whether the output is its rocker or the rocker reversed (output_offset) was a guess: the result
     # reported 6.605 rad of structural error and the independent recomputation 9.747 (half a turn apart)
     t = function_targets("x**1.5", (1, 4), np.radians([0, 151]), np.radians([0, -269]), 4)
-    phi, psi = t.input_angle, t.output
+    phi, psi = t.input_angle, t.target
     # the design equation by least squares, independently, then its rocker at target 1 on both branches
     M = np.column_stack([np.cos(psi), -np.cos(phi), np.ones_like(phi)])
     K = np.linalg.lstsq(M, np.cos(phi - psi), rcond=None)[0]
@@ -245,13 +245,13 @@ def test_least_squares_fourbar_missing_a_target_by_more_than_a_quarter_turn_is_r
     miss = np.abs(np.angle(np.exp(1j * (both - psi[0]))))
     assert miss.min() == pytest.approx(np.radians(122.652), abs=np.radians(0.01))  # ... a quarter turn and more off
     with pytest.raises(GearleverError, match=r"^output: .*misses target 1 by 122\.7 deg .*quarter turn") as exc:
-        synthesize_function(phi, psi, desired=t.desired, input_range=t.input_range)
+        synthesize_function(phi, psi, target_at=t.target_at, input_range=t.input_range)
     assert "\n" not in str(exc.value)
     # a quarter turn the other way over the same crank range is followed, and its error is the recomputed one
     t = function_targets("x**1.5", (1, 4), np.radians([0, 151]), np.radians([0, 90]), 4)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", GearleverWarning)
-        r = synthesize_function(t.input_angle, t.output, desired=t.desired, input_range=t.input_range)
+        r = synthesize_function(t.input_angle, t.target, target_at=t.target_at, input_range=t.input_range)
     assert r.defect == "" and np.abs(r.error).max() < np.pi / 2
     _, sem, _ = _recompute(r)
     assert r.structural_error_max == pytest.approx(sem, abs=RECOMPUTE_TOL)
