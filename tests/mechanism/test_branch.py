@@ -101,6 +101,10 @@ def test_square_rod_branch_stop_is_the_old_behaviour():
     m = _square_rod()
     q = np.linspace(0.0, 2 * np.pi, 720, endpoint=False)
     r = m.solve(q, branch="stop")
+    # row 540 lies exactly on the square pose: reached, and the last row closed (as a row exactly at a dead point)
+    assert int(r.closed.sum()) == 541 and not r.closed[541:].any() and r.branch_points == ()
+    assert r.dead_rows.tolist() == [541] and r.reason[541].startswith("dead point between row 540")
+    r = m.solve(q + 0.001, branch="stop")  # no row on the pose: the rows stop before it
     assert int(r.closed.sum()) == 540 and not r.closed[540:].any() and r.branch_points == ()
     assert r.dead_rows.tolist() == [540] and r.reason[540].startswith("dead point between row 539")
     lim = input_limits(m, branch="stop")

@@ -52,6 +52,17 @@ from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independ
 __all__ = ["KinematicSystem", "MechanismResult", "input_name", "solve"]
 
 
+#: Largest change of the direction of motion along a step, beyond the trapezoid of the curvatures at its ends, as a
+#: fraction of the change (:meth:`KinematicSystem._kinked`): on one smooth branch it is of the order of the step's
+#: cube; a branch switched silently (Newton landing past a branch point on the other branch) turns the direction by
+#: a finite angle however short the step.
+KINK = 0.1
+#: Longest step (rad, or times the model size) that may end or start within
+#: :data:`~gearlever.mechanism.branch.RATIO_NEAR` of a singular pose (:meth:`KinematicSystem._kinked`).
+NEAR_STEP = 1e-3
+#: Smallest Hadamard ratio of ``J_z`` at a state :meth:`KinematicSystem._walk` passes on its way to its target.
+RATIO_WAY = 1e-7
+
 REASON_UNREACHED = "not reached continuously from the sketch (past a dead point, or no assembly there)"
 REASON_DEAD = "dead point: the constraint Jacobian is singular (velocities undefined)"
 REASON_STOP = (
@@ -536,6 +547,83 @@ class KinematicSystem:
             xdd[:, dead] = np.nan
         return xd, xdd, dead
 
+    @cached_property
+    def _kink_weights(self):
+        """``N`` with its rotation rows times the model size: the driven motion in lengths (nx, dz)."""
+        w = np.ones(self.nx)
+        w[: self.n] = self.L
+        return w[:, None] * self.N
+
+    def _kinked(self, delta, z0, z1, rates0, rates1, r0, r1):
+        """True where a step cannot be taken as one smooth branch (columns: steps): its direction of motion jumps.
+
+        Parameters
+        ----------
+        delta : ndarray (W, M)
+            The steps of the inputs.
+        z0, z1 : ndarray (dz, M)
+            The states at their ends.
+        rates0, rates1 : tuple of ndarray (dz, M)
+            First and second derivatives of ``z`` along each step at its ends, per unit of the step (the
+            step is ``t`` in [0, 1]).
+        r0, r1 : ndarray (M,)
+            Hadamard ratios of ``J_z`` at the ends.
+
+        Notes
+        -----
+        The solution curve in the space of inputs and coordinates (rotations times the model size, so all in
+        lengths) is smooth along one branch, through dead points of the input too (a fold: the curve turns
+        back there, its unit tangent ``T`` continuous and its curvature finite, although the velocity per
+        unit input grows without bound).  Along a smooth curve the unit tangent changes over an arc ``s`` by
+        the trapezoid of the curvature vectors ``K = dT/ds = (a - (a.T) T) / |v|^2`` at the ends, to the
+        order of ``s^3`` (the trapezoidal rule).  A state that Newton put on the other branch past a branch
+        point the step crosses has that branch's tangent: ``T`` jumps by a finite angle there (the square-rod
+        slider-crank's slider, -7.3 against +27.3 per rad of the crank), however short the step.  A step is
+        *kinked* when the change of ``T`` departs from the trapezoid by more than :data:`KINK` of the larger
+        of the two.
+
+        Within :data:`~gearlever.mechanism.branch.RATIO_NEAR` of a singular pose the rates lose the accuracy
+        this needs (the position's rounding over the small singular value of ``J_z``): a step with such an
+        end is not judged by its tangents, but it is refused when longer than :data:`NEAR_STEP` (a state by
+        a singular pose is reached in short steps, whose predictor is accurate enough for its sign of
+        ``det J_z`` to say the branch); the rows at such poses are then taken up by the crossing
+        (:mod:`gearlever.mechanism.branch`).  Steps with an end at a dead point (NaN rates) are not judged.
+        """
+        Wn = self._kink_weights
+        dw = delta * (self.L / self.qscale)[:, None]
+        v0 = np.concatenate([dw, Wn @ rates0[0]])
+        v1 = np.concatenate([dw, Wn @ rates1[0]])
+        a0 = np.concatenate([np.zeros_like(dw), Wn @ rates0[1]])
+        a1 = np.concatenate([np.zeros_like(dw), Wn @ rates1[1]])
+        ds = np.sqrt(np.sum(dw * dw, axis=0) + np.sum((Wn @ (z1 - z0)) ** 2, axis=0))
+        near = (r0 < RATIO_NEAR) | (r1 < RATIO_NEAR)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            n0, n1 = np.sqrt(np.sum(v0 * v0, axis=0)), np.sqrt(np.sum(v1 * v1, axis=0))
+            t0, t1 = v0 / n0, v1 / n1
+            k0 = (a0 - np.sum(a0 * t0, axis=0) * t0) / (n0 * n0)
+            k1 = (a1 - np.sum(a1 * t1, axis=0) * t1) / (n1 * n1)
+            err = np.sqrt(np.sum((t1 - t0 - 0.5 * ds * (k0 + k1)) ** 2, axis=0))
+            turn = np.maximum(
+                np.sqrt(np.sum((t1 - t0) ** 2, axis=0)),
+                0.5 * ds * (np.sqrt(np.sum(k0 * k0, axis=0)) + np.sqrt(np.sum(k1 * k1, axis=0))),
+            )
+            # rounding: the positions' over the small singular value, once more in the rates
+            noise = 1e-12 / np.minimum(r0, r1) ** 2
+            kink = (err > KINK * turn + 1e-9 + noise) & ~near
+        return kink | (near & (np.max(np.abs(delta / self.qscale[:, None]), axis=0) > NEAR_STEP))
+
+    def _step_kinked(self, dq0, z0, dq1, z1):
+        """:meth:`_kinked` of the straight steps from the states ``(dq0, z0)`` to ``(dq1, z1)`` (columns)."""
+        delta = dq1 - dq0
+        zero = np.zeros_like(delta)
+        NT, out = self.N.T, []
+        for dq, z in ((dq0, z0), (dq1, z1)):
+            x = self.coordinates(dq, z)
+            CS = self.trig(x)
+            d, dd, _ = self.derivatives(x, delta, zero, CS)
+            out.append(((NT @ d, NT @ dd), self._hadamard(self.jz(x, *CS)[self.sel])[0]))
+        return self._kinked(delta, z0, z1, out[0][0], out[1][0], out[0][1], out[1][1])
+
     # ------------------------------------------------------------- continuation
     def _walk(self, dq0, z0, target, h, sgn=None, stops=None):
         """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,).
@@ -550,19 +638,24 @@ class KinematicSystem:
         cur_dq, cur_z = dq0.copy(), z0.copy()
         step = h
         zeros = np.zeros((self.W, 1))
+        NT = self.N.T  # N: orthonormal columns, orthogonal to X_p
+        rates = None  # derivatives of z along the remaining way at the current state (dead, zd, zdd)
         while True:
             delta = target - cur_dq
             dist = float(np.max(np.abs(delta / self.qscale)))
             if dist == 0.0:
                 return cur_z, None
             t = min(step, dist) / dist
-            x = self.coordinates(cur_dq[:, None], cur_z[:, None])
-            xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
-            if dead[0]:
+            if rates is None:
+                x = self.coordinates(cur_dq[:, None], cur_z[:, None])
+                xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
+                r_cur = self._hadamard(self.jz(x, *self.trig(x))[self.sel])[0]
+                rates = (bool(dead[0]), NT @ xd[:, 0], NT @ xdd[:, 0], r_cur)
+            if rates[0]:
                 if stops is not None:
                     stops.append((cur_dq.copy(), cur_z.copy()))
                 return None, cur_dq
-            zd, zdd = self.N.T @ xd[:, 0], self.N.T @ xdd[:, 0]  # N: orthonormal columns, orthogonal to X_p
+            zd, zdd, r_cur = rates[1:]
             pred = cur_z + zd * t + 0.5 * zdd * t * t
             new_dq = target.copy() if t >= 1.0 else cur_dq + t * delta
             z, xn, C, S, conv = self.newton(new_dq[:, None], pred[:, None])
@@ -572,15 +665,49 @@ class KinematicSystem:
                 trust = 0.2 * t * (1.0 + float(np.max(np.abs(zd)))) + 1e-12
                 ok = ratio[0] > SINGULAR_TOL and sgn_[0] == sgn and float(np.max(np.abs(z[:, 0] - pred))) <= trust
                 ok = ok and self._pred_sign(new_dq[:, None], pred[:, None])[0] == sgn
+                # no state on the way this near a singular pose: its position's rounding over the small singular
+                # value of J_z is as large as the distance between the branches there (which it is on is moot)
+                ok = ok and (t >= 1.0 or ratio[0] > RATIO_WAY)
+            if ok:
+                # the direction of motion continuous along the step: not landed on another branch past a
+                # branch point (:meth:`_kinked`)
+                xd1, xdd1, _ = self.derivatives(xn, delta[:, None], zeros, (C, S))
+                zd1, zdd1 = NT @ xd1[:, 0], NT @ xdd1[:, 0]
+                tt = t * t
+                step_dq = (new_dq - cur_dq)[:, None]
+                ok = not self._kinked(
+                    step_dq,
+                    cur_z[:, None],
+                    z,
+                    ((zd * t)[:, None], (zdd * tt)[:, None]),
+                    ((zd1 * t)[:, None], (zdd1 * tt)[:, None]),
+                    r_cur,
+                    ratio,
+                )[0]
+                if ok:  # the next way is the rest of this one: its derivatives are these, scaled
+                    rates = (False, zd1 * (1.0 - t), zdd1 * (1.0 - t) ** 2, ratio)
             if ok:
                 cur_dq, cur_z = new_dq, z[:, 0]
                 step = min(2 * step, h)
+                if t >= 1.0:
+                    rates = None
             else:
                 step /= 2
                 if step < 1e-7:
+                    if dist <= 1e-6:  # the target itself lies at the singular pose the walk stopped at
+                        z, xn, C, S, conv = self.newton(target[:, None], cur_z[:, None])
+                        ratio = self._hadamard(self.jz(xn, C, S)[self.sel])[0]
+                        moved = float(np.max(np.abs(self._kink_weights @ (z[:, 0] - cur_z))))
+                        if conv[0] and ratio[0] < RATIO_NEAR and moved <= 1e-3 * self.L:
+                            return z[:, 0], None
                     if stops is not None:
                         stops.append((cur_dq.copy(), cur_z.copy()))
                     return None, cur_dq
+
+    def _near_pose(self, dq, z) -> bool:
+        """True when the state ``(dq, z)`` is by a singular pose (:data:`~gearlever.mechanism.branch.RATIO_NEAR`)."""
+        x = self.coordinates(dq[:, None], z[:, None])
+        return bool(self._hadamard(self.jz(x, *self.trig(x))[self.sel])[0][0] < RATIO_NEAR)
 
     def _near_singular(self, xs, cl):
         """Rows closed within :data:`~gearlever.mechanism.branch.RATIO_NEAR` of a singular pose (indices)."""
@@ -842,12 +969,20 @@ class KinematicSystem:
                         & (psg == sgn)
                         & (np.max(np.abs(z - pred), axis=0) <= trust)
                     )
+                if good.any():  # each point's velocity continuous with the one before it (the first: the state)
+                    pz = np.concatenate([st_z[:, None], z[:, :-1]], axis=1)
+                    good &= ~self._step_kinked(prev, pz, cdq[:, ks], z)
                 m = int(np.argmin(good)) if not good.all() else good.size
                 if m:
                     cz[:, ks[:m]] = z[:, :m]
                     cok[ks[:m]] = True
-                    nst = self._state(cdq[:, ks[m - 1]], z[:, m - 1])
-                    if nst is None:  # a dead point exactly at the accepted point: keep the older state
+                    # a dead point exactly at the accepted point: keep the older state; and by a singular pose,
+                    # where the branch of a state is moot (:meth:`_kinked`): the points on from the older one
+                    nst = self._state(cdq[:, ks[m - 1]], z[:, m - 1]) if ratio[m - 1] >= RATIO_NEAR else None
+                    if nst is None and ratio[m - 1] < RATIO_NEAR:
+                        k += m
+                        continue
+                    if nst is None:
                         m = 0
                     else:
                         st_dq, st_z, st = cdq[:, ks[m - 1]].copy(), z[:, m - 1].copy(), nst
@@ -859,7 +994,7 @@ class KinematicSystem:
                 blocked = (st_dq[0], cdq[0, k])
                 stuck.append(at)
             else:
-                nst = self._state(cdq[:, k], zk)
+                nst = self._state(cdq[:, k], zk) if not self._near_pose(cdq[:, k], zk) else None
                 cz[:, k], cok[k] = zk, True
                 if nst is not None:
                     st_dq, st_z, st = cdq[:, k].copy(), zk, nst
@@ -959,6 +1094,24 @@ class KinematicSystem:
         trust = 0.2 * h * (1.0 + (np.repeat(zpb, counts) if allok else zpb[b]))
         with np.errstate(invalid="ignore"):
             ok = conv & (sg == sgn) & (np.max(np.abs(z - pred), axis=0) <= trust)
+        # each row's velocity continuous with its coarse point's (no branch point stepped over onto the other
+        # branch between them: :meth:`_kinked`); a row that fails is walked to from the row before it
+        bdq = np.repeat(cdq, counts, axis=1) if allok else cdq[:, b]
+        zbz = np.repeat(cz, counts, axis=1) if allok else cz[:, b]
+        if self.W == 1:
+            zr, zrr, _ = self.derivatives(x, np.ones((1, x.shape[1])), np.zeros((1, x.shape[1])), (C, S))
+            dd = d[0]
+            zb1 = np.repeat(Zp[:, 0], counts, axis=1) if allok else Zp[:, 0, b]
+            zb2 = np.repeat(Zpp, counts, axis=1) if allok else Zpp[:, b]
+            NT = self.N.T
+            xc_r = self._hadamard(self.jz(xc, *self.trig(xc))[self.sel])[0]
+            rc = np.ones(nb)
+            rc[good] = xc_r
+            rb = np.repeat(rc, counts) if allok else rc[b]
+            rates0, rates1 = (zb1 * dd, zb2 * dd * dd), ((NT @ zr) * dd, (NT @ zrr) * dd * dd)
+            ok &= ~self._kinked(d, zbz, z, rates0, rates1, rb, ratio)
+        else:
+            ok &= ~self._step_kinked(bdq, zbz, dqi, z)
         if allok and ok.all():
             x_out[:] = x
             closed[:] = True
@@ -974,8 +1127,8 @@ class KinematicSystem:
         for i in ii[~ok]:
             if bid[i] == skip_bin:
                 continue
-            prev = i - 1
-            while prev >= 0 and not closed[prev]:
+            prev = i - 1  # (not from a row by a singular pose, where the branch of a state is moot)
+            while prev >= 0 and (not closed[prev] or self._near_pose(dq[:, prev], zfull[:, prev])):
                 prev -= 1
             if prev >= 0 and bid[prev] == bid[i]:
                 src_dq, src_z = dq[:, prev], zfull[:, prev]
