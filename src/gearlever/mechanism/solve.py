@@ -39,6 +39,10 @@ from gearlever.mechanism.branch import (
     DEFAULT_BRANCH,
     ETA,
     MAX_BRANCH_POINTS,
+    NEAR,
+    NEAR_RATES,
+    NODE_STEP,
+    NODES,
     RATIO_NEAR,
     BranchPoint,
     check_branch,
@@ -782,6 +786,8 @@ class KinematicSystem:
             )
             if not dd.any():
                 xd[:, i], xdd[:, i], dead[i] = richardson(d1), richardson(d2), False
+        if points and branch == "continue":
+            self._limit_rates(dq, qd, qdd, x, xd, xdd, closed, dead, points, near)
         reason = np.full(Nn, "", dtype=object)
         reason[closed & dead] = REASON_DEAD
         reason[~closed] = REASON_UNREACHED
@@ -792,6 +798,111 @@ class KinematicSystem:
             xd[:, ~closed] = np.nan
             xdd[:, ~closed] = np.nan
         return x, xd, xdd, closed, reason, CS, points, side
+
+    def _limit_rates(self, dq, qd, qdd, x, xd, xdd, closed, dead, points, near):
+        """Rows by a branch point passed smoothly: their position and rates as the limit of the branch's either side.
+
+        Within :data:`~gearlever.mechanism.branch.NEAR_RATES` of a branch point ``J_z`` is nearly singular
+        (exactly, at the pose), so the linear solves for the rates lose digits (the position's rounding over
+        the small singular value, and once more for the accelerations) or have no unique answer.  On the
+        branch continued smoothly the position and the rates are analytic through the point: they are taken
+        as the interpolating polynomial, at the row, of :data:`~gearlever.mechanism.branch.NODES` states of
+        that branch about it (offsets ``+-1 .. +-4`` times :data:`~gearlever.mechanism.branch.NODE_STEP` along
+        the path), where ``J_z`` is well conditioned: Lagrange interpolation of degree 7, its error of the
+        order of ``NODE_STEP^8`` times the eighth derivative.  Each node is checked to be on the branch the
+        row's side of the point calls for (the sign of ``det J_z``), and the interpolated position to agree
+        with the row's; otherwise the row keeps its values.  Arrays are changed in place.
+        """
+        Nn = dq.shape[1]
+        c = np.concatenate([-np.arange(NODES // 2, 0, -1), np.arange(1, NODES // 2 + 1)]).astype(float)
+        wts = np.array([np.prod([-cj / (ck - cj) for cj in c if cj != ck]) for ck in c])  # Lagrange at 0
+        Wn = self._kink_weights
+        for p in points:
+            if p.policy != "continue" or p.sign_before == p.sign_after:
+                continue
+            qs = np.asarray(p.q, dtype=float) - self.q0
+            r = min(p.row, Nn - 1)  # the first row past it (or at it): the direction of the path there
+            u = dq[:, r] - qs
+            if not float(np.max(np.abs(u / self.qscale))) > 10 * NEAR:
+                u = dq[:, r + 1] - dq[:, r] if r + 1 < Nn else dq[:, r] - (dq[:, r - 1] if r else qs)
+            size = float(np.max(np.abs(u / self.qscale)))
+            if not size > 0.0:
+                continue
+            u = u / size  # unit step along the path (scaled)
+            sc = u / self.qscale
+            rel = (dq - qs[:, None]) / self.qscale[:, None]
+            t = (rel.T @ sc) / (sc @ sc)
+            off = np.max(np.abs(rel - t[None, :] * sc[:, None]), axis=0)
+            rows = np.flatnonzero(closed & (off <= 1e-9) & (np.abs(t) <= NEAR_RATES))
+            if not rows.size:
+                continue
+            M = rows.size
+            ti = t[rows]
+            s = ti[:, None] + NODE_STEP * c[None, :]  # (M, K): node offsets from the branch point
+            K = c.size
+            ndq = qs[:, None, None] + u[:, None, None] * s[None, :, :]  # (W, M, K)
+            # predictor: the branch's Taylor expansion at the row (at the states ETA either side of a row at the
+            # point itself, where the rates are undefined)
+            zi, xr, CSr = self._polish(dq[:, rows], self.N.T @ x[:, rows])[:3]
+            d1, d2, dd = self.derivatives(xr, np.repeat(u[:, None], M, axis=1), np.zeros((self.W, M)), CSr)
+            Z1, Z2 = self.N.T @ d1, self.N.T @ d2
+            base_t = np.repeat(ti[:, None], K, axis=1)
+            base_z = np.repeat(zi[:, :, None], K, axis=2)
+            B1 = np.repeat(Z1[:, :, None], K, axis=2)
+            B2 = np.repeat(Z2[:, :, None], K, axis=2)
+            for m, i in enumerate(rows):
+                if i not in near:
+                    if dd[m]:
+                        B1[:, m], B2[:, m] = np.nan, np.nan
+                    continue
+                dq4, z4 = near[i]  # offsets -ETA, ETA, -2 ETA, 2 ETA about the row
+                e1, e2, _ = self.derivatives(
+                    self.coordinates(dq4, z4), np.repeat(u[:, None], 4, axis=1), np.zeros((self.W, 4))
+                )
+                side = np.where(c < 0, 0, 1)
+                base_t[m] = ti[m] + np.array([-ETA, ETA])[side]
+                base_z[:, m] = z4[:, side]
+                B1[:, m] = (self.N.T @ e1)[:, side]
+                B2[:, m] = (self.N.T @ e2)[:, side]
+            h = s - base_t
+            pred = base_z + B1 * h[None] + 0.5 * B2 * (h * h)[None]
+            nz, nx, C, S, conv = self.newton(ndq.reshape(self.W, -1), pred.reshape(self.dz, -1), max_iter=30)
+            nz, nx, (C, S), conv = self._polish(ndq.reshape(self.W, -1), nz)
+            ratio, sg = self._hadamard(self.jz(nx, C, S)[self.sel])
+            want = np.where(c < 0, p.sign_before, p.sign_after) * self.sgn0  # the sign of det J_z either side
+            ok = (conv & (ratio > 10 * RATIO_NEAR)).reshape(M, K).all(axis=1)
+            ok &= (sg.reshape(M, K) == want[None, :]).all(axis=1)
+            nx3 = nx.reshape(self.nx, M, K)
+            xi = np.einsum("nmk,k->nm", nx3, wts)
+            with np.errstate(invalid="ignore"):
+                ok &= np.max(np.abs(Wn @ (self.N.T @ (xi - xr))), axis=0) <= 1e-7 * self.L
+            if not ok.any():
+                continue
+            rq = np.repeat(qd[:, rows, None], K, axis=2).reshape(self.W, -1)
+            rqq = np.repeat(qdd[:, rows, None], K, axis=2).reshape(self.W, -1)
+            v, a_, bad = self.derivatives(nx, rq, rqq, (C, S))
+            ok &= ~bad.reshape(M, K).any(axis=1)
+            vi = np.einsum("nmk,k->nm", v.reshape(self.nx, M, K), wts)
+            ai = np.einsum("nmk,k->nm", a_.reshape(self.nx, M, K), wts)
+            g = rows[ok]
+            x[:, g], xd[:, g], xdd[:, g], dead[g] = xi[:, ok], vi[:, ok], ai[:, ok], False
+
+    def _polish(self, dq, z):
+        """Two more Newton steps from converged states ``z`` (their rounding, not the stopping rule, left).
+
+        Returns ``(z, x, (C, S), converged)``.
+        """
+        for _ in range(2):
+            x = self.coordinates(dq, z)
+            C, S = self.trig(x)
+            G = self.residual(x, C, S)[self.sel]
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                z = z - self._solve_small(self.jz(x, C, S)[self.sel], G)
+        x = self.coordinates(dq, z)
+        C, S = self.trig(x)
+        with np.errstate(invalid="ignore"):
+            conv = np.all(np.abs(self.residual(x, C, S)) <= 1e-9 * self.L, axis=0)
+        return z, x, (C, S), conv
 
     def _follow(self, dq, x_out, closed, stuck, branch):
         """:meth:`_positions` through the branch points under the policy ``branch``, segment by segment.
