@@ -843,8 +843,11 @@ class KinematicSystem:
             ndq = qs[:, None, None] + u[:, None, None] * s[None, :, :]  # (W, M, K)
             # predictor: the branch's Taylor expansion at the row (at the states ETA either side of a row at the
             # point itself, where the rates are undefined)
-            zi, xr, CSr = self._polish(dq[:, rows], self.N.T @ x[:, rows])[:3]
-            d1, d2, dd = self.derivatives(xr, np.repeat(u[:, None], M, axis=1), np.zeros((self.W, M)), CSr)
+            xr = x[:, rows]
+            zi, xp = self._polish(dq[:, rows], self.N.T @ xr)[:2]  # (Newton at the pose itself may wander)
+            keep = ~(np.max(np.abs(Wn @ (zi - self.N.T @ xr)), axis=0) <= 1e-9 * self.L)
+            zi[:, keep], xp[:, keep] = self.N.T @ xr[:, keep], xr[:, keep]
+            d1, d2, dd = self.derivatives(xp, np.repeat(u[:, None], M, axis=1), np.zeros((self.W, M)))
             Z1, Z2 = self.N.T @ d1, self.N.T @ d2
             base_t = np.repeat(ti[:, None], K, axis=1)
             base_z = np.repeat(zi[:, :, None], K, axis=2)
@@ -914,7 +917,7 @@ class KinematicSystem:
         Nn = dq.shape[1]
         side = np.zeros(Nn, dtype=int)
         points, near = [], {}
-        start, sgn, off, idle, stall = None, self.sgn0, 0, 0, 0
+        start, sgn, off, idle, stall = None, self.sgn0, 0, 0, 0.0
         while True:
             sub = dq[:, off:]
             xs = np.full((self.nx, sub.shape[1]), np.nan)
@@ -926,7 +929,9 @@ class KinematicSystem:
             first = (np.zeros(self.W), np.zeros(self.dz)) if start is None else start
             if len(points) + idle < MAX_BRANCH_POINTS:
                 # a row closed at (or within RATIO_NEAR of) a singular pose: a branch point there?
-                for k in self._near_singular(xs, cl):
+                reached = cl.size if cl.all() else int(np.argmin(cl))  # (a row past one not reached: not yet)
+                ks_near = self._near_singular(xs, cl)
+                for k in ks_near[ks_near < reached]:
                     nxt = sub[:, k + 1] if k + 1 < sub.shape[1] else 2 * sub[:, k] - (sub[:, k - 1] if k else first[0])
                     trial = self._cross_at(sub, xs, k, sub[:, k], nxt, first, sgn, branch)
                     if trial is not None and trial["qstar"] is not None:
@@ -946,10 +951,13 @@ class KinematicSystem:
                 s_dq = (_stop_on(stops, a_dq, sub[:, i], self.qscale) or (a_dq,))[0]
                 got = self._cross_at(sub, xs, i, s_dq, sub[:, i], first, sgn, branch)
             if got is not None and i == 0 and not got["pre"] and got["near"] is None:
-                stall += 1  # no row taken: two such crossings in a row go nowhere (stop there)
-                got = None if stall > 1 else got
+                # no row taken (several branch points on the way to the first row): a crossing that comes no
+                # nearer to that row than the one before it goes nowhere (stop there)
+                left = float(np.max(np.abs((sub[:, 0] - got["dq"]) / self.qscale)))
+                got = None if stall and not left < stall else got
+                stall = left
             else:
-                stall = 0
+                stall = 0.0
             if got is None:
                 x_out[:, off:] = xs
                 closed[off:] = cl
