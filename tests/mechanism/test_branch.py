@@ -105,7 +105,9 @@ def test_square_rod_branch_stop_is_the_old_behaviour():
     r = m.solve(q, branch="stop")
     # row 540 lies exactly on the square pose: reached, and the last row closed (as a row exactly at a dead point)
     assert int(r.closed.sum()) == 541 and not r.closed[541:].any() and r.branch_points == ()
-    assert r.dead_rows.tolist() == [541] and r.reason[541].startswith("dead point between row 540")
+    assert r.dead_rows.tolist() == [540, 541] and r.reason[541].startswith("dead point between row 540")
+    assert r.reason[540].startswith("dead point: the constraint Jacobian is singular") and np.isnan(r.xdot[540]).all()
+    assert np.abs(r.point["B"][540] - [0.0, E]).max() < 1e-9  # on the pose: x_B = x_A = 0
     r = m.solve(q + 0.001, branch="stop")  # no row on the pose: the rows stop before it
     assert int(r.closed.sum()) == 540 and not r.closed[540:].any() and r.branch_points == ()
     assert r.dead_rows.tolist() == [540] and r.reason[540].startswith("dead point between row 539")
@@ -119,7 +121,7 @@ def test_square_rod_branch_stop_never_passes_a_row_closed_at_the_square_pose():
     # the branch policy the continuation went on from it onto the kept branch for five rows, then stopped)
     m = _square_rod()
     r = m.solve(np.linspace(0.0, 2 * np.pi, 1000, endpoint=False), branch="stop")
-    assert r.closed[:751].all() and not r.closed[751:].any() and r.dead_rows.tolist() == [751]
+    assert r.closed[:751].all() and not r.closed[751:].any() and r.dead_rows.tolist() == [750, 751]
     assert "(at crank = 4.71239 rad)" in r.reason[751]
 
 

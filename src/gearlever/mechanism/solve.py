@@ -778,7 +778,8 @@ class KinematicSystem:
             CS = None
         xd, xdd, dead = self.derivatives(xs, qd, qdd, CS)
         for i, (dq4, z4) in near.items():
-            if branch == "keep":  # the velocity jumps there: undefined
+            if branch != "continue":  # the velocity jumps there (keep) or is one-sided (stop): undefined
+                xd[:, i], xdd[:, i], dead[i] = np.nan, np.nan, True
                 continue
             x4 = self.coordinates(dq4, z4)
             d1, d2, dd = self.derivatives(
@@ -939,6 +940,11 @@ class KinematicSystem:
                             got, i = trial, k
                         else:  # stop at it: the rows past it (the row at it, if any, closed) are not reached
                             cut = k + len(trial["pre"]) + (1 if trial["near"] is not None else 0)
+                            if trial["near"] is not None:  # the row at it: its position from either side
+                                xs[:, cut - 1] = self.coordinates(sub[:, cut - 1 : cut], trial["near"][2][:, None])[
+                                    :, 0
+                                ]
+                                near[off + cut - 1] = trial["near"][:2]
                             if cut < sub.shape[1]:
                                 cl[cut:] = False
                                 xs[:, cut:] = np.nan
