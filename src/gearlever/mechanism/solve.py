@@ -698,11 +698,12 @@ class KinematicSystem:
             else:
                 step /= 2
                 if step < 1e-7:
-                    if dist <= 1e-6:  # the target itself lies at the singular pose the walk stopped at
+                    if dist <= 1e-4:  # the target itself lies by the singular pose the walk stopped at
                         z, xn, C, S, conv = self.newton(target[:, None], cur_z[:, None])
                         ratio = self._hadamard(self.jz(xn, C, S)[self.sel])[0]
                         moved = float(np.max(np.abs(self._kink_weights @ (z[:, 0] - cur_z))))
-                        if conv[0] and ratio[0] < RATIO_NEAR and moved <= 1e-3 * self.L:
+                        # (by a dead point of the input the position moves as the square root of the input)
+                        if conv[0] and ratio[0] < RATIO_NEAR and moved <= 10.0 * self.L * dist**0.5:
                             return z[:, 0], None
                     if stops is not None:
                         stops.append((cur_dq.copy(), cur_z.copy()))
