@@ -125,3 +125,54 @@ def test_square_rod_draws_and_animates_through_the_square_pose(tmp_path, capsys)
     assert main(["mechanism", "animate", SQUARE, "--out", str(gif), "--frames", "8"]) == 0
     err = capsys.readouterr().err
     assert err.count("passes a branch point at 270.000 deg") == 2
+
+
+@pytest.mark.parametrize("command", ["analyze", "draw", "animate", "forces", "view"])
+def test_every_motion_command_has_the_one_branch_flag(command, capsys):
+    from gearlever.cli._shared import BRANCH_HELP
+
+    with pytest.raises(SystemExit):
+        main(["mechanism", command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--branch {continue,keep,stop}" in text and " ".join(BRANCH_HELP.split()) in text
+    assert main(["mechanism", command, SQUARE, "--out", "x.png", "--branch", "smooth"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--branch" in err and "'smooth'" in err and "Traceback" not in err
+
+
+def test_square_rod_forces_take_the_branch_policy_and_say_where_it_changed(capsys):
+    assert main(["mechanism", "forces", SQUARE, "--points", "720"]) == 0
+    out, err = capsys.readouterr()
+    assert err == (
+        "crank passes a branch point at 270.000 deg (row 540): continuing on the other assembly branch, "
+        "the velocity continuous\n"
+    )
+    rows = _rows(out)
+    assert len(rows) == 720
+    # the row on the pose: the constraint Jacobian loses rank there, so the pin forces along the line of crank,
+    # rod and guide normal (a state of self-stress) are not unique in a rigid model: NaN; the torque, which that
+    # self-stress does not change, is solved (0: the example has no masses or loads), and so is every other row
+    assert [rows[540][k] for k in ("pin_O2_y_N", "pin_A_y_N", "pin_B_y_N", "guide_piston_normal_N")] == ["nan"] * 4
+    assert rows[540]["crank_torque_N_mm"] == "0" and rows[540]["pin_O2_x_N"] == "0"
+    assert all("nan" not in r.values() for r in rows[:540] + rows[541:])
+    assert main(["mechanism", "forces", SQUARE, "--points", "8", "--branch", "keep"]) == 0
+    assert "keeping the assembly branch, the velocity jumps there" in capsys.readouterr().err
+    assert main(["mechanism", "forces", SQUARE, "--points", "8", "--branch", "stop"]) == 0
+    out, err = capsys.readouterr()
+    assert err == "crank rocks between -90.000 and 270.000 deg: sweeping one oscillation\n"
+    assert {r["direction"] for r in _rows(out)} == {"1", "-1"}
+
+
+def test_square_rod_view_takes_the_branch_policy_and_says_where_it_changed(tmp_path, capsys):
+    page = tmp_path / "square.html"
+    assert main(["mechanism", "view", SQUARE, "--out", str(page), "--frames", "72"]) == 0
+    err = capsys.readouterr().err
+    assert err == (
+        "crank passes a branch point at 270.000 deg (row 54): continuing on the other assembly branch, "
+        "the velocity continuous\n"
+    )
+    assert page.stat().st_size > 0
+    assert main(["mechanism", "view", SQUARE, "--out", str(page), "--frames", "72", "--branch", "keep"]) == 0
+    assert "keeping the assembly branch, the velocity jumps there" in capsys.readouterr().err
+    assert main(["mechanism", "view", SQUARE, "--out", str(page), "--frames", "72", "--branch", "stop"]) == 0
+    assert capsys.readouterr().err == "crank rocks between -90.000 and 270.000 deg: sweeping one oscillation\n"

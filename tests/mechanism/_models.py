@@ -5,7 +5,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
@@ -17,25 +16,6 @@ def example(name: str) -> Path:
 def all_examples() -> list:
     """The example mechanism models (motion laws, also TOML, left out)."""
     return sorted(p for p in EXAMPLES.glob("*.toml") if "[law]" not in p.read_text(encoding="utf-8"))
-
-
-#: A known defect (kept visible by a strict xfail, which fails once it is fixed): a sweep of the square-rod
-#: slider-crank that does not start at its sketch pose can pass the square pose (a branch point) without
-#: detecting it, so rows past it stay on the kept branch under ``branch="continue"`` (the fast dyad path and the
-#: general Newton path alike); a row exactly on the pose has extrapolated accelerations off by up to 1e-3.
-BRANCH_DEFECT = pytest.mark.xfail(
-    strict=True, reason="branch point missed by a sweep not starting at the sketch (known defect, issue 34)"
-)
-
-
-def examples_with_known_defects_marked() -> list:
-    """:func:`all_examples`, the square-rod slider-crank marked with :data:`BRANCH_DEFECT`."""
-    return [
-        pytest.param(p, marks=BRANCH_DEFECT, id=p.stem)
-        if p.stem == "square_rod_slider_crank"
-        else pytest.param(p, id=p.stem)
-        for p in all_examples()
-    ]
 
 
 def wrap(x):
@@ -58,9 +38,7 @@ def sweep(mech, points: int = 721):
         pad = 0.4 * (lim.upper - lim.lower)
         return np.linspace(lim.lower + pad, lim.upper - pad, points)[:, None], np.ones((points, 1))
     elif "square-rod" in mech.name:
-        t = (
-            np.linspace(0.0, 2 * np.pi, points) + 0.05
-        )  # off its square pose (270 deg) and off the sketch: see BRANCH_DEFECT
+        t = np.linspace(0.0, 2 * np.pi, points) + 0.05  # off its square pose (270 deg) and off the sketch
     else:
         t = np.linspace(0.0, 2 * np.pi, points)
     rates = np.array([1.0, 0.37, -0.21][:W])

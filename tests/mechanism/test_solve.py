@@ -14,7 +14,7 @@ from gearlever.gears.willis import driven_speed
 from gearlever.loops import fourbar, slider_crank
 from gearlever.mechanism.constraints import constraint_residual
 
-from ._models import all_examples, example, examples_with_known_defects_marked, sweep, wrap
+from ._models import all_examples, example, sweep, wrap
 
 FOURBAR = dict(
     ground=40.0, crank=10.0, coupler=math.dist((10, 0), (45.1, 28.3)), rocker=math.dist((40, 0), (45.1, 28.3))
@@ -113,7 +113,7 @@ def _fd_check(m, q, qd, h=1e-4):
     return mid
 
 
-@pytest.mark.parametrize("path", examples_with_known_defects_marked())
+@pytest.mark.parametrize("path", all_examples(), ids=lambda p: p.stem)
 def test_every_example_rates_match_finite_differences(path):
     m = gearlever.Mechanism.load(path)
     q, qd = sweep(m, 37)

@@ -71,7 +71,7 @@ import numpy as np
 from gearlever._format import DIGITS_FORCES, DIGITS_SIMULATE
 from gearlever._io import table_text
 from gearlever.cli._common import capped_int, emit, finite_float, named_values, positive_float, progress
-from gearlever.cli._shared import load_model
+from gearlever.cli._shared import add_branch_argument, load_model, say_branch_points
 from gearlever.errors import GearleverError
 from gearlever.mechanism.sweep import MAX_POINTS
 
@@ -101,6 +101,7 @@ def register_dynamics(ms) -> None:
     )
     f.add_argument("--format", choices=("csv", "json"), default="csv")
     f.add_argument("--out", default=None, help="write to this file (atomically) instead of stdout")
+    add_branch_argument(f)
     f.set_defaults(func=_forces)
 
     s = ms.add_parser("simulate", help="motion under constant input torques (equations of motion in the inputs)")
@@ -236,7 +237,7 @@ def _forces(args) -> int:
     from gearlever.mechanism.limits import input_limits
     from gearlever.mechanism.sweep import oscillation, sweep_rows
 
-    lim = input_limits(mech, i0)
+    lim = input_limits(mech, i0, branch=args.branch)
     direction = None
     if lim.full_turn:
         t = np.linspace(0.0, period, args.points, endpoint=False)
@@ -255,9 +256,10 @@ def _forces(args) -> int:
     eff = _efficiency(args)
     with progress("mechanism forces"):
         try:
-            d = mech.inverse_dynamics(q, qdot, np.zeros_like(q), efficiency=eff)
+            d = mech.inverse_dynamics(q, qdot, np.zeros_like(q), efficiency=eff, branch=args.branch)
         except GearleverError as exc:
             raise _model_element(exc, args.model) from None
+    say_branch_points(mech, d.kinematics)
     L, F, T, P, _ = _units(mech)
     meta = {
         "mechanism": mech.model.name,

@@ -3,6 +3,7 @@
 Sub-command (added to ``gearlever mechanism`` by :func:`register_view`)::
 
     gearlever mechanism view MODEL --out PAGE.html [--frames N] [--rpm NAME=R ...] [--input NAME=VALUE ...]
+        [--branch continue|keep|stop]
 
 The first input turns one full turn from its sketch angle (or from
 ``--input`` for it) over ``--frames`` frames (end excluded), or, when it
@@ -26,7 +27,7 @@ from __future__ import annotations
 import math
 
 from gearlever.cli._common import emit, named_values
-from gearlever.cli._shared import add_page_arguments, cam_page, check_page_out, load_model
+from gearlever.cli._shared import add_branch_argument, add_page_arguments, cam_page, check_page_out, load_model
 from gearlever.errors import GearleverError
 
 
@@ -43,6 +44,7 @@ def register_view(ms) -> None:
         metavar="NAME=VALUE",
         help="start of the first input / held value of another (deg, or length for a slider)",
     )
+    add_branch_argument(v)
     v.set_defaults(func=_view)
 
 
@@ -67,7 +69,7 @@ def _view(args) -> int:
     if rpm is not None and labels[0] not in rpm:
         raise GearleverError(f"--rpm must give the first input {labels[0]!r} (it sets the time)")
     try:
-        page = viewer_html(mech, frames=args.frames, rpm=rpm, inputs=inputs or None)
+        page = viewer_html(mech, frames=args.frames, rpm=rpm, inputs=inputs or None, branch=args.branch)
     except GearleverError as exc:
         text = str(exc)
         for lib, flag in (
@@ -79,12 +81,27 @@ def _view(args) -> int:
             if text.startswith(lib):
                 text = flag + text[len(lib) :]
         raise GearleverError(text) from None
-    _say_oscillation(mech, inputs)
+    _say_oscillation(mech, inputs, args.branch)
+    _say_branch_points(mech, inputs, args.frames, args.branch)
     emit(page, args.out)
     return 0
 
 
-def _say_oscillation(mech, inputs) -> None:
+def _say_branch_points(mech, inputs, frames: int, branch: str) -> None:
+    """The stderr line of a page whose first input passes branch points (the rows of its first grid value)."""
+    import numpy as np
+
+    from gearlever.cli._shared import say_branch_points
+    from gearlever.plotting.viewer import _first_input_rows, _frames_inputs
+
+    start = _frames_inputs(mech, frames, inputs or None)[0]
+    turn = _first_input_rows(mech, start, frames, branch)[0]
+    q = np.tile(start, (turn.size, 1))
+    q[:, 0] = turn
+    say_branch_points(mech, mech.solve(q, branch=branch))
+
+
+def _say_oscillation(mech, inputs, branch: str = "continue") -> None:
     """The stderr line of a page that sweeps one oscillation of a rocking first input."""
     import sys
 
@@ -98,7 +115,7 @@ def _say_oscillation(mech, inputs) -> None:
     start = np.array(mech.sketch_inputs, dtype=float)
     for name, value in (inputs or {}).items():
         start[labels.index(name)] = value
-    lim = input_limits(mech, 0, start=start)
+    lim = input_limits(mech, 0, start=start, branch=branch)
     if lim.rocks:
         print(f"{lim.input} rocks between {lim.text()}: sweeping one oscillation", file=sys.stderr)
 

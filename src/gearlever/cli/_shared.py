@@ -59,3 +59,27 @@ def cam_page(path: str, frames: int) -> str:
     points = frames * max(1, -(-min(stored, 36_000) // frames))
     cam = load_cam(path, points=points)
     return cam_viewer_html(cam, frames=frames, name=Path(path).stem)
+
+
+#: The ``--branch`` help of every command that solves a model's motion (analyze, draw, animate, forces, view).
+BRANCH_HELP = (
+    "at a branch point (a singular pose the input goes on through): continue on the branch that keeps "
+    "the motion smooth (default), keep the sketch's assembly branch (the velocity jumps), or stop there"
+)
+
+
+def add_branch_argument(parser) -> None:
+    """``--branch continue|keep|stop`` (:mod:`gearlever.mechanism.branch`), the one flag of every motion command."""
+    parser.add_argument("--branch", choices=("continue", "keep", "stop"), default="continue", help=BRANCH_HELP)
+
+
+def say_branch_points(mech, result) -> None:
+    """The one stderr line saying where the rows of ``result`` (a MechanismResult) passed branch points, if any."""
+    import sys
+
+    from gearlever.mechanism.branch import branch_message
+    from gearlever.mechanism.sweep import input_labels
+
+    line = branch_message(result.branch_points, input_labels(mech), [spec.kind for spec in mech.model.inputs])
+    if line:
+        print(line, file=sys.stderr)

@@ -55,6 +55,7 @@ import numpy as np
 
 from gearlever._io import table_text
 from gearlever.cli._common import emit, finite_float, named_values, positive_int, to_json
+from gearlever.cli._shared import add_branch_argument, say_branch_points
 from gearlever.cli._shared import load_model as _load
 from gearlever.errors import GearleverError
 from gearlever.mechanism.sweep import (
@@ -178,13 +179,7 @@ def _sweep_args(p, points: bool):
         "(--input crank=0 90) or in [[inputs]] order (default: the first input turns a full turn from the "
         "sketch, the others stay at the sketch)",
     )
-    p.add_argument(
-        "--branch",
-        choices=("continue", "keep", "stop"),
-        default="continue",
-        help="at a branch point (a singular pose the input goes on through): continue on the branch that keeps "
-        "the motion smooth (default), keep the sketch's assembly branch (the velocity jumps), or stop there",
-    )
+    add_branch_argument(p)
 
 
 class _InputRange(argparse.Action):
@@ -220,12 +215,8 @@ def sweep_rows(mech, points: int = DEFAULT_POINTS, ranges=None, first: int = 1, 
 
 def solve_rows(mech, q, qdot, branch: str = "continue"):
     """``mech.solve(q, qdot, branch=branch)``, saying on stderr in one line where the rows passed branch points."""
-    from gearlever.mechanism.branch import branch_message
-
     r = mech.solve(q, qdot, branch=branch)
-    line = branch_message(r.branch_points, input_labels(mech), [spec.kind for spec in mech.model.inputs])
-    if line:
-        print(line, file=sys.stderr)
+    say_branch_points(mech, r)
     return r
 
 

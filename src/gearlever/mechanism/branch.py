@@ -64,6 +64,9 @@ __all__ = [
     "DEFAULT_BRANCH",
     "ETA",
     "MAX_BRANCH_POINTS",
+    "NEAR_RATES",
+    "NODES",
+    "NODE_STEP",
     "BranchPoint",
     "branch_message",
     "check_branch",
@@ -81,6 +84,14 @@ ETA = 1e-3
 #: branch followed at ``ETA`` and ``2 ETA`` either side (:func:`richardson`: error of the order of ``ETA^4``),
 #: where ``J_z`` is well conditioned.
 NEAR = 1e-6
+#: Rows this near a branch point passed smoothly (rad, or times the model size) take their position and rates as
+#: the limit of the branch either side (:meth:`~gearlever.mechanism.solve.KinematicSystem._limit_rates`): nearer,
+#: the rates of the linear solves lose digits to the nearly singular ``J_z`` (about 1e-8 of their scale at 1e-4).
+NEAR_RATES = 1.5e-2
+#: Spacing of the states of the continued branch about such a row that its values are interpolated from.
+NODE_STEP = 3e-2
+#: How many (half on either side of the row).
+NODES = 8
 #: Most branch points one solve crosses (and most crossings that change nothing).
 MAX_BRANCH_POINTS = 10_000
 #: Hadamard ratio of ``J_z`` below which a row the continuation closed is checked for a branch point.

@@ -181,6 +181,7 @@ class Mechanism:
         pressure_angle=None,
         efficiency=None,
         friction=None,
+        branch: str = "continue",
     ):
         """Driver torques and pair forces (:func:`~gearlever.mechanism.dynamics.inverse_dynamics`)."""
         from gearlever.mechanism.dynamics import inverse_dynamics
@@ -196,6 +197,7 @@ class Mechanism:
             pressure_angle=pressure_angle,
             efficiency=efficiency,
             friction=friction,
+            branch=branch,
         )
 
     def reduced_inertia(self, q, masses=None):

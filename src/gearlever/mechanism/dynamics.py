@@ -328,6 +328,7 @@ def inverse_dynamics(
     efficiency=None,
     friction=None,
     _driven=None,
+    branch: str = "continue",
 ) -> InverseDynamics:
     """Driver torques and joint, guide and tooth forces that produce the prescribed motion.
 
@@ -354,6 +355,15 @@ def inverse_dynamics(
         Coulomb friction at the pins and sliders, a table as the model's
         ``[friction]`` (:mod:`gearlever.mechanism.friction`); default the
         model's, else none.
+    branch : {"continue", "keep", "stop"}
+        The policy at branch points of the motion (:meth:`Mechanism.solve`).
+        A row exactly at a branch point has its kinematics (the limit of the
+        branch continued either side) but NaN forces and torques: the
+        constraint Jacobian loses rank there, so a rigid model's pin forces
+        are not unique (a state of self-stress can be added: at the square-rod
+        slider-crank's square pose, a force along the line of crank, rod and
+        guide normal), and the equilibrium is solved only where it has one
+        answer; the rows beside it carry the limit.
 
     Returns
     -------
@@ -423,7 +433,15 @@ def inverse_dynamics(
     spec = parse_friction(mech.model, friction)
     # overflow is not warned about here: the final check refuses it, naming the input
     with np.errstate(over="ignore", invalid="ignore"):
-        d = _inverse_dynamics(mech, q, qdot, qddot, loads, masses, gravity, pressure_angle, efficiency, _driven=_driven)
+        kin = None
+        if branch != "continue":
+            from gearlever.mechanism.branch import check_branch
+
+            qa, qd_, qdd_ = _rows_of(mech, q, qdot, qddot)
+            kin = mech.solve(qa, qd_, qdd_, branch=check_branch(branch))
+        d = _inverse_dynamics(
+            mech, q, qdot, qddot, loads, masses, gravity, pressure_angle, efficiency, _driven=_driven, _kin=kin
+        )
         if spec:
             d = _with_friction(mech, d, spec, (loads, masses, gravity, pressure_angle, efficiency), _driven)
         return d

@@ -236,6 +236,8 @@ def input_limits(mech, index: int = 0, start=None, tol: float = LIMIT_TOL, branc
             continue
         full = False
         k = int(np.argmin(r.closed))
+        if k >= 2 and ks.dz and ks._near_pose(q[k - 1] - ks.q0, ks.N.T @ r.x[k - 1]):
+            k -= 1  # the last row reached lies at the singular pose itself: bisect up to it from the row before
         a, b = q[k - 1].copy(), q[k].copy()
         za = ks.N.T @ r.x[k - 1] if ks.dz else np.zeros(0)
         xa = r.x[k - 1].copy()

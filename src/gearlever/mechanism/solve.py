@@ -39,6 +39,10 @@ from gearlever.mechanism.branch import (
     DEFAULT_BRANCH,
     ETA,
     MAX_BRANCH_POINTS,
+    NEAR,
+    NEAR_RATES,
+    NODE_STEP,
+    NODES,
     RATIO_NEAR,
     BranchPoint,
     check_branch,
@@ -51,6 +55,17 @@ from gearlever.mechanism.structural import RANK_TOL, analyze_structure, independ
 
 __all__ = ["KinematicSystem", "MechanismResult", "input_name", "solve"]
 
+
+#: Largest change of the direction of motion along a step, beyond the trapezoid of the curvatures at its ends, as a
+#: fraction of the change (:meth:`KinematicSystem._kinked`): on one smooth branch it is of the order of the step's
+#: cube; a branch switched silently (Newton landing past a branch point on the other branch) turns the direction by
+#: a finite angle however short the step.
+KINK = 0.1
+#: Longest step (rad, or times the model size) that may end or start within
+#: :data:`~gearlever.mechanism.branch.RATIO_NEAR` of a singular pose (:meth:`KinematicSystem._kinked`).
+NEAR_STEP = 1e-3
+#: Smallest Hadamard ratio of ``J_z`` at a state :meth:`KinematicSystem._walk` passes on its way to its target.
+RATIO_WAY = 1e-7
 
 REASON_UNREACHED = "not reached continuously from the sketch (past a dead point, or no assembly there)"
 REASON_DEAD = "dead point: the constraint Jacobian is singular (velocities undefined)"
@@ -536,6 +551,83 @@ class KinematicSystem:
             xdd[:, dead] = np.nan
         return xd, xdd, dead
 
+    @cached_property
+    def _kink_weights(self):
+        """``N`` with its rotation rows times the model size: the driven motion in lengths (nx, dz)."""
+        w = np.ones(self.nx)
+        w[: self.n] = self.L
+        return w[:, None] * self.N
+
+    def _kinked(self, delta, z0, z1, rates0, rates1, r0, r1):
+        """True where a step cannot be taken as one smooth branch (columns: steps): its direction of motion jumps.
+
+        Parameters
+        ----------
+        delta : ndarray (W, M)
+            The steps of the inputs.
+        z0, z1 : ndarray (dz, M)
+            The states at their ends.
+        rates0, rates1 : tuple of ndarray (dz, M)
+            First and second derivatives of ``z`` along each step at its ends, per unit of the step (the
+            step is ``t`` in [0, 1]).
+        r0, r1 : ndarray (M,)
+            Hadamard ratios of ``J_z`` at the ends.
+
+        Notes
+        -----
+        The solution curve in the space of inputs and coordinates (rotations times the model size, so all in
+        lengths) is smooth along one branch, through dead points of the input too (a fold: the curve turns
+        back there, its unit tangent ``T`` continuous and its curvature finite, although the velocity per
+        unit input grows without bound).  Along a smooth curve the unit tangent changes over an arc ``s`` by
+        the trapezoid of the curvature vectors ``K = dT/ds = (a - (a.T) T) / |v|^2`` at the ends, to the
+        order of ``s^3`` (the trapezoidal rule).  A state that Newton put on the other branch past a branch
+        point the step crosses has that branch's tangent: ``T`` jumps by a finite angle there (the square-rod
+        slider-crank's slider, -7.3 against +27.3 per rad of the crank), however short the step.  A step is
+        *kinked* when the change of ``T`` departs from the trapezoid by more than :data:`KINK` of the larger
+        of the two.
+
+        Within :data:`~gearlever.mechanism.branch.RATIO_NEAR` of a singular pose the rates lose the accuracy
+        this needs (the position's rounding over the small singular value of ``J_z``): a step with such an
+        end is not judged by its tangents, but it is refused when longer than :data:`NEAR_STEP` (a state by
+        a singular pose is reached in short steps, whose predictor is accurate enough for its sign of
+        ``det J_z`` to say the branch); the rows at such poses are then taken up by the crossing
+        (:mod:`gearlever.mechanism.branch`).  Steps with an end at a dead point (NaN rates) are not judged.
+        """
+        Wn = self._kink_weights
+        dw = delta * (self.L / self.qscale)[:, None]
+        v0 = np.concatenate([dw, Wn @ rates0[0]])
+        v1 = np.concatenate([dw, Wn @ rates1[0]])
+        a0 = np.concatenate([np.zeros_like(dw), Wn @ rates0[1]])
+        a1 = np.concatenate([np.zeros_like(dw), Wn @ rates1[1]])
+        ds = np.sqrt(np.sum(dw * dw, axis=0) + np.sum((Wn @ (z1 - z0)) ** 2, axis=0))
+        near = (r0 < RATIO_NEAR) | (r1 < RATIO_NEAR)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            n0, n1 = np.sqrt(np.sum(v0 * v0, axis=0)), np.sqrt(np.sum(v1 * v1, axis=0))
+            t0, t1 = v0 / n0, v1 / n1
+            k0 = (a0 - np.sum(a0 * t0, axis=0) * t0) / (n0 * n0)
+            k1 = (a1 - np.sum(a1 * t1, axis=0) * t1) / (n1 * n1)
+            err = np.sqrt(np.sum((t1 - t0 - 0.5 * ds * (k0 + k1)) ** 2, axis=0))
+            turn = np.maximum(
+                np.sqrt(np.sum((t1 - t0) ** 2, axis=0)),
+                0.5 * ds * (np.sqrt(np.sum(k0 * k0, axis=0)) + np.sqrt(np.sum(k1 * k1, axis=0))),
+            )
+            # rounding: the positions' over the small singular value, once more in the rates
+            noise = 1e-12 / np.minimum(r0, r1) ** 2
+            kink = (err > KINK * turn + 1e-9 + noise) & ~near
+        return kink | (near & (np.max(np.abs(delta / self.qscale[:, None]), axis=0) > NEAR_STEP))
+
+    def _step_kinked(self, dq0, z0, dq1, z1):
+        """:meth:`_kinked` of the straight steps from the states ``(dq0, z0)`` to ``(dq1, z1)`` (columns)."""
+        delta = dq1 - dq0
+        zero = np.zeros_like(delta)
+        NT, out = self.N.T, []
+        for dq, z in ((dq0, z0), (dq1, z1)):
+            x = self.coordinates(dq, z)
+            CS = self.trig(x)
+            d, dd, _ = self.derivatives(x, delta, zero, CS)
+            out.append(((NT @ d, NT @ dd), self._hadamard(self.jz(x, *CS)[self.sel])[0]))
+        return self._kinked(delta, z0, z1, out[0][0], out[1][0], out[0][1], out[1][1])
+
     # ------------------------------------------------------------- continuation
     def _walk(self, dq0, z0, target, h, sgn=None, stops=None):
         """Sequential continuation from ``(dq0, z0)`` to the input ``target`` (W,).
@@ -550,19 +642,24 @@ class KinematicSystem:
         cur_dq, cur_z = dq0.copy(), z0.copy()
         step = h
         zeros = np.zeros((self.W, 1))
+        NT = self.N.T  # N: orthonormal columns, orthogonal to X_p
+        rates = None  # derivatives of z along the remaining way at the current state (dead, zd, zdd)
         while True:
             delta = target - cur_dq
             dist = float(np.max(np.abs(delta / self.qscale)))
             if dist == 0.0:
                 return cur_z, None
             t = min(step, dist) / dist
-            x = self.coordinates(cur_dq[:, None], cur_z[:, None])
-            xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
-            if dead[0]:
+            if rates is None:
+                x = self.coordinates(cur_dq[:, None], cur_z[:, None])
+                xd, xdd, dead = self.derivatives(x, delta[:, None], zeros)
+                r_cur = self._hadamard(self.jz(x, *self.trig(x))[self.sel])[0]
+                rates = (bool(dead[0]), NT @ xd[:, 0], NT @ xdd[:, 0], r_cur)
+            if rates[0]:
                 if stops is not None:
                     stops.append((cur_dq.copy(), cur_z.copy()))
                 return None, cur_dq
-            zd, zdd = self.N.T @ xd[:, 0], self.N.T @ xdd[:, 0]  # N: orthonormal columns, orthogonal to X_p
+            zd, zdd, r_cur = rates[1:]
             pred = cur_z + zd * t + 0.5 * zdd * t * t
             new_dq = target.copy() if t >= 1.0 else cur_dq + t * delta
             z, xn, C, S, conv = self.newton(new_dq[:, None], pred[:, None])
@@ -572,15 +669,50 @@ class KinematicSystem:
                 trust = 0.2 * t * (1.0 + float(np.max(np.abs(zd)))) + 1e-12
                 ok = ratio[0] > SINGULAR_TOL and sgn_[0] == sgn and float(np.max(np.abs(z[:, 0] - pred))) <= trust
                 ok = ok and self._pred_sign(new_dq[:, None], pred[:, None])[0] == sgn
+                # no state on the way this near a singular pose: its position's rounding over the small singular
+                # value of J_z is as large as the distance between the branches there (which it is on is moot)
+                ok = ok and (t >= 1.0 or ratio[0] > RATIO_WAY)
+            if ok:
+                # the direction of motion continuous along the step: not landed on another branch past a
+                # branch point (:meth:`_kinked`)
+                xd1, xdd1, _ = self.derivatives(xn, delta[:, None], zeros, (C, S))
+                zd1, zdd1 = NT @ xd1[:, 0], NT @ xdd1[:, 0]
+                tt = t * t
+                step_dq = (new_dq - cur_dq)[:, None]
+                ok = not self._kinked(
+                    step_dq,
+                    cur_z[:, None],
+                    z,
+                    ((zd * t)[:, None], (zdd * tt)[:, None]),
+                    ((zd1 * t)[:, None], (zdd1 * tt)[:, None]),
+                    r_cur,
+                    ratio,
+                )[0]
+                if ok:  # the next way is the rest of this one: its derivatives are these, scaled
+                    rates = (False, zd1 * (1.0 - t), zdd1 * (1.0 - t) ** 2, ratio)
             if ok:
                 cur_dq, cur_z = new_dq, z[:, 0]
                 step = min(2 * step, h)
+                if t >= 1.0:
+                    rates = None
             else:
                 step /= 2
                 if step < 1e-7:
+                    if dist <= 1e-4:  # the target itself lies by the singular pose the walk stopped at
+                        z, xn, C, S, conv = self.newton(target[:, None], cur_z[:, None])
+                        ratio = self._hadamard(self.jz(xn, C, S)[self.sel])[0]
+                        moved = float(np.max(np.abs(self._kink_weights @ (z[:, 0] - cur_z))))
+                        # (by a dead point of the input the position moves as the square root of the input)
+                        if conv[0] and ratio[0] < RATIO_NEAR and moved <= 10.0 * self.L * dist**0.5:
+                            return z[:, 0], None
                     if stops is not None:
                         stops.append((cur_dq.copy(), cur_z.copy()))
                     return None, cur_dq
+
+    def _near_pose(self, dq, z) -> bool:
+        """True when the state ``(dq, z)`` is by a singular pose (:data:`~gearlever.mechanism.branch.RATIO_NEAR`)."""
+        x = self.coordinates(dq[:, None], z[:, None])
+        return bool(self._hadamard(self.jz(x, *self.trig(x))[self.sel])[0][0] < RATIO_NEAR)
 
     def _near_singular(self, xs, cl):
         """Rows closed within :data:`~gearlever.mechanism.branch.RATIO_NEAR` of a singular pose (indices)."""
@@ -647,7 +779,8 @@ class KinematicSystem:
             CS = None
         xd, xdd, dead = self.derivatives(xs, qd, qdd, CS)
         for i, (dq4, z4) in near.items():
-            if branch == "keep":  # the velocity jumps there: undefined
+            if branch != "continue":  # the velocity jumps there (keep) or is one-sided (stop): undefined
+                xd[:, i], xdd[:, i], dead[i] = np.nan, np.nan, True
                 continue
             x4 = self.coordinates(dq4, z4)
             d1, d2, dd = self.derivatives(
@@ -655,6 +788,8 @@ class KinematicSystem:
             )
             if not dd.any():
                 xd[:, i], xdd[:, i], dead[i] = richardson(d1), richardson(d2), False
+        if points and branch == "continue":
+            self._limit_rates(dq, qd, qdd, x, xd, xdd, closed, dead, points, near)
         reason = np.full(Nn, "", dtype=object)
         reason[closed & dead] = REASON_DEAD
         reason[~closed] = REASON_UNREACHED
@@ -666,6 +801,114 @@ class KinematicSystem:
             xdd[:, ~closed] = np.nan
         return x, xd, xdd, closed, reason, CS, points, side
 
+    def _limit_rates(self, dq, qd, qdd, x, xd, xdd, closed, dead, points, near):
+        """Rows by a branch point passed smoothly: their position and rates as the limit of the branch's either side.
+
+        Within :data:`~gearlever.mechanism.branch.NEAR_RATES` of a branch point ``J_z`` is nearly singular
+        (exactly, at the pose), so the linear solves for the rates lose digits (the position's rounding over
+        the small singular value, and once more for the accelerations) or have no unique answer.  On the
+        branch continued smoothly the position and the rates are analytic through the point: they are taken
+        as the interpolating polynomial, at the row, of :data:`~gearlever.mechanism.branch.NODES` states of
+        that branch about it (offsets ``+-1 .. +-4`` times :data:`~gearlever.mechanism.branch.NODE_STEP` along
+        the path), where ``J_z`` is well conditioned: Lagrange interpolation of degree 7, its error of the
+        order of ``NODE_STEP^8`` times the eighth derivative.  Each node is checked to be on the branch the
+        row's side of the point calls for (the sign of ``det J_z``), and the interpolated position to agree
+        with the row's; otherwise the row keeps its values.  Arrays are changed in place.
+        """
+        Nn = dq.shape[1]
+        c = np.concatenate([-np.arange(NODES // 2, 0, -1), np.arange(1, NODES // 2 + 1)]).astype(float)
+        wts = np.array([np.prod([-cj / (ck - cj) for cj in c if cj != ck]) for ck in c])  # Lagrange at 0
+        Wn = self._kink_weights
+        for p in points:
+            if p.policy != "continue" or p.sign_before == p.sign_after:
+                continue
+            qs = np.asarray(p.q, dtype=float) - self.q0
+            r = min(p.row, Nn - 1)  # the first row past it (or at it): the direction of the path there
+            u = dq[:, r] - qs
+            if not float(np.max(np.abs(u / self.qscale))) > 10 * NEAR:
+                u = dq[:, r + 1] - dq[:, r] if r + 1 < Nn else dq[:, r] - (dq[:, r - 1] if r else qs)
+            size = float(np.max(np.abs(u / self.qscale)))
+            if not size > 0.0:
+                continue
+            u = u / size  # unit step along the path (scaled)
+            sc = u / self.qscale
+            rel = (dq - qs[:, None]) / self.qscale[:, None]
+            t = (rel.T @ sc) / (sc @ sc)
+            off = np.max(np.abs(rel - t[None, :] * sc[:, None]), axis=0)
+            rows = np.flatnonzero(closed & (off <= 1e-9) & (np.abs(t) <= NEAR_RATES))
+            if not rows.size:
+                continue
+            M = rows.size
+            ti = t[rows]
+            s = ti[:, None] + NODE_STEP * c[None, :]  # (M, K): node offsets from the branch point
+            K = c.size
+            ndq = qs[:, None, None] + u[:, None, None] * s[None, :, :]  # (W, M, K)
+            # predictor: the branch's Taylor expansion at the row (at the states ETA either side of a row at the
+            # point itself, where the rates are undefined)
+            xr = x[:, rows]
+            zi, xp = self._polish(dq[:, rows], self.N.T @ xr)[:2]  # (Newton at the pose itself may wander)
+            keep = ~(np.max(np.abs(Wn @ (zi - self.N.T @ xr)), axis=0) <= 1e-9 * self.L)
+            zi[:, keep], xp[:, keep] = self.N.T @ xr[:, keep], xr[:, keep]
+            d1, d2, dd = self.derivatives(xp, np.repeat(u[:, None], M, axis=1), np.zeros((self.W, M)))
+            Z1, Z2 = self.N.T @ d1, self.N.T @ d2
+            base_t = np.repeat(ti[:, None], K, axis=1)
+            base_z = np.repeat(zi[:, :, None], K, axis=2)
+            B1 = np.repeat(Z1[:, :, None], K, axis=2)
+            B2 = np.repeat(Z2[:, :, None], K, axis=2)
+            for m, i in enumerate(rows):
+                if i not in near:
+                    if dd[m]:
+                        B1[:, m], B2[:, m] = np.nan, np.nan
+                    continue
+                dq4, z4 = near[i]  # offsets -ETA, ETA, -2 ETA, 2 ETA about the row
+                e1, e2, _ = self.derivatives(
+                    self.coordinates(dq4, z4), np.repeat(u[:, None], 4, axis=1), np.zeros((self.W, 4))
+                )
+                side = np.where(c < 0, 0, 1)
+                base_t[m] = ti[m] + np.array([-ETA, ETA])[side]
+                base_z[:, m] = z4[:, side]
+                B1[:, m] = (self.N.T @ e1)[:, side]
+                B2[:, m] = (self.N.T @ e2)[:, side]
+            h = s - base_t
+            pred = base_z + B1 * h[None] + 0.5 * B2 * (h * h)[None]
+            nz, nx, C, S, conv = self.newton(ndq.reshape(self.W, -1), pred.reshape(self.dz, -1), max_iter=30)
+            nz, nx, (C, S), conv = self._polish(ndq.reshape(self.W, -1), nz)
+            ratio, sg = self._hadamard(self.jz(nx, C, S)[self.sel])
+            want = np.where(c < 0, p.sign_before, p.sign_after) * self.sgn0  # the sign of det J_z either side
+            ok = (conv & (ratio > 10 * RATIO_NEAR)).reshape(M, K).all(axis=1)
+            ok &= (sg.reshape(M, K) == want[None, :]).all(axis=1)
+            nx3 = nx.reshape(self.nx, M, K)
+            xi = np.einsum("nmk,k->nm", nx3, wts)
+            with np.errstate(invalid="ignore"):
+                ok &= np.max(np.abs(Wn @ (self.N.T @ (xi - xr))), axis=0) <= 1e-7 * self.L
+            if not ok.any():
+                continue
+            rq = np.repeat(qd[:, rows, None], K, axis=2).reshape(self.W, -1)
+            rqq = np.repeat(qdd[:, rows, None], K, axis=2).reshape(self.W, -1)
+            v, a_, bad = self.derivatives(nx, rq, rqq, (C, S))
+            ok &= ~bad.reshape(M, K).any(axis=1)
+            vi = np.einsum("nmk,k->nm", v.reshape(self.nx, M, K), wts)
+            ai = np.einsum("nmk,k->nm", a_.reshape(self.nx, M, K), wts)
+            g = rows[ok]
+            x[:, g], xd[:, g], xdd[:, g], dead[g] = xi[:, ok], vi[:, ok], ai[:, ok], False
+
+    def _polish(self, dq, z):
+        """Two more Newton steps from converged states ``z`` (their rounding, not the stopping rule, left).
+
+        Returns ``(z, x, (C, S), converged)``.
+        """
+        for _ in range(2):
+            x = self.coordinates(dq, z)
+            C, S = self.trig(x)
+            G = self.residual(x, C, S)[self.sel]
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                z = z - self._solve_small(self.jz(x, C, S)[self.sel], G)
+        x = self.coordinates(dq, z)
+        C, S = self.trig(x)
+        with np.errstate(invalid="ignore"):
+            conv = np.all(np.abs(self.residual(x, C, S)) <= 1e-9 * self.L, axis=0)
+        return z, x, (C, S), conv
+
     def _follow(self, dq, x_out, closed, stuck, branch):
         """:meth:`_positions` through the branch points under the policy ``branch``, segment by segment.
 
@@ -676,7 +919,7 @@ class KinematicSystem:
         Nn = dq.shape[1]
         side = np.zeros(Nn, dtype=int)
         points, near = [], {}
-        start, sgn, off, idle, stall = None, self.sgn0, 0, 0, 0
+        start, sgn, off, idle, stall = None, self.sgn0, 0, 0, 0.0
         while True:
             sub = dq[:, off:]
             xs = np.full((self.nx, sub.shape[1]), np.nan)
@@ -688,7 +931,9 @@ class KinematicSystem:
             first = (np.zeros(self.W), np.zeros(self.dz)) if start is None else start
             if len(points) + idle < MAX_BRANCH_POINTS:
                 # a row closed at (or within RATIO_NEAR of) a singular pose: a branch point there?
-                for k in self._near_singular(xs, cl):
+                reached = cl.size if cl.all() else int(np.argmin(cl))  # (a row past one not reached: not yet)
+                ks_near = self._near_singular(xs, cl)
+                for k in ks_near[ks_near < reached]:
                     nxt = sub[:, k + 1] if k + 1 < sub.shape[1] else 2 * sub[:, k] - (sub[:, k - 1] if k else first[0])
                     trial = self._cross_at(sub, xs, k, sub[:, k], nxt, first, sgn, branch)
                     if trial is not None and trial["qstar"] is not None:
@@ -696,6 +941,11 @@ class KinematicSystem:
                             got, i = trial, k
                         else:  # stop at it: the rows past it (the row at it, if any, closed) are not reached
                             cut = k + len(trial["pre"]) + (1 if trial["near"] is not None else 0)
+                            if trial["near"] is not None:  # the row at it: its position from either side
+                                xs[:, cut - 1] = self.coordinates(sub[:, cut - 1 : cut], trial["near"][2][:, None])[
+                                    :, 0
+                                ]
+                                near[off + cut - 1] = trial["near"][:2]
                             if cut < sub.shape[1]:
                                 cl[cut:] = False
                                 xs[:, cut:] = np.nan
@@ -708,10 +958,13 @@ class KinematicSystem:
                 s_dq = (_stop_on(stops, a_dq, sub[:, i], self.qscale) or (a_dq,))[0]
                 got = self._cross_at(sub, xs, i, s_dq, sub[:, i], first, sgn, branch)
             if got is not None and i == 0 and not got["pre"] and got["near"] is None:
-                stall += 1  # no row taken: two such crossings in a row go nowhere (stop there)
-                got = None if stall > 1 else got
+                # no row taken (several branch points on the way to the first row): a crossing that comes no
+                # nearer to that row than the one before it goes nowhere (stop there)
+                left = float(np.max(np.abs((sub[:, 0] - got["dq"]) / self.qscale)))
+                got = None if stall and not left < stall else got
+                stall = left
             else:
-                stall = 0
+                stall = 0.0
             if got is None:
                 x_out[:, off:] = xs
                 closed[off:] = cl
@@ -842,12 +1095,20 @@ class KinematicSystem:
                         & (psg == sgn)
                         & (np.max(np.abs(z - pred), axis=0) <= trust)
                     )
+                if good.any():  # each point's velocity continuous with the one before it (the first: the state)
+                    pz = np.concatenate([st_z[:, None], z[:, :-1]], axis=1)
+                    good &= ~self._step_kinked(prev, pz, cdq[:, ks], z)
                 m = int(np.argmin(good)) if not good.all() else good.size
                 if m:
                     cz[:, ks[:m]] = z[:, :m]
                     cok[ks[:m]] = True
-                    nst = self._state(cdq[:, ks[m - 1]], z[:, m - 1])
-                    if nst is None:  # a dead point exactly at the accepted point: keep the older state
+                    # a dead point exactly at the accepted point: keep the older state; and by a singular pose,
+                    # where the branch of a state is moot (:meth:`_kinked`): the points on from the older one
+                    nst = self._state(cdq[:, ks[m - 1]], z[:, m - 1]) if ratio[m - 1] >= RATIO_NEAR else None
+                    if nst is None and ratio[m - 1] < RATIO_NEAR:
+                        k += m
+                        continue
+                    if nst is None:
                         m = 0
                     else:
                         st_dq, st_z, st = cdq[:, ks[m - 1]].copy(), z[:, m - 1].copy(), nst
@@ -859,7 +1120,7 @@ class KinematicSystem:
                 blocked = (st_dq[0], cdq[0, k])
                 stuck.append(at)
             else:
-                nst = self._state(cdq[:, k], zk)
+                nst = self._state(cdq[:, k], zk) if not self._near_pose(cdq[:, k], zk) else None
                 cz[:, k], cok[k] = zk, True
                 if nst is not None:
                     st_dq, st_z, st = cdq[:, k].copy(), zk, nst
@@ -959,6 +1220,24 @@ class KinematicSystem:
         trust = 0.2 * h * (1.0 + (np.repeat(zpb, counts) if allok else zpb[b]))
         with np.errstate(invalid="ignore"):
             ok = conv & (sg == sgn) & (np.max(np.abs(z - pred), axis=0) <= trust)
+        # each row's velocity continuous with its coarse point's (no branch point stepped over onto the other
+        # branch between them: :meth:`_kinked`); a row that fails is walked to from the row before it
+        bdq = np.repeat(cdq, counts, axis=1) if allok else cdq[:, b]
+        zbz = np.repeat(cz, counts, axis=1) if allok else cz[:, b]
+        if self.W == 1:
+            zr, zrr, _ = self.derivatives(x, np.ones((1, x.shape[1])), np.zeros((1, x.shape[1])), (C, S))
+            dd = d[0]
+            zb1 = np.repeat(Zp[:, 0], counts, axis=1) if allok else Zp[:, 0, b]
+            zb2 = np.repeat(Zpp, counts, axis=1) if allok else Zpp[:, b]
+            NT = self.N.T
+            xc_r = self._hadamard(self.jz(xc, *self.trig(xc))[self.sel])[0]
+            rc = np.ones(nb)
+            rc[good] = xc_r
+            rb = np.repeat(rc, counts) if allok else rc[b]
+            rates0, rates1 = (zb1 * dd, zb2 * dd * dd), ((NT @ zr) * dd, (NT @ zrr) * dd * dd)
+            ok &= ~self._kinked(d, zbz, z, rates0, rates1, rb, ratio)
+        else:
+            ok &= ~self._step_kinked(bdq, zbz, dqi, z)
         if allok and ok.all():
             x_out[:] = x
             closed[:] = True
@@ -974,8 +1253,8 @@ class KinematicSystem:
         for i in ii[~ok]:
             if bid[i] == skip_bin:
                 continue
-            prev = i - 1
-            while prev >= 0 and not closed[prev]:
+            prev = i - 1  # (not from a row by a singular pose, where the branch of a state is moot)
+            while prev >= 0 and (not closed[prev] or self._near_pose(dq[:, prev], zfull[:, prev])):
                 prev -= 1
             if prev >= 0 and bid[prev] == bid[i]:
                 src_dq, src_z = dq[:, prev], zfull[:, prev]

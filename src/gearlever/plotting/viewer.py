@@ -123,7 +123,7 @@ def _frames_inputs(mech, frames: int, inputs) -> tuple:
     return start, values, default
 
 
-def _first_input_rows(mech, start, frames: int):
+def _first_input_rows(mech, start, frames: int, branch: str = "continue"):
     """Values of the first input over the frames, their directions and its limits (None when it turns fully).
 
     A first input that turns fully turns one turn from ``start`` (end
@@ -135,7 +135,7 @@ def _first_input_rows(mech, start, frames: int):
     from gearlever.mechanism.limits import input_limits
     from gearlever.mechanism.sweep import oscillation
 
-    lim = input_limits(mech, 0, start=start)
+    lim = input_limits(mech, 0, start=start, branch=branch)
     if lim.full_turn:
         return start[0] + 2 * np.pi * np.arange(frames) / frames, np.ones(frames, dtype=int), None
     if lim.locked:
@@ -246,7 +246,7 @@ def _rates(mech, rpm) -> tuple:
     return rates, 2 * math.pi / abs(rates[0])
 
 
-def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
+def viewer_data(mech, frames: int = 360, rpm=None, inputs=None, branch: str = "continue") -> dict:
     """The data of the page: model geometry and, per frame, every position, rate and instant centre.
 
     Parameters are those of :func:`viewer_html`.  Arrays are flat lists over
@@ -278,7 +278,7 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     with_centres = _check_size(m, frames)
     start, grid, grid_default = _frames_inputs(mech, frames, inputs)
     rates, period = _rates(mech, rpm)
-    turn, direction, lim = _first_input_rows(mech, start, frames)
+    turn, direction, lim = _first_input_rows(mech, start, frames, branch)
     frame_rates = np.tile(rates, (frames, 1))
     if lim is not None:  # one oscillation: the speed signed by the motion, the period that of the oscillation
         frame_rates[:, 0] = abs(rates[0]) * direction
@@ -294,7 +294,7 @@ def viewer_data(mech, frames: int = 360, rpm=None, inputs=None) -> dict:
     for s in slices:
         q = np.tile(s, (frames, 1))
         q[:, 0] = turn
-        results.append(mech.solve(q, frame_rates))
+        results.append(mech.solve(q, frame_rates, branch=branch))
 
     points = [p for p in results[0].point]
     L = m.length_scale
@@ -487,7 +487,7 @@ def _page(page: str, title: str, payload: str) -> str:
     return re.sub("|".join(re.escape(k) for k in fill), lambda mt: fill[mt.group(0)], html)
 
 
-def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
+def viewer_html(mech, frames: int = 360, rpm=None, inputs=None, branch: str = "continue") -> str:
     """One self-contained HTML page (inline SVG, JavaScript and JSON) that animates ``mech``.
 
     Parameters
@@ -507,6 +507,8 @@ def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
     inputs : dict, optional
         ``{input: value}`` (rad, or length for a slider): the start of the
         first input and the held value of the others (default: the sketch).
+    branch : {"continue", "keep", "stop"}
+        The policy at branch points of the motion (:meth:`Mechanism.solve`).
 
     Returns
     -------
@@ -556,7 +558,7 @@ def viewer_html(mech, frames: int = 360, rpm=None, inputs=None) -> str:
     >>> page.startswith("<!DOCTYPE html>"), 'data-point' in page
     (True, True)
     """
-    data = viewer_data(mech, frames, rpm, inputs)
+    data = viewer_data(mech, frames, rpm, inputs, branch)
     payload = _script_json(data)
     if len(payload) > MAX_PAGE_BYTES:  # the estimate of _check_size missed: refuse all the same
         most = max(2, int(frames * MAX_PAGE_BYTES / len(payload)))
