@@ -88,9 +88,6 @@ def check_target(target, *, mkdir: bool = False) -> Path:
 
 def _hold_signals():
     """Hold SIGTERM and SIGINT (main thread, where the platform allows); return what :func:`_release_signals` takes."""
-    import signal
-    import threading
-
     if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
         return None
     return signal.pthread_sigmask(signal.SIG_BLOCK, (signal.SIGTERM, signal.SIGINT))
@@ -99,8 +96,6 @@ def _hold_signals():
 def _release_signals(old) -> None:
     """Restore the signal mask saved by :func:`_hold_signals` (a held signal is delivered now); idempotent."""
     if old is not None:
-        import signal
-
         signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
@@ -122,23 +117,49 @@ def raise_or_defer(exc_type) -> None:
     if _CRITICAL["depth"] > 0:
         _CRITICAL["pending"].append(exc_type)
         return
+    _CRITICAL["pending"].clear()  # raised now: nothing held back is left to raise later
+    _interrupt_outputs()
     raise exc_type()
+
+
+def _interrupt_outputs() -> None:
+    """Abort the active :class:`OutputSet` before an interruption is raised, and mark it interrupted.
+
+    The exception may land anywhere, even in a ``finally`` before its first
+    line or in a finalizer that swallows it: the temporary files and new
+    folders are removed here, by the handler, not by the code it unwinds.
+    An interrupted set is never joined again (:func:`output_set`).
+    """
+    outputs = _ACTIVE.get()
+    if outputs is not None:
+        outputs.interrupted = True
+        outputs.abort()
 
 
 @contextlib.contextmanager
 def _signals_held():
-    """Hold SIGTERM and SIGINT for a short critical section: masked, and deferred by :func:`raise_or_defer`."""
-    old = _hold_signals()
+    """Hold SIGTERM and SIGINT for a short critical section: masked, and deferred by :func:`raise_or_defer`.
+
+    The section is open (deferral on) before the mask is set and until after
+    it is restored, so there is no bytecode between the two where a handler
+    could raise (a held signal is delivered when the mask is restored, and
+    deferred too); the interruption held back is raised last.
+    """
     _CRITICAL["depth"] += 1
+    old = None
     try:
+        old = _hold_signals()
         yield
     finally:
-        _CRITICAL["depth"] -= 1
-        _release_signals(old)
-        if _CRITICAL["depth"] == 0 and _CRITICAL["pending"]:
-            exc_type = _CRITICAL["pending"].pop(0)
-            _CRITICAL["pending"].clear()
-            raise exc_type()
+        try:
+            _release_signals(old)
+        finally:
+            _CRITICAL["depth"] -= 1
+            if _CRITICAL["depth"] == 0 and _CRITICAL["pending"]:
+                pending = _CRITICAL["pending"][0]
+                _CRITICAL["pending"].clear()
+                _interrupt_outputs()
+                raise pending()
 
 
 def check_folder(folder, *, create: bool = False) -> Path:
@@ -167,16 +188,18 @@ def check_folder(folder, *, create: bool = False) -> Path:
         existing = existing.parent
     if not existing.is_dir():
         raise _refuse(errno.ENOTDIR, "is not a directory", existing)
-    probe = None
-    try:
-        fd, probe = tempfile.mkstemp(prefix=".gearlever.", suffix=".probe", dir=existing)
-        os.close(fd)
-    except OSError as exc:
-        raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", existing) from None
-    finally:
-        if probe is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(probe)
+    # the probe is made and removed with SIGTERM and Ctrl-C held (as in check_target)
+    with _signals_held():
+        probe = None
+        try:
+            fd, probe = tempfile.mkstemp(prefix=".gearlever.", suffix=".probe", dir=existing)
+            os.close(fd)
+        except OSError as exc:
+            raise _refuse(exc.errno or errno.EACCES, f"cannot write in this folder: {exc.strerror}", existing) from None
+        finally:
+            if probe is not None:
+                with contextlib.suppress(OSError):
+                    os.unlink(probe)
     if create and existing != folder:
         folder.mkdir(parents=True, exist_ok=True)
     return folder
@@ -207,8 +230,9 @@ def _sigterm_unwinds():
     def handler(signum, frame):
         raise_or_defer(_Terminated)
 
-    old = signal.signal(signal.SIGTERM, handler)
+    old = signal.SIG_DFL
     try:
+        old = signal.signal(signal.SIGTERM, handler)
         yield
     except _Terminated:
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -252,8 +276,9 @@ _ACTIVE: contextvars.ContextVar = contextvars.ContextVar("gearlever_output_set",
 
 
 def current_outputs() -> OutputSet | None:
-    """The :class:`OutputSet` of the enclosing :func:`output_set`, or None."""
-    return _ACTIVE.get()
+    """The :class:`OutputSet` of the enclosing :func:`output_set`, or None (also when it was interrupted)."""
+    outputs = _ACTIVE.get()
+    return None if outputs is None or outputs.interrupted else outputs
 
 
 @contextlib.contextmanager
@@ -279,12 +304,12 @@ def output_set():
     []
     """
     outer = _ACTIVE.get()
-    if outer is not None:
+    if outer is not None and not outer.interrupted:
         yield outer
         return
     outputs = OutputSet()
-    token = _ACTIVE.set(outputs)
     try:
+        _ACTIVE.set(outputs)
         with _sigterm_unwinds():
             try:
                 yield outputs
@@ -293,7 +318,9 @@ def output_set():
                 outputs.abort()
                 raise
     finally:
-        _ACTIVE.reset(token)
+        # never left active (an interruption right after the set would otherwise leave later writes staged in it)
+        if _ACTIVE.get() is outputs:
+            _ACTIVE.set(None)
 
 
 def _identity(path: Path) -> frozenset:
@@ -394,6 +421,7 @@ class OutputSet:
         self._made: list[Path] = []  # folders created by this set, outermost first
         self._inputs: list[tuple] = []  # (what, text, identity keys) of every input file read
         self.written: list[Path] = []
+        self.interrupted = False  # aborted by SIGTERM or Ctrl-C (see raise_or_defer): never joined again
 
     # -- inputs ----------------------------------------------------------------
     def note_input(self, path, what: str) -> None:
@@ -422,7 +450,10 @@ class OutputSet:
         if flag is not None:
             return flag
         parent = os.path.realpath(Path(path).parent)
-        return next((f for f, folder in self._folders if folder == parent and f is not None), None)
+        for f, folder in self._folders:  # a loop, not a generator left to be closed by the collector, where an
+            if folder == parent and f is not None:  # interruption would be "ignored" (lost)
+                return f
+        return None
 
     def declare(self, path, flag: str | None = None, *, suffixes=None, mkdir: bool = False) -> Path:
         """Check the output ``path`` of ``flag`` now, before any work; return it as a :class:`~pathlib.Path`.
@@ -481,7 +512,7 @@ class OutputSet:
         except OSError as exc:
             raise named_error(flag, folder, exc) from None
         resolved = os.path.realpath(folder)
-        if not any(f == resolved for _, f in self._folders):
+        if resolved not in [f for _, f in self._folders]:
             self._folders.append((flag, resolved))
         return folder
 
@@ -494,8 +525,9 @@ class OutputSet:
         try:
             check_folder(folder)
             for m in reversed(missing):
-                m.mkdir()
-                self._made.append(m)
+                with _signals_held():  # a folder is recorded (so removed by abort) as soon as it is made
+                    m.mkdir()
+                    self._made.append(m)
         except OSError as exc:
             raise named_error(flag, folder, exc) from None
 
@@ -521,19 +553,20 @@ class OutputSet:
             from gearlever.errors import GearleverError
 
             raise GearleverError(f"{entry.flag or 'output'} {entry.text!r}: written twice by one command")
-        # SIGTERM and Ctrl-C wait until the temporary file is known, so that it is removed
-        with _signals_held():
-            try:
-                fd, name = tempfile.mkstemp(
-                    prefix=f".{target.name}.",
-                    suffix=suffix if suffix is not None else ".tmp" + target.suffix,
-                    dir=target.parent,
-                )
-            except OSError as exc:
-                raise named_error(entry.flag, entry.text, exc, "cannot write") from None
-            os.close(fd)
-            entry.tmp = Path(name)
         try:
+            # SIGTERM and Ctrl-C wait until the temporary file is known (they are raised at the end of the
+            # section, inside this try), so that it is removed
+            with _signals_held():
+                try:
+                    fd, name = tempfile.mkstemp(
+                        prefix=f".{target.name}.",
+                        suffix=suffix if suffix is not None else ".tmp" + target.suffix,
+                        dir=target.parent,
+                    )
+                except OSError as exc:
+                    raise named_error(entry.flag, entry.text, exc, "cannot write") from None
+                os.close(fd)
+                entry.tmp = Path(name)
             yield entry.tmp
         except OSError as exc:
             self._drop(entry)
@@ -592,6 +625,7 @@ class OutputSet:
                     e = staged[len(done)]
                     raise named_error(e.flag, e.text, exc, "cannot write") from None
                 raise
+            # still held: a signal that came during the renames is raised once the backups are gone too
             for _, backup, _ in done:
                 if backup is not None:
                     with contextlib.suppress(OSError):
@@ -603,14 +637,19 @@ class OutputSet:
         return written
 
     def abort(self) -> None:
-        """Remove every temporary file and every (empty) folder this set created; forget the staged files."""
-        for e in self._outputs:
-            self._drop(e)
-        for folder in reversed(self._made):
-            with contextlib.suppress(OSError):
-                folder.rmdir()
-        self._outputs.clear()
-        self._made.clear()
+        """Remove every temporary file and every (empty) folder this set created; forget the staged files.
+
+        SIGTERM and Ctrl-C wait until all of them are gone (an interruption
+        halfway through would leave the rest).
+        """
+        with _signals_held():
+            for e in self._outputs:
+                self._drop(e)
+            for folder in reversed(self._made):
+                with contextlib.suppress(OSError):
+                    folder.rmdir()
+            self._outputs.clear()
+            self._made.clear()
 
 
 def _backup(path: Path) -> Path | None:

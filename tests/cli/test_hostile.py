@@ -386,7 +386,15 @@ def _wait_for(pred, proc) -> bool:
 
 
 def test_sigterm_during_a_write_leaves_no_temporary_file(tmp_path):
-    """SIGTERM while ``--out`` is being written: the temporary file is removed and the exit status is 143."""
+    """SIGTERM while ``--out`` is being written: no temporary file is left, the output is whole or absent.
+
+    Exit 143 with nothing written when the signal lands before the rename; a
+    signal that lands during the renames lets them finish (exit 143, the file
+    whole), after ``main`` returns it kills (-15): the test sends it when it
+    sees the temporary file, so any of these can happen under load.  The
+    deterministic check of every point is ``tests/test_io.py``'s sweep; the
+    loop over hundreds of runs is ``benchmarks/race_sigterm.py``.
+    """
     out = tmp_path / "big.csv"
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
     argv = ["zrdpm", "--contour", "1", "--step", "0.00037", "--format", "csv", "--out", str(out)]
@@ -406,10 +414,20 @@ def test_sigterm_during_a_write_leaves_no_temporary_file(tmp_path):
         if proc.poll() is None:
             proc.kill()
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".")] == []
-    if caught and proc.returncode == 143:
-        assert err == "gearlever: terminated\n" and not out.exists()
-    else:  # the write finished before the signal landed: a complete file
-        assert proc.returncode == 0 and out.stat().st_size > 0
+    if proc.returncode == 143:  # before the renames began nothing is written; once they began they finish
+        assert caught and err == "gearlever: terminated\n"
+    elif proc.returncode == -signal.SIGTERM:  # landed after main() restored the handlers: all was written
+        assert caught
+    else:  # the write finished before the signal landed
+        assert proc.returncode == 0
+    if out.exists():  # never half a file
+        with out.open("rb") as fh:
+            header = fh.readline()
+            fh.seek(-4096, os.SEEK_END)
+            last = fh.read().split(b"\n")[-2]
+        assert header.count(b",") == last.count(b",") > 0
+    else:
+        assert proc.returncode == 143
 
 
 def test_sigterm_during_a_library_write_removes_the_temporary_file_and_still_kills(tmp_path):

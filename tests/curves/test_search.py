@@ -100,3 +100,24 @@ def test_bad_arguments_are_refused_naming_them(kw, needle):
     t = np.linspace(0, 2 * np.pi, 50)
     with pytest.raises(ValueError, match=f"^{needle}"):
         S.synthesize_curve(np.stack([np.cos(t), np.sin(t)], -1), **kw)
+
+
+def test_the_portfolio_alternates_the_wide_and_the_narrow_strategies_and_takes_a_shared_start_once():
+    """Issue 33 §3: starts from both strategies (best refined of all retrieved; of the first NARROW only), no draw."""
+    rng = np.random.default_rng(3)
+    n = S.PRESELECT
+    # the refined distances of the last entries are the best, so the wide strategy picks only among them
+    d = np.where(np.arange(n) < S.NARROW, 0.3 + rng.random(n) * 0.1, 0.01 + rng.random(n) * 0.1)
+    refined = [(float(d[i]), 2.0, i, "topology", np.full((2, 2), float(i))) for i in range(n)]
+    starts = S._portfolio(refined, S.STARTS)
+    picked = [int(x[0, 0]) for _, x in starts]
+    assert len(picked) == S.STARTS == len(set(picked))
+    narrow = [i for i in picked if i < S.NARROW]
+    assert picked[1::2] == narrow and len(narrow) == S.STARTS // 2  # every other start is a narrow one
+    assert narrow[0] == int(np.argmin(d[: S.NARROW]))  # the narrow strategy's best by distance
+    assert picked[0] == int(np.argmin(d))  # the wide strategy's best by distance
+    assert [int(x[0, 0]) for _, x in S._portfolio(refined, S.STARTS)] == picked
+    # when both strategies pick the same entries, each is taken once and the rest fill the count
+    same = [(0.01 * (i + 1), 2.0, i, "topology", np.full((2, 2), float(i))) for i in range(n)]
+    shared = [int(x[0, 0]) for _, x in S._portfolio(same, S.STARTS)]
+    assert len(shared) == len(set(shared)) == S.STARTS

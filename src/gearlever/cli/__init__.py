@@ -19,7 +19,9 @@ Exit status and errors (handled here, once, for every sub-command):
   prevent it).
 * 130: interrupted (Ctrl-C), one line; 143: terminated (SIGTERM), one line.
   Both unwind normally, so a file being written is removed, never left half
-  written or as a temporary file.
+  written or as a temporary file (the handler removes the temporary files
+  first: :func:`gearlever._io.raise_or_defer`); during the renames they wait
+  until all files are in place.
 * 1: an internal error (a bug), one line asking for a report; set
   ``GEARLEVER_TRACEBACK=1`` to see the traceback instead.
 
