@@ -3,7 +3,7 @@
 Three parts, each printed as a table:
 
 1. **Own suite** (free to ship: every curve is made here; scored as a user's
-   curves are, in the relative scoring of :mod:`gearlever.curves.score`): curves traced by
+   curves are, in the relative scoring of :mod:`gearlever.synthesis.curve.score`): curves traced by
    known mechanisms of 7, 9 and 11 joints (random dyadic linkages of fixed
    seeds, feasible: material below 10; exact recovery means a best distance
    below 0.01) and closed shapes
@@ -19,7 +19,7 @@ Three parts, each printed as a table:
    material: what no front of those ends can exceed) and the headroom left
    to it; ``--time 300 --curves 1,5`` runs curves on the clock instead.
 3. **Simulator speed**: mechanisms x steps per second of
-   :func:`gearlever.curves.simulate.simulate` on a batch of 12-joint
+   :func:`gearlever.synthesis.curve.simulate.simulate` on a batch of 12-joint
    linkages, against the challenge's JAX solver (``--challenge DIR`` and
    ``jax`` installed: the bench extra) jit-compiled on CPU on the same
    mechanisms, in the same process; ratio = JAX time / ours.
@@ -39,11 +39,11 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever.curves import search as S
-from gearlever.curves import topology as T
-from gearlever.curves.score import hypervolume
-from gearlever.curves.simulate import simulate
-from gearlever.curves.targets import SUITE_RMS, known_mechanism
+from gearlever.synthesis.curve import search as S
+from gearlever.synthesis.curve import topology as T
+from gearlever.synthesis.curve.score import hypervolume
+from gearlever.synthesis.curve.simulate import simulate
+from gearlever.synthesis.curve.targets import SUITE_RMS, known_mechanism
 
 PUBLISHED_BASELINE = [2.08, 1.63, 1.29, 1.39, 0.86, 0.79]  # mean 1.339 (challenge starter notebook, NSGA-II)
 BEST_STUDENT = 4.856

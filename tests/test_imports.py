@@ -35,7 +35,7 @@ ALLOWED: list = []  # every circle the house had is gone (issue 30); keep it emp
 #: Private helpers and the error family every subpackage may use.
 _BASE = {"errors", "_io", "_validate", "_result", "_format", "_progress"}
 #: The numeric core, in layers: arrays in, arrays out.
-_CORE = {"gears", "trains", "laws", "loops", "zrdpm", "cams", "mechanism", "flywheels", "synthesis", "curves"}
+_CORE = {"gears", "trains", "laws", "loops", "zrdpm", "cams", "mechanism", "flywheels", "synthesis"}
 
 #: What each top-level unit (subpackage, or module beside them) may import, besides itself.
 MAY_IMPORT: dict[str, set[str]] = {
@@ -56,7 +56,6 @@ MAY_IMPORT: dict[str, set[str]] = {
     "mechanism": _BASE | {"data", "gears", "loops"},
     "flywheels": _BASE | {"data", "gears", "loops", "mechanism"},
     "synthesis": _BASE | {"data", "gears", "loops", "laws", "cams", "mechanism"},
-    "curves": _BASE | {"data", "gears", "loops", "mechanism", "synthesis"},
     "export": _BASE | {"data", "gears", "cams", "mechanism"},
     "tables": _BASE | {"_frame", "data"} | _CORE,
     "plotting": _BASE | {"data"} | _CORE,

@@ -29,7 +29,7 @@ from gearlever._format import DIGITS_DESIGN, quantize
 from gearlever._result import SUMMARY_MAX_ITEMS
 
 #: Result-like dataclasses in files another change owns (the synthesis driver: curves/search.py).
-NOT_YET = {"gearlever.curves.search.CurveSynthesis"}
+NOT_YET = {"gearlever.synthesis.curve.search.CurveSynthesis"}
 RESULT_NAME = re.compile(r".*(Result|Solution|Design|Run|State|Report)$")
 
 

@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from gearlever.cli import main
-from gearlever.curves.model import linkage_toml
-from gearlever.curves.score import hypervolume
-from gearlever.curves.simulate import simulate
 from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
-from tests.curves import _designs
-from tests.curves._designs import SIXBAR
+from gearlever.synthesis.curve.model import linkage_toml
+from gearlever.synthesis.curve.score import hypervolume
+from gearlever.synthesis.curve.simulate import simulate
+from tests.synthesis.curve import _designs
+from tests.synthesis.curve._designs import SIXBAR
 
 small = _designs.small  # fixture
 

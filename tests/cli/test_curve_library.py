@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from gearlever.cli import main
-from gearlever.curves import library as L
-from tests.curves import _designs
+from gearlever.synthesis.curve import library as L
+from tests.synthesis.curve import _designs
 
 cache, small = _designs.cache, _designs.small  # fixtures
 

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from gearlever.cli import main
-from gearlever.curves.simulate import simulate
 from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
-from tests.curves._designs import SIXBAR
+from gearlever.synthesis.curve.simulate import simulate
+from tests.synthesis.curve._designs import SIXBAR
 
 
 def test_analyze_and_structure_open_a_links_json(tmp_path, capsys):

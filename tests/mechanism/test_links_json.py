@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 from gearlever._io import to_json
-from gearlever.curves.simulate import crank_angles, simulate
 from gearlever.errors import GearleverError
 from gearlever.mechanism import Mechanism
 from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
-from tests.curves._designs import SIXBAR, turning
+from gearlever.synthesis.curve.simulate import crank_angles, simulate
+from tests.synthesis.curve._designs import SIXBAR, turning
 
 
 def _turning(n_dyads, seed):

@@ -6,11 +6,11 @@ matplotlib.use("Agg")
 
 import numpy as np  # noqa: E402
 
-from gearlever.curves.search import CurveSynthesis  # noqa: E402
-from gearlever.curves.simulate import simulate  # noqa: E402
 from gearlever.mechanism.linkage import linkage_from_dict, solve_plan  # noqa: E402
 from gearlever.plotting.curves import curve_synthesis_plot  # noqa: E402
-from tests.curves._designs import SIXBAR  # noqa: E402
+from gearlever.synthesis.curve.search import CurveSynthesis  # noqa: E402
+from gearlever.synthesis.curve.simulate import simulate  # noqa: E402
+from tests.synthesis.curve._designs import SIXBAR  # noqa: E402
 
 
 def _result(designs, target):

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import json
 
-from gearlever.curves.model import linkage_toml
 from gearlever.mechanism import Mechanism
 from gearlever.mechanism.linkage import linkage_from_dict
 from gearlever.plotting.viewer import viewer_html
-from tests.curves._designs import SIXBAR
+from gearlever.synthesis.curve.model import linkage_toml
 from tests.plotting import _browser
+from tests.synthesis.curve._designs import SIXBAR
 
 driver = _browser.driver  # fixture
 

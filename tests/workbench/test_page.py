@@ -514,7 +514,7 @@ def test_synthesis_from_a_freehand_curve_runs_as_a_job_and_a_chosen_design_is_on
     A function synthesis (Freudenstein, immediate) then gives a design that is inserted as one undo step,
     and undo takes it out.
     """
-    from gearlever.curves.targets import known_mechanism
+    from gearlever.synthesis.curve.targets import known_mechanism
 
     d = browser
     desktop(d)

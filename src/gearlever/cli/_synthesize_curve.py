@@ -10,14 +10,14 @@ TARGET.csv holds ``x,y`` rows of a closed curve (header optional), in any
 units.  ``--scoring relative`` (default) scores it in its own size (closed,
 material measured at the size of the challenge's targets);
 ``--scoring challenge`` keeps the MIT 2.156 challenge's absolute rules, for
-its own targets (:mod:`gearlever.curves.score`).  Every design is written in
+its own targets (:mod:`gearlever.synthesis.curve.score`).  Every design is written in
 the target's frame: its traced point ``P`` runs on the curve where it was
 drawn (the transform of each is in the report).  DIR (new, or an existing
 empty folder) receives, per design on the distance-material front (at most
 ``--designs``):
 ``NNNN.toml`` (a gearlever model, traced point ``P``) and ``NNNN.links.json``
 (the MIT 2.156 challenge's form), then ``pareto.csv`` (design, distance,
-material, joints, links).  Scores and search: :mod:`gearlever.curves`.
+material, joints, links).  Scores and search: :mod:`gearlever.synthesis.curve`.
 ``--budget`` (default 20000 evaluations) gives the same designs on any
 machine and any number of workers; ``--time`` stops on the clock and is not
 reproducible.  The retrieval library (``--library-size`` mechanisms, seed
@@ -81,7 +81,7 @@ def register_curve(ss) -> None:
     w = p.add_mutually_exclusive_group()
     w.add_argument("--workers", type=capped_int(MAX_WORKERS), default=None, help="local dask threads")
     w.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a dask.distributed scheduler")
-    from gearlever.curves.library import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
+    from gearlever.synthesis.curve.library import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
 
     p.add_argument(
         "--library-size",
@@ -102,9 +102,9 @@ def _run(args) -> int:
 
     from gearlever._io import to_json as strict_json
     from gearlever._io import write_text_atomic
-    from gearlever.curves.model import linkage_toml
-    from gearlever.curves.search import synthesize_curve
-    from gearlever.curves.targets import read_target
+    from gearlever.synthesis.curve.model import linkage_toml
+    from gearlever.synthesis.curve.search import synthesize_curve
+    from gearlever.synthesis.curve.targets import read_target
 
     check_output_folder(args.out, "--out")
     _check_empty_folder(args.out)

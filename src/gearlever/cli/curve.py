@@ -10,23 +10,23 @@ Usage::
 Each DESIGN is a ``.links.json`` file (``x0``, ``edges``, ``fixed_joints``,
 ``motor``, ``target_joint``; see :mod:`gearlever.mechanism.linkage`).  One row per
 design: distance and material as the MIT 2.156 linkage challenge defines them
-(:mod:`gearlever.curves.score`), joints, links and whether it is feasible;
+(:mod:`gearlever.synthesis.curve.score`), joints, links and whether it is feasible;
 the JSON form adds the hypervolume of the feasible designs against the
 reference point (0.75, 10).  At most :data:`MAX_DESIGNS` designs.
 ``--scoring relative`` (default, as ``synthesize curve``) closes the target
 and measures material at the size of the challenge's targets;
 ``--scoring challenge`` applies the challenge's rules as they are
-(:mod:`gearlever.curves.score`).
+(:mod:`gearlever.synthesis.curve.score`).
 
 ``library build`` simulates the retrieval library of ``gearlever synthesize
 curve`` (``--size`` mechanisms, default the synthesis' 14400, at most
-:data:`gearlever.curves.search.MAX_LIBRARY_SIZE`; ``--seed`` of its draws)
+:data:`gearlever.synthesis.curve.search.MAX_LIBRARY_SIZE`; ``--seed`` of its draws)
 and stores it in the cache folder (``$GEARLEVER_CACHE``, else
 ``$XDG_CACHE_HOME/gearlever``, else ``~/.cache/gearlever``), written
 atomically; ``synthesize curve --library-size N --library-seed S`` then loads
 it instead of building it (same designs).  ``library info`` prints the cache
 folder and each stored library: size, seed, entries, file bytes.  See
-:mod:`gearlever.curves.library`.
+:mod:`gearlever.synthesis.curve.library`.
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ def register(sub) -> None:
     s.add_argument("--out", help="file to write (default stdout)")
     s.set_defaults(func=_score)
 
-    from gearlever.curves.library import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
+    from gearlever.synthesis.curve.library import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
 
     lib = cs.add_parser("library", help="the retrieval library of synthesize curve, kept in the cache folder")
     ls = lib.add_subparsers(dest="library_command", metavar="ACTION")
@@ -77,11 +77,11 @@ def register(sub) -> None:
 def _score(args) -> int:
     import numpy as np
 
-    from gearlever.curves.score import feasible, hypervolume, material, material_scale, score_distance
-    from gearlever.curves.simulate import simulate
-    from gearlever.curves.targets import read_target
     from gearlever.errors import GearleverError
     from gearlever.mechanism.linkage import read_linkage, solve_plan
+    from gearlever.synthesis.curve.score import feasible, hypervolume, material, material_scale, score_distance
+    from gearlever.synthesis.curve.simulate import simulate
+    from gearlever.synthesis.curve.targets import read_target
 
     if len(args.designs) > MAX_DESIGNS:
         raise GearleverError(f"DESIGN: at most {MAX_DESIGNS} designs, got {len(args.designs)}")
@@ -118,7 +118,7 @@ def _score(args) -> int:
 def _library_build(args) -> int:
     from gearlever._progress import TerminalProgress
     from gearlever.cli._common import check_output_folder, commit_outputs
-    from gearlever.curves.library import build_cached, library_path
+    from gearlever.synthesis.curve.library import build_cached, library_path
 
     # refused before any work, naming the folder; made if missing (and removed again if the build fails)
     check_output_folder(library_path(args.size, args.seed).parent, "cache folder", create=True)
@@ -133,7 +133,7 @@ def _library_build(args) -> int:
 
 
 def _library_info(args) -> int:
-    from gearlever.curves.library import cache_folder, library_files
+    from gearlever.synthesis.curve.library import cache_folder, library_files
 
     lines = [f"cache folder: {cache_folder()}"]
     rows = library_files()

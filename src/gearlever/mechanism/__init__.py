@@ -24,7 +24,7 @@ Within the layering of the guide's architecture page (held by
 ``tests/test_imports.py``) it may import numpy, scipy and gearlever's
 ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``, ``data``,
 ``errors``, ``gears``, ``loops``; never pandas or matplotlib.
-Nothing of :mod:`gearlever.curves` or :mod:`gearlever.synthesis` (they import it): the
+Nothing of :mod:`gearlever.synthesis.curve` or :mod:`gearlever.synthesis` (they import it): the
 ``.links.json`` form (:mod:`gearlever.mechanism.linkage`) and the model writer
 (:mod:`gearlever.mechanism.modelfile`) live here.
 """

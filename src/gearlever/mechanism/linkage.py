@@ -5,7 +5,7 @@ opens a ``.links.json`` through :func:`read_linkage_model`, which converts it
 to the model dict :func:`linkage_model` (fixed joints ``O<i>``, moving joints
 ``J<i>``, traced joint ``P``, input the crank) and reads that with the one
 loader :func:`gearlever.mechanism.model.model_from_dict`.  The topology
-synthesis :mod:`gearlever.curves` imports the linkage from here.
+synthesis :mod:`gearlever.synthesis.curve` imports the linkage from here.
 
 A linkage of ``N`` joints is ``x0`` (``N x 2`` sketch positions), ``edges``
 (``E x 2`` joint indices, one binary link each), ``fixed_joints`` (the ground

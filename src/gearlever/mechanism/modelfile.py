@@ -1,7 +1,7 @@
 """The one writer of model files: a model dict (or a parsed model) as TOML text.
 
 Every package that writes a model file (the synthesis kinds, the coupler-curve
-synthesis :mod:`gearlever.curves`, the command line, the animation of a
+synthesis :mod:`gearlever.synthesis.curve`, the command line, the animation of a
 four-bar in :mod:`gearlever.plotting`) builds its dict (the builders of the
 synthesized linkages are in :mod:`gearlever.synthesis.model`) and writes it
 with :func:`model_toml`:

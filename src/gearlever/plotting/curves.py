@@ -9,13 +9,13 @@ import numpy as np
 def curve_synthesis_plot(result, target, fig=None, best: int = 3):
     """Three panels: front (distance vs material, feasible box), best curves over the target, best linkage.
 
-    The designs of :func:`gearlever.curves.search.synthesize_curve` are in the
+    The designs of :func:`gearlever.synthesis.curve.search.synthesize_curve` are in the
     target's frame: the curves and the linkage are drawn where they run, over
     the target (closed in the relative scoring).  Returns the Figure.
     """
-    from gearlever.curves.score import REFERENCE, closed
-    from gearlever.curves.simulate import simulate
     from gearlever.mechanism.linkage import solve_plan
+    from gearlever.synthesis.curve.score import REFERENCE, closed
+    from gearlever.synthesis.curve.simulate import simulate
 
     fig = fig or plt.figure(figsize=(13.0, 4.3))
     a1, a2, a3 = fig.subplots(1, 3)

@@ -19,7 +19,7 @@ threads), a map-like (anything with ``.map``, e.g. a
 
 The path (:mod:`gearlever.synthesis.path`), law
 (:mod:`gearlever.synthesis.law.driver`) and curve
-(:mod:`gearlever.curves.search`) syntheses are uses of :func:`multistart`;
+(:mod:`gearlever.synthesis.curve.search`) syntheses are uses of :func:`multistart`;
 each returns the records of :class:`Start`.  A family whose start is not a
 box search (the curve's: refinement, topology moves, NSGA-II) passes its own
 ``start`` function.

@@ -23,7 +23,7 @@ registers its kinds with :func:`register` when its module is imported:
   :class:`~gearlever.synthesis.law.LawKind` class, the record's ``spec``,
   through :func:`gearlever.synthesis.law._core.register`: the law family has
   no registry of its own);
-- :mod:`gearlever.curves.search`: ``topology`` (the curve synthesis).
+- :mod:`gearlever.synthesis.curve.search`: ``topology`` (the curve synthesis).
 
 :func:`kinds` imports the family modules of :data:`FAMILIES` first (by name,
 so this module imports none of them: it is a leaf that every family may
@@ -54,7 +54,7 @@ FAMILIES = {
     "motion": ("gearlever.synthesis.motion",),
     "path": ("gearlever.synthesis.path_fourbar", "gearlever.synthesis.fivebar", "gearlever.synthesis.sixbar"),
     "law": ("gearlever.synthesis.law",),
-    "curve": ("gearlever.curves.search",),
+    "curve": ("gearlever.synthesis.curve.search",),
 }
 
 #: (family, name) -> :class:`Kind`, filled by :func:`register`.  The dict is kept in a module of its own

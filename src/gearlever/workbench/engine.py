@@ -1698,7 +1698,7 @@ def _designs(family: str, res, params: dict) -> list:
         comment = f"gearlever workbench: path synthesis ({res.kind}, seed {params['seed']})"
         return [({"objective": res.objective, "kind": res.kind}, res.model(), comment)]
     if family == "curve":
-        from gearlever.curves.model import linkage_model
+        from gearlever.synthesis.curve.model import linkage_model
 
         if not len(res.designs):
             raise WorkbenchError(

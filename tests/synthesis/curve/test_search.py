@@ -5,14 +5,14 @@ import json
 import numpy as np
 import pytest
 
-from gearlever.curves import library as L
-from gearlever.curves import search as S
-from gearlever.curves import topology as T
-from gearlever.curves.score import distance, material, material_scale, score_distance
-from gearlever.curves.simulate import simulate
-from gearlever.curves.targets import known_mechanism
 from gearlever.mechanism.linkage import solve_plan
-from tests.curves import _designs
+from gearlever.synthesis.curve import library as L
+from gearlever.synthesis.curve import search as S
+from gearlever.synthesis.curve import topology as T
+from gearlever.synthesis.curve.score import distance, material, material_scale, score_distance
+from gearlever.synthesis.curve.simulate import simulate
+from gearlever.synthesis.curve.targets import known_mechanism
+from tests.synthesis.curve import _designs
 
 small = _designs.small  # fixture
 

@@ -1,8 +1,8 @@
 """Dyadic topologies of the curve synthesis: joints, edges, ground pivots, motor, traced joint, random draws.
 
-A leaf of :mod:`gearlever.curves`: the library (:mod:`gearlever.curves.library`),
-the targets (:mod:`gearlever.curves.targets`) and the search
-(:mod:`gearlever.curves.search`) all build on it.
+A leaf of :mod:`gearlever.synthesis.curve`: the library (:mod:`gearlever.synthesis.curve.library`),
+the targets (:mod:`gearlever.synthesis.curve.targets`) and the search
+(:mod:`gearlever.synthesis.curve.search`) all build on it.
 
 Imports numpy, :mod:`gearlever.mechanism.linkage` and :mod:`gearlever.errors`.
 """

@@ -1,4 +1,4 @@
-"""Set-up shared by the curve-synthesis tests (tests/curves, tests/cli, tests/mechanism).
+"""Set-up shared by the curve-synthesis tests (tests/synthesis/curve, tests/cli, tests/mechanism).
 
 ``SIXBAR``: a six-bar in the challenge's form (.links.json) whose traced joint
 6 turns fully; ``turning``: a random dyadic linkage of the synthesis' library
@@ -10,10 +10,10 @@ in a second or two).  A test module takes a fixture with ``cache = _designs.cach
 import numpy as np
 import pytest
 
-from gearlever.curves import library as L
-from gearlever.curves import search as S
-from gearlever.curves import topology as T
-from gearlever.curves.simulate import simulate
+from gearlever.synthesis.curve import library as L
+from gearlever.synthesis.curve import search as S
+from gearlever.synthesis.curve import topology as T
+from gearlever.synthesis.curve.simulate import simulate
 
 SIXBAR = {
     "x0": [[0, 0], [0.3, 0.2], [2, 0], [1.5, 1.5], [3, 1], [2.5, 2.5], [1.0, 2.2]],

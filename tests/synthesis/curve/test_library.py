@@ -5,10 +5,10 @@ import json
 import numpy as np
 import pytest
 
-from gearlever.curves import library as L
-from gearlever.curves import search as S
 from gearlever.errors import GearleverError
-from tests.curves import _designs
+from gearlever.synthesis.curve import library as L
+from gearlever.synthesis.curve import search as S
+from tests.synthesis.curve import _designs
 
 cache, small = _designs.cache, _designs.small  # fixtures
 

@@ -4,7 +4,7 @@ The search, in order (every step seeded from ``numpy.random.default_rng``
 with the user's seed, so a fixed ``budget`` gives the same designs on any
 machine and any number of workers):
 
-1. **Library** (:func:`gearlever.curves.library.build_library`): random dyadic topologies of four-,
+1. **Library** (:func:`gearlever.synthesis.curve.library.build_library`): random dyadic topologies of four-,
    six- and eight-bar size (one to :data:`MAX_LIBRARY_DYADS` dyads on a crank
    and two or three ground pivots), each with random sketches, simulated in
    one batch per topology; every moving joint of a sketch that turns fully is
@@ -21,7 +21,7 @@ machine and any number of workers):
 3. **Per start** (:func:`run_start`): least-squares refinement of the
    distance (:func:`refine`: trust region of
    :func:`scipy.optimize.least_squares` on the analytic Jacobian of
-   :func:`~gearlever.curves.simulate.simulate_jacobian` carried through the
+   :func:`~gearlever.synthesis.curve.simulate.simulate_jacobian` carried through the
    resampling by arc length, the challenge's gaps at the current best
    cyclic shift with the rotation a free parameter, then the shift walked
    while the distance falls), topology moves (another
@@ -38,7 +38,7 @@ machine and any number of workers):
 
 Notes
 -----
-Scores as :mod:`gearlever.curves.score`.  NSGA-II: K. Deb, A. Pratap,
+Scores as :mod:`gearlever.synthesis.curve.score`.  NSGA-II: K. Deb, A. Pratap,
 S. Agarwal, T. Meyarivan, "A fast and elitist multiobjective genetic
 algorithm: NSGA-II", IEEE Trans. Evol. Comput. 6(2), 2002; pymoo: J. Blank,
 K. Deb, "pymoo: Multi-objective optimization in Python", IEEE Access 8, 2020.
@@ -58,9 +58,11 @@ from typing import NamedTuple
 import numpy as np
 
 from gearlever._result import Result
-from gearlever.curves import library as _library
-from gearlever.curves.library import Library, build_library, cached_library, descriptor
-from gearlever.curves.score import (
+from gearlever.errors import GearleverError
+from gearlever.mechanism.linkage import linkage_from_dict
+from gearlever.synthesis.curve import library as _library
+from gearlever.synthesis.curve.library import Library, build_library, cached_library, descriptor
+from gearlever.synthesis.curve.score import (
     MAX_DISTANCE,
     MAX_MATERIAL,
     REFERENCE_RMS,
@@ -74,11 +76,9 @@ from gearlever.curves.score import (
     rms_radius,
     scoring_target,
 )
-from gearlever.curves.simulate import simulate, simulate_jacobian
-from gearlever.curves.targets import check_target
-from gearlever.curves.topology import Topology, _topology
-from gearlever.errors import GearleverError
-from gearlever.mechanism.linkage import linkage_from_dict
+from gearlever.synthesis.curve.simulate import simulate, simulate_jacobian
+from gearlever.synthesis.curve.targets import check_target
+from gearlever.synthesis.curve.topology import Topology, _topology
 from gearlever.synthesis.driver import Start, check_budget, multistart, order
 from gearlever.synthesis.registry import Kind, register
 
@@ -94,8 +94,8 @@ __all__ = [
 #: Retrieved entries refined briefly, and the best of them kept as starts.
 PRESELECT = 100
 STARTS = 8
-#: The portfolio's narrow strategy: starts picked among the first ``NARROW`` retrieved entries only (the search
-#: before issue 27 refined 24), alternating with starts picked among all ``PRESELECT`` (see :func:`_portfolio`).
+#: The portfolio's narrow strategy: starts picked among the first ``NARROW`` retrieved entries only (the
+#: earlier search refined 24), alternating with starts picked among all ``PRESELECT`` (see :func:`_portfolio`).
 NARROW = 24
 #: Alignments kept by the search's fast distance.
 KEEP = 12
@@ -177,8 +177,8 @@ def _target(target) -> _Target:
 
 
 def _best_alignment(tc, curve) -> tuple[int, float]:
-    """Index (as :func:`~gearlever.curves.score._alignment_indices`) and angle of the curve's best alignment."""
-    from gearlever.curves.score import _alignment_indices
+    """Index (as :func:`~gearlever.synthesis.curve.score._alignment_indices`) and angle of the best alignment."""
+    from gearlever.synthesis.curve.score import _alignment_indices
 
     n = tc.z.shape[0]
     c = resample(curve[None], n)[0]
@@ -202,7 +202,7 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
     length up to sample ``lo``, ``l_lo`` the segment's) moves with the
     samples and with the lengths.
     """
-    from gearlever.curves.score import _alignment_indices
+    from gearlever.synthesis.curve.score import _alignment_indices
 
     N = topo.n
     n = tc.z.shape[0]
@@ -290,7 +290,7 @@ def refine(
     Examples
     --------
     >>> from gearlever.mechanism.linkage import linkage_from_dict
-    >>> from gearlever.curves.simulate import simulate
+    >>> from gearlever.synthesis.curve.simulate import simulate
     >>> lk = linkage_from_dict({"x0": [[0, 0], [0.3, 0], [1, 0], [0.8, 0.8], [0.5, 1.0]],
     ...     "edges": [[0, 1], [1, 3], [2, 3], [1, 4], [3, 4]], "fixed_joints": [0, 2], "motor": [0, 1]})
     >>> topo = _topology(5, lk.edges, lk.fixed_joints, lk.motor, 4)
@@ -354,7 +354,7 @@ def refine(
 
 def _alignment_angle(tc, curve, a: int) -> float:
     """Best rotation of the curve at alignment ``a``."""
-    from gearlever.curves.score import _alignment_indices
+    from gearlever.synthesis.curve.score import _alignment_indices
 
     n = tc.z.shape[0]
     c = resample(curve[None], n)[0]
@@ -552,7 +552,7 @@ def _portfolio(refined, count: int) -> list:
     """Starts from two strategies, alternating: the narrow (the first :data:`NARROW` retrieved) and the wide (all).
 
     The narrow strategy keeps the starts nearest the target's descriptor
-    (the search of issue 27's D shape, 5.323); the wide one the best after
+    (the earlier search's D shape, 5.323); the wide one the best after
     refinement (better on the challenge's curves).  Each strategy's list
     comes from :func:`_pick_starts`; a start both pick is taken once and the
     next of the other list fills its place.  Deterministic: no draw.
@@ -622,17 +622,17 @@ class CurveSynthesis(Result):
         The front, error (distance) ascending.
     error, material : ndarray
         Their error (the challenge's distance of the traced curve to the target) and material
-        (:mod:`gearlever.curves.score`).
+        (:mod:`gearlever.synthesis.curve.score`).
     hypervolume : float
-        Of the front against the reference (:data:`~gearlever.curves.score.MAX_DISTANCE`,
-        :data:`~gearlever.curves.score.MAX_MATERIAL`).
+        Of the front against the reference (:data:`~gearlever.synthesis.curve.score.MAX_DISTANCE`,
+        :data:`~gearlever.synthesis.curve.score.MAX_MATERIAL`).
     evaluations : int
         NSGA-II's evaluations, all starts together: at most the budget, the
         real count when the clock stops the search.
     seed, starts, library_size : int
     seconds : float
     scoring : str
-        ``"relative"`` or ``"challenge"`` (:mod:`gearlever.curves.score`).
+        ``"relative"`` or ``"challenge"`` (:mod:`gearlever.synthesis.curve.score`).
     material_scale : float
         The scoring's material per unit of material in the target's units
         (``REFERENCE_RMS / r`` in the relative scoring, 1 in the challenge's):
@@ -726,7 +726,7 @@ def synthesize_curve(
     Parameters
     ----------
     target : array_like, shape (K, 2)
-        Target curve (checked by :func:`gearlever.curves.targets.check_target`).
+        Target curve (checked by :func:`gearlever.synthesis.curve.targets.check_target`).
     max_joints : int
         4 to 20.
     designs : int
@@ -743,23 +743,23 @@ def synthesize_curve(
     progress : callable, optional
         ``progress(label, done, total)``.
     library_size : int, optional
-        Mechanisms of the retrieval library, 1 to :data:`~gearlever.curves.library.MAX_LIBRARY_SIZE`
-        (default :data:`~gearlever.curves.library.LIBRARY_TOPOLOGIES` x
-        :data:`~gearlever.curves.library.LIBRARY_SKETCHES`).
+        Mechanisms of the retrieval library, 1 to :data:`~gearlever.synthesis.curve.library.MAX_LIBRARY_SIZE`
+        (default :data:`~gearlever.synthesis.curve.library.LIBRARY_TOPOLOGIES` x
+        :data:`~gearlever.synthesis.curve.library.LIBRARY_SKETCHES`).
     library_seed : int
         Seed of the library's draws (0 to 2^31 - 1).
     use_cache : bool
         Load the library from the user's cache folder when one of this size,
-        seed and format is stored there (:mod:`gearlever.curves.library`);
+        seed and format is stored there (:mod:`gearlever.synthesis.curve.library`);
         otherwise, or if False, build it in memory.  The designs are the same
         either way.
     scoring : {"relative", "challenge"}
         ``"relative"`` (default, for a user's curve): the target is closed and
         material is measured at the size of the challenge's targets (the
         search runs on the target moved to its centre and scaled to RMS radius
-        :data:`~gearlever.curves.score.REFERENCE_RMS`); ``"challenge"``: the
+        :data:`~gearlever.synthesis.curve.score.REFERENCE_RMS`); ``"challenge"``: the
         MIT 2.156 challenge's rules as they are, for its own targets
-        (:mod:`gearlever.curves.score`).
+        (:mod:`gearlever.synthesis.curve.score`).
 
     Returns
     -------
@@ -920,8 +920,8 @@ def _crank_tips(target) -> list[Design]:
 
 def _score_linkage(lk, user_target, scoring: str, k: float) -> tuple[float, float]:
     """The scoring's distance to the user's target and material (``k`` x the material) of a linkage."""
-    from gearlever.curves.score import score_distance
     from gearlever.mechanism.linkage import solve_plan
+    from gearlever.synthesis.curve.score import score_distance
 
     x = simulate(lk.x0[None], solve_plan(lk))[:, lk.target_joint]
     return float(score_distance(x, user_target, scoring)[0]), float(material(lk.x0[None], lk.edges)[0]) * k
@@ -940,8 +940,8 @@ def _to_target_frame(lk, target, centre, k: float, rotate: bool = True):
     motion and scores differently (0.01 to 0.11 worse for exact recoveries
     turned by 0.3 to 2 rad); a translated or scaled one scores the same.
     """
-    from gearlever.curves.score import _alignment_indices
     from gearlever.mechanism.linkage import solve_plan
+    from gearlever.synthesis.curve.score import _alignment_indices
 
     curve = simulate(lk.x0[None], solve_plan(lk))[0, lk.target_joint]
     theta = 0.0
@@ -983,7 +983,7 @@ register(
         "curve",
         "topology",
         "linkage topology and dimensions tracing a closed curve: library retrieval, refinement, NSGA-II front",
-        "gearlever.curves.search:synthesize_curve",
+        "gearlever.synthesis.curve.search:synthesize_curve",
         kind_arg=None,
         min_budget=MIN_BUDGET,
         example=_example,

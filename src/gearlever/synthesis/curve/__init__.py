@@ -7,15 +7,15 @@ What lives here:
   ``fixed_joints``, ``motor``, ``target_joint``), read and validated from
   ``.links.json``, and its dyadic solve plan; re-exported here as
   ``Linkage``, ``linkage_from_dict``, ``read_linkage``, ``solve_plan``.
-* :mod:`~gearlever.curves.simulate`: a batched simulator of many dyadic
+* :mod:`~gearlever.synthesis.curve.simulate`: a batched simulator of many dyadic
   linkages over a crank turn in one array pass, with the analytic Jacobian of
   the joint paths with respect to the sketch positions.
-* :mod:`~gearlever.curves.score`: the challenge's curve distance, material,
+* :mod:`~gearlever.synthesis.curve.score`: the challenge's curve distance, material,
   feasibility and the exact 2-D hypervolume.
-* :mod:`~gearlever.curves.search`: the synthesis (library of four-, six- and
+* :mod:`~gearlever.synthesis.curve.search`: the synthesis (library of four-, six- and
   eight-bar topologies, retrieval over pre-simulated mechanisms, NSGA-II from
   pymoo, least-squares refinement) and the writer of gearlever models.
-* :mod:`~gearlever.curves.library`: the search's retrieval library stored
+* :mod:`~gearlever.synthesis.curve.library`: the search's retrieval library stored
   in the user's cache folder (``gearlever curve library build``).
 
 Within the layering of the guide's architecture page (held by
@@ -26,9 +26,9 @@ gearlever's ``_format``, ``_io``, ``_progress``, ``_result``, ``_validate``,
 matplotlib, pandas or the CLI.  Figures are in :mod:`gearlever.plotting.curves`.
 """
 
-from gearlever.curves.score import distance, feasible, hypervolume, material
-from gearlever.curves.simulate import simulate, simulate_jacobian
 from gearlever.mechanism.linkage import Linkage, linkage_from_dict, read_linkage, solve_plan
+from gearlever.synthesis.curve.score import distance, feasible, hypervolume, material
+from gearlever.synthesis.curve.simulate import simulate, simulate_jacobian
 
 __all__ = [
     "Linkage",

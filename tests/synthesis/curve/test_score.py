@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from gearlever.curves.score import distance, feasible, hypervolume, material, resample
-from gearlever.curves.simulate import simulate
 from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
+from gearlever.synthesis.curve.score import distance, feasible, hypervolume, material, resample
+from gearlever.synthesis.curve.simulate import simulate
 
 T = np.linspace(0, 2 * np.pi, 200)
 CIRCLE = np.stack([np.cos(T), np.sin(T)], -1)

@@ -92,7 +92,7 @@ def known_mechanism(n_dyads: int, seed: int, rms: float = SUITE_RMS):
 
     Returns
     -------
-    topology : gearlever.curves.topology.Topology
+    topology : gearlever.synthesis.curve.topology.Topology
     x0 : ndarray, shape (N, 2)
         The sketch.
     curve : ndarray, shape (200, 2)
@@ -100,10 +100,10 @@ def known_mechanism(n_dyads: int, seed: int, rms: float = SUITE_RMS):
 
     Notes
     -----
-    Draws of :func:`gearlever.curves.topology.random_topology` and
-    :func:`~gearlever.curves.topology.random_sketches` from
+    Draws of :func:`gearlever.synthesis.curve.topology.random_topology` and
+    :func:`~gearlever.synthesis.curve.topology.random_sketches` from
     ``numpy.random.default_rng(seed)``; the challenge's material and bound
-    as :mod:`gearlever.curves.score`.
+    as :mod:`gearlever.synthesis.curve.score`.
 
     Examples
     --------
@@ -111,9 +111,9 @@ def known_mechanism(n_dyads: int, seed: int, rms: float = SUITE_RMS):
     >>> topo.n, curve.shape
     (9, (200, 2))
     """
-    from gearlever.curves.score import MAX_MATERIAL, material
-    from gearlever.curves.simulate import simulate
-    from gearlever.curves.topology import random_sketches, random_topology
+    from gearlever.synthesis.curve.score import MAX_MATERIAL, material
+    from gearlever.synthesis.curve.simulate import simulate
+    from gearlever.synthesis.curve.topology import random_sketches, random_topology
 
     rng = np.random.default_rng(seed)
     while True:

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from gearlever.curves.simulate import crank_angles, simulate, simulate_jacobian
 from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
+from gearlever.synthesis.curve.simulate import crank_angles, simulate, simulate_jacobian
 
 SIXBAR = {
     "x0": [[0, 0], [0.3, 0.2], [2, 0], [1.5, 1.5], [3, 1], [2.5, 2.5], [1.0, 2.2]],

@@ -2,7 +2,7 @@
 
 The challenge's definitions (A. H. Nobari, F. Ahmed et al., MIT 2.156 linkage synthesis challenge, ``LINKS``)
 score the target as the open polyline of its points with absolute material; the relative scoring closes the
-target and measures material at the size of the challenge's targets (:mod:`gearlever.curves.score`).
+target and measures material at the size of the challenge's targets (:mod:`gearlever.synthesis.curve.score`).
 """
 
 import json
@@ -10,9 +10,11 @@ import json
 import numpy as np
 import pytest
 
-from gearlever.curves import library as L
-from gearlever.curves import search as S
-from gearlever.curves.score import (
+from gearlever.errors import GearleverError
+from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
+from gearlever.synthesis.curve import library as L
+from gearlever.synthesis.curve import search as S
+from gearlever.synthesis.curve.score import (
     REFERENCE_RMS,
     closed,
     distance,
@@ -23,10 +25,8 @@ from gearlever.curves.score import (
     score_distance,
     scoring_target,
 )
-from gearlever.curves.simulate import crank_angles, simulate
-from gearlever.errors import GearleverError
-from gearlever.mechanism.linkage import linkage_from_dict, solve_plan
-from tests.curves._designs import SIXBAR
+from gearlever.synthesis.curve.simulate import crank_angles, simulate
+from tests.synthesis.curve._designs import SIXBAR
 
 
 def _d_mm(n=60):
@@ -83,7 +83,7 @@ def test_relative_material_is_the_same_at_any_size_and_the_challenges_is_absolut
 
 @pytest.fixture(scope="module")
 def d_mm():
-    """The synthesis of the D in millimetres with the small library and search of tests/curves/_designs.py."""
+    """The synthesis of the D in millimetres with the small library and search of tests/synthesis/curve/_designs.py."""
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(L, "LIBRARY_TOPOLOGIES", 8)
         mp.setattr(L, "LIBRARY_SKETCHES", 60)

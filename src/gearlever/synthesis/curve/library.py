@@ -37,10 +37,10 @@ from pathlib import Path
 
 import numpy as np
 
-from gearlever.curves.score import resample
-from gearlever.curves.simulate import simulate
-from gearlever.curves.topology import _topology, prune, random_sketches, random_topology
 from gearlever.errors import GearleverError
+from gearlever.synthesis.curve.score import resample
+from gearlever.synthesis.curve.simulate import simulate
+from gearlever.synthesis.curve.topology import _topology, prune, random_sketches, random_topology
 
 __all__ = [
     "FORMAT",
