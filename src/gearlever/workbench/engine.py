@@ -1169,12 +1169,8 @@ CAM_PROFILE = 720
 CAM_PRESSURE_DEG = 30.0
 
 
-def law_examples() -> list:
-    """The shipped example laws (files of ``gearlever/data/examples`` holding a ``[law]`` table).
-
-    >>> [(e["name"], e["output"]) for e in law_examples()][:2]
-    [('law_dwell_rocker', 'angle'), ('law_lift', 'displacement')]
-    """
+def _shipped_examples() -> list:
+    """``[(name, text, table)]`` of every shipped example file (``gearlever/data/examples/*.toml``) that parses."""
     from importlib import resources
 
     out = []
@@ -1184,14 +1180,24 @@ def law_examples() -> list:
             continue
         text = entry.read_text(encoding="utf-8")
         try:
-            d = tomllib.loads(text)
+            out.append((entry.name[: -len(".toml")], text, tomllib.loads(text)))
         except tomllib.TOMLDecodeError:
             continue
+    return out
+
+
+def law_examples() -> list:
+    """The shipped example laws (files of ``gearlever/data/examples`` holding a ``[law]`` table).
+
+    >>> [(e["name"], e["output"]) for e in law_examples()][:2]
+    [('law_dwell_rocker', 'angle'), ('law_lift', 'displacement')]
+    """
+    out = []
+    for name, text, d in _shipped_examples():
         law = d.get("law")
         if not isinstance(law, dict) or "segment" not in law:
             continue
         first = text.splitlines()[0].lstrip("# ").strip() if text.startswith("#") else ""
-        name = entry.name[: -len(".toml")]
         out.append({"name": name, "output": str(law.get("output", "")), "title": first or name})
     return out
 
@@ -1461,22 +1467,12 @@ def _pair_xy(params: dict, key: str) -> tuple:
 # --------------------------------------------------------------------------- examples
 def examples() -> list:
     """The shipped example models that have ``[links]``: ``[{"name", "title"}]``."""
-    from importlib import resources
-
     out = []
-    folder = resources.files("gearlever.data").joinpath("examples")
-    for entry in sorted(folder.iterdir(), key=lambda e: e.name):
-        if not entry.name.endswith(".toml"):
-            continue
-        text = entry.read_text(encoding="utf-8")
-        try:
-            d = tomllib.loads(text)
-        except tomllib.TOMLDecodeError:
-            continue
+    for name, _text, d in _shipped_examples():
         if "links" not in d:
             continue
         title = d.get("mechanism", {}).get("name") if isinstance(d.get("mechanism"), dict) else None
-        out.append({"name": entry.name[: -len(".toml")], "title": str(title or entry.name[: -len(".toml")])})
+        out.append({"name": name, "title": str(title or name)})
     return out
 
 
