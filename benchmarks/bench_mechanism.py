@@ -24,6 +24,7 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+from _machine import machine_line
 
 import gearlever
 from gearlever import fourbar
@@ -104,6 +105,7 @@ def pylinkage_runner():
 
 
 def main() -> None:
+    print(machine_line())
     mech = gearlever.Mechanism.load(MODEL)
     th = np.linspace(0.0, 2 * np.pi, N, endpoint=False)
     ours(mech, th)  # compile the model once

@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import platform
 import signal
 import subprocess
 import sys
@@ -38,6 +37,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from _machine import machine_line
 
 FRAMES = 360
 TARGETS_MS = {"fourbar": 30.0, "chain20": 100.0}
@@ -142,16 +142,6 @@ def contention() -> float:
     return max(1.0, best)
 
 
-def cpu_name() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or platform.machine()
-
-
 def main() -> None:
     import httpx
 
@@ -161,10 +151,7 @@ def main() -> None:
     ap.add_argument("--edits", type=int, default=40, help="edits timed per model (default 40)")
     args = ap.parse_args()
     factor = contention()
-    print(
-        f"CPU: {cpu_name()}, {os.cpu_count()} cores; load average {os.getloadavg()[0]:.1f}; "
-        f"contention x{factor:.2f} (wall / CPU time of a fixed workload: 1 on an idle machine)"
-    )
+    print(f"{machine_line()}; contention x{factor:.2f} (wall / CPU time of a fixed workload: 1 on an idle machine)")
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         proc, base, token = start_server(tmp)

@@ -23,16 +23,18 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from _machine import machine_line
 
 from gearlever import zrdpm
 from gearlever.loops.trig import sincos_half_angle
 
 N = 1_000_000
 REPEATS = 21
-BLOCK = 32768  # the (3, BLOCK) sin/cos/ones buffer, 768 kB, stays in a 1-2 MB L2 cache
+BLOCK = 32768  # the block's sin, cos and scratch rows, 768 kB, stay in a 1-2 MB L2 cache
 
 
 def main() -> None:
+    print(machine_line())
     phi = np.linspace(0.0, 2.0 * np.pi, N)
     params = zrdpm.ZrdpmContour(contour=1, l=10.0, r_a=5.0, r_b=5.0).with_ratio(0.5)
     consts = zrdpm.TablesConstants(contour=1, l_u2=21.0, l_e=-2.24)

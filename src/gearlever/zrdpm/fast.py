@@ -16,7 +16,13 @@ from gearlever.errors import GearleverError
 from gearlever.loops.trig import sincos_half_angle
 from gearlever.zrdpm.parameters import ContourKinematics, TablesConstants, ZrdpmContour
 
-__all__ = ["fast_outputs"]
+#: Columns of one 6 x 3 matrix product: 6 * 3 * 8192 = 147 456 multiply-adds stays below the
+#: 262 144 at which OpenBLAS starts threads for a product (its GEMM_MULTITHREAD_THRESHOLD 4
+#: times 65 536); a threaded product this small costs, on a busy machine, up to ten times a
+#: single-threaded one (measured with its Haswell and Zen kernels, those of an AMD EPYC).
+PRODUCT_COLUMNS = 8192
+
+__all__ = ["PRODUCT_COLUMNS", "fast_outputs"]
 
 
 def _check_out(out, shape):
@@ -40,12 +46,13 @@ def fast_outputs(
     :func:`~gearlever.zrdpm.tables_outputs`, same results to rounding (1e-12).
 
     Tables model: one pass over the angles, block by block (``block``
-    angles; ~32768 keeps the (3, block) buffer in a 1-2 MB L2 cache): ``sin``
+    angles, at most :data:`PRODUCT_COLUMNS`; the (3, block) buffer stays in
+    cache): ``sin``
     and ``cos`` of the block into the buffer (whose third row is ones), both
     from one tangent of the half angle
     (:func:`~gearlever.loops.trig.sincos_half_angle`), then the six outputs as
-    one 6 x 3 matrix product, every output being ``alpha sin + beta cos +
-    gamma`` with the coefficients of eqs. 9, 11, 14 and 16.  Self-consistent
+    one 6 x 3 matrix product (small enough that OpenBLAS does not thread it),
+    every output being ``alpha sin + beta cos + gamma`` with the coefficients of eqs. 9, 11, 14 and 16.  Self-consistent
     model: per block, in-place ufuncs, with a second sin/cos pair for the lever
     angle (both pairs from half-angle tangents).  The six outputs are rows of
     one ``(6, *phi.shape)`` array, which
@@ -93,6 +100,7 @@ def fast_outputs(
         # one pass over the angles: per block, sin and cos go into a cache-resident
         # (3, block) buffer whose third row is ones, and one 6 x 3 matrix product writes
         # the block of all six outputs (nothing is written twice, no full-size scratch)
+        bs = min(bs, PRODUCT_COLUMNS)
         x = np.ones((3, bs))
         for start in range(0, n, bs):
             stop = min(start + bs, n)
