@@ -156,6 +156,17 @@ def draw_fourbar(d):
     wait_for(d, "return workbench.state().frames === 360 && !workbench.state().pending", 30)
 
 
+def run_curve_job(d, seconds):
+    """Open the synthesis panel, start a curve synthesis of the drawn curve for ``seconds``; wait until it runs."""
+    action(d, "synthesize")
+    Select(d.find_element(By.ID, "synth-kind")).select_by_value("curve")
+    time_box = d.find_element(By.ID, "synth-time")
+    time_box.clear()
+    time_box.send_keys(str(seconds))
+    d.find_element(By.ID, "synth-run").click()
+    wait_for(d, "const j = workbench.state().job; return j && j.state === 'running'", 10)
+
+
 # ---------------------------------------------------------------- journeys
 
 
@@ -492,13 +503,7 @@ def test_synthesis_from_a_freehand_curve_runs_as_a_job_and_a_chosen_design_is_on
     assert js(d, "return workbench.state().curve") >= 30
     curve = np.array(js(d, "return workbench.curve()"))
     assert np.allclose(curve.mean(0), pts.mean(0), atol=3.0)
-    action(d, "synthesize")
-    Select(d.find_element(By.ID, "synth-kind")).select_by_value("curve")
-    time_box = d.find_element(By.ID, "synth-time")
-    time_box.clear()
-    time_box.send_keys("20")
-    d.find_element(By.ID, "synth-run").click()
-    wait_for(d, "const j = workbench.state().job; return j && j.state === 'running'", 10)
+    run_curve_job(d, 20)
     assert d.find_element(By.ID, "synth-cancel").is_enabled()
     # the bench answers while the job runs
     assert call(d, "workbench.load(arguments[0])", FOURBAR).get("error") is None
@@ -557,13 +562,7 @@ def test_cancel_stops_a_running_synthesis_job(page):
     tool(d, "curve")
     t = np.linspace(0.0, 2 * np.pi, 31)
     drag(d, [screen(d, 30 + 14 * math.cos(a), 30 + 7 * math.sin(a)) for a in t], steps=2)
-    action(d, "synthesize")
-    Select(d.find_element(By.ID, "synth-kind")).select_by_value("curve")
-    time_box = d.find_element(By.ID, "synth-time")
-    time_box.clear()
-    time_box.send_keys("300")
-    d.find_element(By.ID, "synth-run").click()
-    wait_for(d, "const j = workbench.state().job; return j && j.state === 'running'", 10)
+    run_curve_job(d, 300)
     started = time.monotonic()
     d.find_element(By.ID, "synth-cancel").click()
     wait_for(d, "const j = workbench.state().job; return j && j.state !== 'running'", 120)
