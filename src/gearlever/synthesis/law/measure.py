@@ -396,10 +396,9 @@ def cam_comparison(law) -> dict:
 
     Examples
     --------
-    >>> from gearlever.laws import law_from_segments
-    >>> law = law_from_segments("angle", "deg", [{"to": 120, "motion": "dwell"},
-    ...     {"to": 240, "motion": "cycloidal", "rise": 45}, {"to": 360, "motion": "345", "rise": -45}])
-    >>> c = cam_comparison(law)
+    >>> from gearlever.data import example_path
+    >>> from gearlever.laws import load_law
+    >>> c = cam_comparison(load_law(example_path("law_dwell_rocker.toml")))  # 45 deg swing, 120 deg dwell
     >>> c["follower"], c["pivot_distance"], round(c["pressure_angle_max_deg"], 6), c["pivot_clearance"] > 0
     ('oscillating-roller', 250.0, 30.0, True)
     """
