@@ -292,15 +292,15 @@ def test_oscillating_flat_pressure_angle_is_the_face_offset_seen_from_the_contac
 
 # --- an oscillating roller's pivot, the arm's shaft, must lie outside the disc the turning cam sweeps (issue 33 §5)
 
-ROCK45 = law_from_segments(
-    "angle",
-    "deg",
-    [
-        {"to": 120, "motion": "dwell"},
-        {"to": 240, "motion": "cycloidal", "rise": 45},
-        {"to": 360, "motion": "345", "rise": -45},
-    ],
-)
+
+def _shipped(name):
+    from gearlever.data import example_path
+    from gearlever.laws import load_law
+
+    return load_law(example_path(f"{name}.toml"))
+
+
+ROCK45 = _shipped("law_dwell_rocker")  # a 120 deg dwell, a 45 deg cycloidal rise, a 3-4-5 return
 
 
 @pytest.mark.parametrize(
