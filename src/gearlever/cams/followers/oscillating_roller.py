@@ -13,9 +13,9 @@ turning cam sweeps the whole disc of its largest radius R_max, so the pivot
 must lie outside that disc over the whole cycle: D > R_max
 (:func:`cam_radius_max`).  This is the bare geometric condition: no clearance
 for the shaft's own radius is added, since the follower has no such dimension
-here and neither R. L. Norton (*Design of Machinery*, ch. 8) nor H. A.
-Rothbart (*Cam Design Handbook*) gives a rule for one; a designer adds the
-shaft's radius and running clearance to D.  Sizing keeps to the base radii
+here and we found no rule for one that we could check in R. L. Norton
+(*Design of Machinery*, ch. 8) or H. A. Rothbart (*Cam Design Handbook*); a
+designer adds the shaft's radius and a running clearance to D.  Sizing keeps to the base radii
 below the one at which the cam reaches the pivot
 (:meth:`OscillatingRoller.base_radius_bounds`).
 """
