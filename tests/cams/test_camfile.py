@@ -76,3 +76,23 @@ def test_a_centre_that_is_not_two_finite_numbers_is_refused_naming_it(tmp_path, 
             read(path)
     with pytest.raises(GearleverError, match="centre"):
         cam_toml(cam, law.to_dict(), {}, centre=(1.0, float("inf")))
+
+
+def test_a_cam_file_whose_oscillating_pivot_lies_inside_the_cam_is_refused_naming_the_cam_key(tmp_path):
+    """The pivot (the arm's shaft) inside the disc the cam sweeps: the file's [cam] pivot_distance is named."""
+    from gearlever.errors import GearleverError
+
+    law = law_from_segments("angle", "deg", LAW)
+    dims = {"roller_radius": 5.0, "arm": 40.0}
+    cam = design_cam(law, "oscillating-roller", base_radius=30.0, pivot_distance=60.0, points=720, **dims)
+    text = cam_toml(cam, law.to_dict(), {})
+    good = tmp_path / "good.toml"
+    good.write_text(text)
+    assert load_cam(good).pivot_distance == 60.0
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("pivot_distance = 60", "pivot_distance = 30", 1))
+    with pytest.raises(GearleverError) as exc:
+        load_cam(bad)
+    line = str(exc.value)
+    assert line.startswith(f"{bad}: [cam] pivot_distance 30: the follower's pivot lies inside the cam")
+    assert "a [cam] pivot_distance above" in line and "[cam] arm" in line and "--" not in line

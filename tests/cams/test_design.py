@@ -288,3 +288,91 @@ def test_oscillating_flat_pressure_angle_is_the_face_offset_seen_from_the_contac
     want = np.arctan2(abs(e), np.array(ell))
     np.testing.assert_allclose(np.abs(phi[idx]), want, atol=2e-3)
     assert cam.pressure_angle_max == pytest.approx(np.abs(phi).max())
+
+
+# --- an oscillating roller's pivot, the arm's shaft, must lie outside the disc the turning cam sweeps (issue 33 §5)
+
+
+def _shipped(name):
+    from gearlever.data import example_path
+    from gearlever.laws import load_law
+
+    return load_law(example_path(f"{name}.toml"))
+
+
+ROCK45 = _shipped("law_dwell_rocker")  # a 120 deg dwell, a 45 deg cycloidal rise, a 3-4-5 return
+
+
+@pytest.mark.parametrize(
+    "rb, rr, L, D", [(30.0, 6.0, 50.0, 70.0), (40.0, 8.0, 60.0, 90.0), (119.0, 20.0, 100.0, 200.0)]
+)
+def test_oscillating_roller_largest_cam_radius_is_the_farthest_roller_centre_less_the_roller(rb, rr, L, D):
+    """cam_radius_max (law of cosines at the arm's farthest swing) against the designed surface's sampled radius."""
+    from gearlever.cams.followers import FollowerParams
+    from gearlever.cams.followers.oscillating_roller import cam_radius_max
+
+    cam = design_cam(
+        ROCK45, "oscillating-roller", base_radius=rb, roller_radius=rr, arm=L, pivot_distance=D, points=36000
+    )
+    r_max = cam_radius_max(FollowerParams(rr, 0.0, L, D), rb, cam.stroke)
+    assert float(np.max(np.hypot(*cam.surface.T))) == pytest.approx(r_max, rel=1e-7)
+    assert D > r_max  # these layouts are buildable
+
+
+def test_an_oscillating_roller_whose_pivot_lies_inside_the_cam_is_refused_naming_pivot_distance():
+    """Before: pivot distance 30 with arm 40 was accepted (pressure angle 83.6 deg), the cam cutting the pivot."""
+    kw = {"roller_radius": 5.0, "arm": 40.0, "base_radius": 30.0}
+    with pytest.raises(GearleverError, match=r"^pivot_distance 30: the follower's pivot lies inside the cam") as exc:
+        design_cam(ROCK45, "oscillating-roller", pivot_distance=30.0, **kw)
+    text = str(exc.value)
+    assert "--" not in text and "arm 40" in text
+    # the pivot distance it names clears the cam, just below it does not
+    least = float(text.split("a pivot_distance above ")[1].split()[0])
+    design_cam(ROCK45, "oscillating-roller", pivot_distance=least * (1 + 1e-5), **kw)
+    with pytest.raises(GearleverError, match="pivot lies inside the cam"):
+        design_cam(ROCK45, "oscillating-roller", pivot_distance=least * (1 - 1e-3), **kw)
+
+
+def test_sizing_an_oscillating_roller_returns_only_layouts_whose_pivot_clears_the_cam():
+    from gearlever.cams.followers import FollowerParams
+    from gearlever.cams.followers.oscillating_roller import cam_radius_max
+
+    dims = {"roller_radius": 20.0, "arm": 100.0, "pivot_distance": 200.0}
+    rb = size_base_radius(ROCK45, "oscillating-roller", max_pressure_angle=math.radians(30), **dims)
+    cam = design_cam(ROCK45, "oscillating-roller", base_radius=rb, **dims)
+    assert cam.pressure_angle_max <= math.radians(30) * (1 + 1e-9)
+    assert dims["pivot_distance"] > cam_radius_max(FollowerParams(**dims), rb, cam.stroke)
+    # with a roller of 10 the 30 deg is met only at base radii whose cam reaches the pivot: refused, saying why
+    dims["roller_radius"] = 10.0
+    with pytest.raises(GearleverError, match=r"smallest pressure angle reached is 3\d.*\(above it the cam reaches"):
+        size_base_radius(ROCK45, "oscillating-roller", max_pressure_angle=math.radians(30), **dims)
+    # a stroke swinging the arm out so far that no base radius keeps the pivot outside
+    wide = law_from_segments(
+        "angle",
+        "deg",
+        [{"to": 180, "motion": "cycloidal", "rise": 120}, {"to": 360, "motion": "cycloidal", "rise": -120}],
+    )
+    with pytest.raises(GearleverError, match=r"no base radius keeps the follower's pivot outside the cam"):
+        size_base_radius(wide, "oscillating-roller", min_curvature_radius=0.0, **dims)
+
+
+def test_the_law_synthesis_reference_cam_is_buildable_for_every_shipped_law():
+    """cam_comparison's layout: the pivot outside the cam, the pressure angle it is sized for, no undercut."""
+    from gearlever.data import example_path
+    from gearlever.laws import load_law
+    from gearlever.synthesis.law.measure import CAM_PRESSURE_ANGLE_DEG, cam_comparison
+
+    names = sorted(p.stem for p in example_path("fourbar.toml").parent.glob("law_*.toml"))
+    assert {"law_dwell_rocker", "law_lift", "law_quick_return"} <= set(names)
+    angle_laws = 0
+    for name in names:
+        lw = load_law(example_path(f"{name}.toml"))
+        c = cam_comparison(lw)
+        assert c["available"], (name, c["note"])
+        assert c["pressure_angle_max_deg"] == pytest.approx(CAM_PRESSURE_ANGLE_DEG, abs=1e-6) and not c["undercut"]
+        kw = {k: c[k] for k in ("roller_radius", "arm", "pivot_distance") if k in c}
+        design_cam(lw, c["follower"], base_radius=c["base_radius"], **kw)  # designs again without refusal
+        if lw.output == "angle":
+            angle_laws += 1
+            assert c["pivot_distance"] > c["cam_radius_max"] and c["pivot_clearance"] > 0
+    assert angle_laws >= 1

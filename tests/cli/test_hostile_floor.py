@@ -6,8 +6,10 @@ sizes the arithmetic cannot carry (refused, never a silent 0), input files
 nested too deeply for the parser (one line, no RecursionError), a law read off
 a crank that turns fully (no KeyError), messages that name internals or read
 badly (overflow, a huge JSON integer, an open interval, articles, both ways of
-giving a law, a CAM or LAW file given as a model).  Every test runs :func:`gearlever.cli.main` in-process and checks the
-exit status and the one line on stderr.
+giving a law, a CAM or LAW file given as a model), and a follower that cannot
+be built (an oscillating roller's pivot inside the cam).  Every test runs
+:func:`gearlever.cli.main` in-process and checks the exit status and the one
+line on stderr.
 """
 
 from __future__ import annotations
@@ -348,3 +350,51 @@ def test_an_oscillating_sizing_failure_names_its_flag_and_says_undercut(files, c
     code, _, err = run(capsys, argv)
     line = one_line(err)
     assert code == 2 and "--pivot-distance 50" in line and "pressure angle reached" in line
+
+
+def test_an_oscillating_roller_whose_pivot_lies_inside_the_cam_is_refused(files, capsys):
+    """Before: --pivot-distance 30 with --arm 40 wrote a cam with an 83.6 deg pressure angle that cuts the pivot."""
+    (files / "rock.toml").write_text(ROCK)
+    argv = ["cam", "design", files / "rock.toml", "--follower", "oscillating-roller", "--roller-radius", "5"]
+    argv += ["--arm", "40", "--base-radius", "30", "--out", files / "c.toml"]
+    code, _, err = run(capsys, [*argv, "--pivot-distance", "30"])
+    line = one_line(err)
+    assert code == 2 and line.startswith(
+        "gearlever: error: --pivot-distance 30: the follower's pivot lies inside the cam"
+    )
+    assert "a --pivot-distance above" in line and "--arm 40" in line and "pivot_distance" not in line
+    assert not (files / "c.toml").exists()
+    least = float(line.split("a --pivot-distance above ")[1].split()[0])
+    code, _, err = run(capsys, [*argv, "--pivot-distance", f"{least * 1.001:.6g}"])
+    assert code == 0, err
+    # cam view of a CAM file edited so that its pivot lies inside: the [cam] key is named
+    (files / "in.toml").write_text(
+        (files / "c.toml").read_text().replace(f"pivot_distance = {least * 1.001:.6g}", "pivot_distance = 30", 1)
+    )
+    code, _, err = run(capsys, ["cam", "view", files / "in.toml", "--out", files / "v.html"])
+    line = one_line(err)
+    assert code == 2 and "in.toml: [cam] pivot_distance 30: the follower's pivot lies inside the cam" in line
+    assert not (files / "v.html").exists()
+
+
+def test_sizing_an_oscillating_roller_keeps_its_pivot_outside_the_cam(files, capsys):
+    """Sizing returns only a base radius whose cam clears the pivot, or refuses saying why, naming the flags."""
+    (files / "rock.toml").write_text(ROCK)
+    argv = ["cam", "design", files / "rock.toml", "--follower", "oscillating-roller", "--roller-radius", "10"]
+    argv += ["--arm", "100", "--max-pressure-angle", "30", "--report", files / "r.json", "--out", files / "c.toml"]
+    code, _, err = run(capsys, [*argv, "--pivot-distance", "200"])
+    assert code == 0, err
+    rep = json.loads((files / "r.json").read_text())
+    from gearlever.cams.followers import FollowerParams
+    from gearlever.cams.followers.oscillating_roller import cam_radius_max
+
+    r_max = cam_radius_max(FollowerParams(10.0, 0.0, 100.0, 200.0), rep["base_radius"], np.radians(rep["stroke"]))
+    assert rep["pressure_angle_max_deg"] <= 30 + 1e-9 and r_max < 200
+    wide = ROCK.replace("rise = 30", "rise = 120").replace("rise = -30", "rise = -120")
+    (files / "wide.toml").write_text(wide)
+    argv[2] = files / "wide.toml"
+    argv[argv.index("--report") + 1] = files / "r2.json"
+    code, _, err = run(capsys, [*argv, "--pivot-distance", "200"])
+    line = one_line(err)
+    assert code == 2 and "no base radius keeps the follower's pivot outside the cam" in line
+    assert "--pivot-distance 200" in line and "--arm 100" in line and not (files / "r2.json").exists()

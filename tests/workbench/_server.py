@@ -246,6 +246,13 @@ def guarded(driver, bench: Bench, allow: tuple[str, ...] = ()) -> Iterator[None]
     check_clean(driver, bench, allow)
 
 
+def desktop(driver) -> None:
+    """The browser as a desktop window, 1280 x 860, no touch (a test before may have emulated a phone)."""
+    driver.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+    driver.execute_cdp_cmd("Emulation.setTouchEmulationEnabled", {"enabled": False})
+    driver.set_window_size(1280, 860)
+
+
 def open_bench(driver, bench: Bench, fragment: str = "", timeout: float = 30.0) -> None:
     """Open the page with the token (and a URL fragment) and wait until ``workbench.state().ready``."""
     driver.get(bench.page_url + (f"#{fragment}" if fragment else ""))

@@ -143,3 +143,46 @@ def test_workbench_port_in_use_exits_2_naming_it(tmp_path):
 def test_workbench_is_a_registered_command():
     r = subprocess.run([PYTHON, "-m", "gearlever", "workbench", "--help"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and "--no-browser" in r.stdout and "--scheduler" in r.stdout
+
+
+# The driver of the test below: Ctrl-C ignored as a background job of a non-interactive shell inherits it (CI's
+# ``make test``), and SIGINT sent to itself the moment the URL line is written, before anything else runs.
+_SIGINT_ON_THE_LINE = """
+import os, signal, sys
+signal.signal(signal.SIGINT, signal.SIG_IGN)
+class Out:
+    def __init__(self, f):
+        self.f = f
+    def write(self, text):
+        n = self.f.write(text)
+        if text.startswith("workbench: http"):
+            self.f.flush()
+            os.kill(os.getpid(), signal.SIGINT)
+        return n
+    def __getattr__(self, name):
+        return getattr(self.f, name)
+sys.stdout = Out(sys.stdout)
+from gearlever.cli import main
+sys.exit(main(["workbench", sys.argv[1], "--no-browser"]))
+"""
+
+
+def test_workbench_stops_on_ctrl_c_sent_as_soon_as_its_line_is_printed_even_when_ctrl_c_was_ignored(tmp_path):
+    """The line is printed once the server's own signal handlers are in place, so a Ctrl-C right after it stops it.
+
+    Before: the line came before uvicorn installed its handlers; in a process started with SIGINT ignored (a
+    background job of a non-interactive shell, as in a full test run), a Ctrl-C in that window was lost and
+    the bench ran on; after the handlers, it ended with exit 0 and nothing on stderr (uvicorn raised the
+    signal again through the restored "ignore").  Now: 130 and one line.
+    """
+    r = subprocess.run(
+        [PYTHON, "-c", _SIGINT_ON_THE_LINE, str(tmp_path)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=dict(os.environ, PYTHONUNBUFFERED="1"),
+    )
+    assert r.stdout.startswith("workbench: http://127.0.0.1:"), r.stderr
+    assert r.returncode == 130, r.stderr
+    assert r.stderr.strip().splitlines() == ["gearlever: interrupted"], r.stderr

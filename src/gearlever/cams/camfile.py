@@ -175,7 +175,9 @@ def load_cam(path, points: int | None = None) -> CamDesign:
     try:
         design = design_cam(law, cam["follower"], **dims, points=n, allow_undercut=True)
     except GearleverError as exc:
-        text = str(exc)
+        from gearlever.cams.followers._base import Unbuildable
+
+        text = exc.named({n: f"[cam] {n}" for n in exc.names}) if isinstance(exc, Unbuildable) else str(exc)
         raise GearleverError(text if text.startswith(source) else f"{source}: {text}") from None
     if "units" not in cam or cam["units"] == design.units:
         return design

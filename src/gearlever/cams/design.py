@@ -330,14 +330,19 @@ def _check_needs(kind, p: FollowerParams) -> None:
             need(p, name, _FLAGS[name], kind.name)
 
 
-def _assess(kind, p, base_radius, theta, s, v, a, stroke):
-    """(why, arrays): why ``base_radius`` cannot carry the stroke (None when it can), and the design arrays."""
+def _assess(kind, p, base_radius, theta, s, v, a, stroke, strict: bool = False):
+    """(why, arrays): why ``base_radius`` cannot carry the stroke (None when it can), and the design arrays.
+
+    ``strict``: a layout that cannot be built (:class:`Unbuildable`) is raised, not returned as a why.
+    """
     if not math.isfinite(base_radius) or base_radius <= 0:
         return f"base radius must be a positive finite length, got {base_radius!r}", None
     try:
         kind.check(p, base_radius, stroke)
     except Unbuildable:
-        raise
+        if strict:
+            raise
+        return "the follower's pivot lies inside the cam", None
     except GearleverError as exc:
         return str(exc), None
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -349,14 +354,23 @@ def _assess(kind, p, base_radius, theta, s, v, a, stroke):
 
 
 def _search(pred, lo: float, hi: float, what: str) -> float:
-    """Smallest x in (lo, hi) where pred(x) holds, assuming it holds on [x*, hi): grid scan then bisection."""
+    """Smallest x in (lo, hi) where pred(x) holds, assuming it holds on [x*, x_top): grid scan then bisection.
+
+    The scan is geometric from ``lo`` (fine near the smallest radii); when it finds nothing, a second scan
+    fine near ``hi`` looks for a window just below the upper bound (an oscillating roller's pressure angle
+    falls as the base radius grows towards the one at which the cam reaches the pivot).
+    """
     span = hi - lo
-    grid = lo + span * np.geomspace(1e-9, 1.0, 91)
-    prev = lo
-    for x in grid:
-        if pred(float(x)):
-            break
-        prev = float(x)
+    unit = np.geomspace(1e-9, 1.0, 91)
+    for grid in (lo + span * unit, (hi - span * unit)[::-1]):
+        prev = lo
+        for x in grid:
+            if pred(float(x)):
+                break
+            prev = float(x)
+        else:
+            continue
+        break
     else:
         raise GearleverError(f"no base radius up to {hi:g} meets {what}")
     a, b = prev, float(x)
@@ -491,7 +505,10 @@ def _no_radius(kind, p, lo: float, hi: float, wanted: str, bounds, arrays) -> st
     if kind.bounded_by and "--" not in text:
         flags = " and ".join(f"--{n.replace('_', '-')} {getattr(p, n):g}" for n in kind.bounded_by)
         larger = kind.bounded_by[0].replace("_", "-")
-        text += f"; the base radius must stay below {hi:.6g}, set by {flags}: give a larger --{larger}"
+        text += (
+            f"; the base radius must stay below {hi:.6g}{kind.bound_note(p, stroke, hi)}, set by {flags}: "
+            f"give a larger --{larger}"
+        )
     return text
 
 
@@ -555,7 +572,7 @@ def design_cam(
         raise GearleverError(f"base_radius must be a positive finite length, got {rb!r}")
     rb = float(rb)
     stroke = float(s.max() - s.min())
-    why, r = _assess(kind, p, rb, theta, s, v, a, stroke)
+    why, r = _assess(kind, p, rb, theta, s, v, a, stroke, strict=True)
     if why is not None:
         if rb > 0 and math.isfinite(rb):
             try:

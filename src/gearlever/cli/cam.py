@@ -145,7 +145,7 @@ def _design(args) -> int:
                 points=min(args.points, SIZING_POINTS),
             )
         except GearleverError as exc:
-            raise GearleverError(_points_flag(str(exc), min(args.points, SIZING_POINTS))) from None
+            raise GearleverError(_points_flag(_flagged(exc), min(args.points, SIZING_POINTS))) from None
     if args.base_radius is None and sized is None:
         raise GearleverError(
             "--base-radius is required (or give --max-pressure-angle or --min-curvature-radius to size it)"
@@ -154,7 +154,7 @@ def _design(args) -> int:
     try:
         cam = design_cam(law, kind.name, base_radius=rb, **dims, points=args.points)
     except GearleverError as exc:
-        text = _points_flag(str(exc), args.points)
+        text = _points_flag(_flagged(exc), args.points)
         if text.startswith(("undercut", "base radius")):
             who = "--base-radius" if args.base_radius is not None else "the sized base radius"
             roller = f" with --roller-radius {args.roller_radius:g}" if args.roller_radius else ""
@@ -231,6 +231,15 @@ def _design(args) -> int:
     lines.append(f"cam               {args.out}")
     emit("\n".join(lines))
     return 0
+
+
+def _flagged(exc: GearleverError) -> str:
+    """The library's refusal with the dimensions it names called by their flags."""
+    from gearlever.cams.followers._base import Unbuildable
+
+    if isinstance(exc, Unbuildable):
+        return exc.named({n: "--" + n.replace("_", "-") for n in exc.names})
+    return str(exc)
 
 
 def _points_flag(text: str, points: int) -> str:

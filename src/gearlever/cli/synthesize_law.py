@@ -240,8 +240,9 @@ def _run(args) -> int:
     ]
     cam = rep["cam"]
     if cam["available"]:
+        pivot = f", pivot at {cam['pivot_distance']:.4g} (arm {cam['arm']:.4g})" if "pivot_distance" in cam else ""
         lines.append(
-            f"cam ({cam['follower']}) base radius {cam['base_radius']:.4g}, pressure angle max "
+            f"cam ({cam['follower']}) base radius {cam['base_radius']:.4g}{pivot}, pressure angle max "
             f"{cam['pressure_angle_max_deg']:.4g} deg (transmission {cam['transmission_min_deg']:.4g} deg), exact"
         )
     teeth = res.details.get("teeth")

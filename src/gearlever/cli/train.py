@@ -9,21 +9,13 @@ the library are reported with the user's flag names.
 
 from __future__ import annotations
 
+from gearlever import trains  # the package face (its caps here; its functions are imported where called)
 from gearlever._progress import TerminalProgress
 from gearlever.cli._common import capped_int, emit, flagged, to_json
 from gearlever.errors import GearleverError
-from gearlever.trains._caps import (
-    DEFAULT_LIMIT,
-    DEFAULT_MAX_SPACE,
-    MAX_KEEP,
-    MAX_LIMIT,
-    MAX_PAIRS,
-    MAX_SPACE_CAP,
-    MAX_TEETH,
-)
 
 #: Solutions listed by ``train search`` without ``--limit`` or ``--all``.
-DEFAULT_LISTED = DEFAULT_LIMIT
+DEFAULT_LISTED = trains.DEFAULT_LIMIT
 #: Tooth range of ``train search`` when not given: the text's least pinion for
 #: epicycloidal teeth (12) to 60, the range of Sandgren's gear-train problem.
 SEARCH_MIN_TEETH, SEARCH_MAX_TEETH = 12, 60
@@ -74,15 +66,24 @@ def register(sub) -> None:
         default="involute",
         help="sets the least tooth number: 24, 12, 15 (default involute)",
     )
-    g.add_argument("--min-teeth", type=capped_int(MAX_TEETH), help=f"least tooth number t (at most {MAX_TEETH:,})")
-    d.add_argument(
-        "--max-teeth", type=capped_int(MAX_TEETH), help=f"largest tooth number (default 6t, at most {MAX_TEETH:,})"
+    g.add_argument(
+        "--min-teeth", type=capped_int(trains.MAX_TEETH), help=f"least tooth number t (at most {trains.MAX_TEETH:,})"
     )
     d.add_argument(
-        "--pairs", type=capped_int(MAX_PAIRS), help=f"number of pairs (default: the text's bounds; at most {MAX_PAIRS})"
+        "--max-teeth",
+        type=capped_int(trains.MAX_TEETH),
+        help=f"largest tooth number (default 6t, at most {trains.MAX_TEETH:,})",
     )
     d.add_argument(
-        "--keep", type=capped_int(MAX_KEEP), default=5, help=f"designs listed (default 5, at most {MAX_KEEP:,})"
+        "--pairs",
+        type=capped_int(trains.MAX_PAIRS),
+        help=f"number of pairs (default: the text's bounds; at most {trains.MAX_PAIRS})",
+    )
+    d.add_argument(
+        "--keep",
+        type=capped_int(trains.MAX_KEEP),
+        default=5,
+        help=f"designs listed (default 5, at most {trains.MAX_KEEP:,})",
     )
     d.add_argument(
         "--prefer",
@@ -101,34 +102,40 @@ def register(sub) -> None:
         help="target ratio: a positive number or B/C, B and C positive integers or decimals",
     )
     s.add_argument(
-        "--pairs", type=capped_int(MAX_PAIRS), required=True, help=f"number of pairs K (at most {MAX_PAIRS})"
+        "--pairs",
+        type=capped_int(trains.MAX_PAIRS),
+        required=True,
+        help=f"number of pairs K (at most {trains.MAX_PAIRS})",
     )
     s.add_argument(
         "--min-teeth",
-        type=capped_int(MAX_TEETH),
+        type=capped_int(trains.MAX_TEETH),
         default=SEARCH_MIN_TEETH,
         help=f"least tooth number (default {SEARCH_MIN_TEETH})",
     )
     s.add_argument(
         "--max-teeth",
-        type=capped_int(MAX_TEETH),
+        type=capped_int(trains.MAX_TEETH),
         default=SEARCH_MAX_TEETH,
-        help=f"largest tooth number (default {SEARCH_MAX_TEETH}, at most {MAX_TEETH:,})",
+        help=f"largest tooth number (default {SEARCH_MAX_TEETH}, at most {trains.MAX_TEETH:,})",
     )
     s.add_argument("--metric", choices=("absolute", "relative"), default="absolute")
     s.add_argument(
         "--limit",
-        type=capped_int(MAX_LIMIT),
+        type=capped_int(trains.MAX_LIMIT),
         default=None,
-        help=f"optimal sets listed (default {DEFAULT_LISTED}, at most {MAX_LIMIT:,}); the count is always complete",
+        help=(
+            f"optimal sets listed (default {DEFAULT_LISTED}, at most {trains.MAX_LIMIT:,}); "
+            "the count is always complete"
+        ),
     )
-    s.add_argument("--all", action="store_true", help=f"list optimal sets up to the cap of {MAX_LIMIT:,}")
+    s.add_argument("--all", action="store_true", help=f"list optimal sets up to the cap of {trains.MAX_LIMIT:,}")
     s.add_argument(
         "--max-space",
-        type=capped_int(MAX_SPACE_CAP),
+        type=capped_int(trains.MAX_SPACE_CAP),
         default=None,
         help=f"refuse searches with more tooth multisets per side than this "
-        f"(default {DEFAULT_MAX_SPACE:,}, at most {MAX_SPACE_CAP:,})",
+        f"(default {trains.DEFAULT_MAX_SPACE:,}, at most {trains.MAX_SPACE_CAP:,})",
     )
     s.add_argument("--format", choices=("table", "json"), default="table")
     s.add_argument("--out", help="write to this file instead of stdout")
@@ -171,8 +178,7 @@ def _design_lines(d) -> str:
 
 
 def _design(args) -> int:
-    from gearlever.trains.continued import parse_ratio
-    from gearlever.trains.design import design_train
+    from gearlever.trains import design_train, parse_ratio
 
     try:
         res = design_train(
@@ -248,10 +254,9 @@ def _exact_record(best) -> dict:
 
 
 def _search(args) -> int:
-    from gearlever.trains.continued import parse_ratio
-    from gearlever.trains.search import search_best
+    from gearlever.trains import parse_ratio, search_best
 
-    limit = MAX_LIMIT if args.all else (args.limit or DEFAULT_LISTED)
+    limit = trains.MAX_LIMIT if args.all else (args.limit or DEFAULT_LISTED)
     progress = TerminalProgress("train search")
     try:
         res = search_best(
@@ -260,7 +265,7 @@ def _search(args) -> int:
             args.min_teeth,
             args.max_teeth,
             metric=args.metric,
-            max_space=args.max_space or DEFAULT_MAX_SPACE,
+            max_space=args.max_space or trains.DEFAULT_MAX_SPACE,
             limit=limit,
             progress=progress,
         )
@@ -287,7 +292,9 @@ def _search(args) -> int:
     if len(res.solutions) < res.n_solutions:
         more = res.n_solutions - len(res.solutions)
         hint = (
-            f"--limit up to {MAX_LIMIT:,}" if len(res.solutions) < MAX_LIMIT else f"listing is capped at {MAX_LIMIT:,}"
+            f"--limit up to {trains.MAX_LIMIT:,}"
+            if len(res.solutions) < trains.MAX_LIMIT
+            else f"listing is capped at {trains.MAX_LIMIT:,}"
         )
         lines.append(f"  ... {more:,} more, counted but not listed ({hint}; use --all for the cap)")
     emit("\n".join(lines), args.out)

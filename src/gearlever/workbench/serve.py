@@ -7,7 +7,9 @@ requests in flight (a file being saved is renamed into place or not at
 all: :mod:`gearlever.workbench.files` writes atomically), the app's shutdown
 stops the worker processes and any job, and uvicorn raises the signal again
 once it is done, so the command exits as every gearlever command does on
-that signal (130 for Ctrl-C, 143 for SIGTERM, one line on stderr).
+that signal (130 for Ctrl-C, 143 for SIGTERM, one line on stderr).  The URL
+line is printed once uvicorn has started, its signal handlers in place: a
+signal sent after the line is seen always stops the bench.
 """
 
 from __future__ import annotations
@@ -98,33 +100,59 @@ def serve(
         if host not in _LOOPBACK:
             print(WARNING_HOST.format(host=host), file=sys.stderr, flush=True)
         line = url_line(host, bound, token, open_name)
-        print(line, flush=True)
-        if browser:
-            import webbrowser
 
-            try:
-                webbrowser.open(line.split(" ", 1)[1])
-            except Exception:  # noqa: BLE001 - no browser: the printed URL is the way in
-                pass
+        def announce() -> None:
+            print(line, flush=True)
+            if browser:
+                import webbrowser
+
+                try:
+                    webbrowser.open(line.split(" ", 1)[1])
+                except Exception:  # noqa: BLE001 - no browser: the printed URL is the way in
+                    pass
+
         config = uvicorn.Config(
             app, log_level="warning", access_log=False, lifespan="on", timeout_graceful_shutdown=10, server_header=False
         )
-        server = uvicorn.Server(config)
+        server = _announcing_server(uvicorn.Server, announce)(config)
         server.run(sockets=[sock])
         _end_as_signalled(getattr(server, "_captured_signals", []))
     finally:
         sock.close()
 
 
+def _announcing_server(base, announce):
+    """A uvicorn server class that calls ``announce()`` (print the URL) once it has started.
+
+    uvicorn installs its SIGINT and SIGTERM handlers (``capture_signals``)
+    before its start-up and the app's lifespan, and restores the ones it found
+    when it is done; the URL line is printed only after start-up, so every
+    Ctrl-C or SIGTERM sent once the line is seen is uvicorn's to handle.
+    Printed earlier, a signal in between met the handlers the process had at
+    start: with Ctrl-C ignored (a background job of a non-interactive shell
+    inherits that), it was lost and the bench ran on.
+    """
+
+    class AnnouncingServer(base):
+        async def startup(self, sockets=None) -> None:
+            await super().startup(sockets=sockets)
+            if self.started and not self.should_exit:
+                announce()
+
+    return AnnouncingServer
+
+
 def _end_as_signalled(captured) -> None:
     """End as the signal that stopped the server, if uvicorn's raising it again did not already.
 
     uvicorn raises a captured signal again once it has shut down, through
-    the handler it restored; were that raise not delivered as an exception
-    here (observed once in a loaded test run: exit 0, nothing on stderr), the
-    command would end as if nobody had stopped it.  The handler is called
-    once more, and if it returns, Ctrl-C ends as :class:`KeyboardInterrupt`
-    (exit 130) and SIGTERM as exit 143.
+    the handler it restored.  When the process started with Ctrl-C ignored
+    (a background job of a non-interactive shell inherits SIG_IGN, as in a
+    full test run), gearlever leaves that disposition alone, uvicorn restores
+    it, and the raise does nothing: the command would end with exit 0 and
+    nothing on stderr, as if nobody had stopped it (tested with SIGINT
+    ignored).  The handler is called once more, and if it returns, Ctrl-C
+    ends as :class:`KeyboardInterrupt` (exit 130) and SIGTERM as exit 143.
     """
     import signal
 

@@ -18,7 +18,26 @@ from gearlever.errors import GearleverError, a
 
 
 class Unbuildable(GearleverError):
-    """A follower whose dimensions cannot be built whatever the base radius (its arm's pivot inside the cam)."""
+    """A follower layout that cannot be built (an oscillating roller's pivot inside the cam it follows).
+
+    The message names the dimensions by their parameter names (``pivot_distance``); :meth:`named` says it with
+    the names of another face: the command line's flags or a CAM file's ``[cam]`` keys.
+
+    Examples
+    --------
+    >>> e = Unbuildable("{pivot_distance} 30 lies inside the cam", ["pivot_distance"])
+    >>> str(e), e.named({"pivot_distance": "--pivot-distance"})
+    ('pivot_distance 30 lies inside the cam', '--pivot-distance 30 lies inside the cam')
+    """
+
+    def __init__(self, template: str, names) -> None:
+        self.template = template
+        self.names = tuple(names)
+        super().__init__(self.named({}))
+
+    def named(self, names: dict) -> str:
+        """The message with each dimension called ``names[dimension]`` (its parameter name when absent)."""
+        return self.template.format(**{n: names.get(n, n) for n in self.names})
 
 
 @dataclass(frozen=True)
@@ -80,6 +99,10 @@ class FollowerKind:
     def base_radius_bounds(self, p: FollowerParams, stroke: float) -> tuple[float, float]:
         """The open interval of base radii the kind can assemble with."""
         raise NotImplementedError
+
+    def bound_note(self, p: FollowerParams, stroke: float, hi: float) -> str:
+        """Why the base radius must stay below ``hi`` when it is not plain assembly (text after the number)."""
+        return ""
 
 
 class RollerFollower(FollowerKind):

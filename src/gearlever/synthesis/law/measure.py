@@ -347,10 +347,37 @@ def law_report(res, *, degrees: bool = True) -> dict:
     }
 
 
-#: The default cam of the comparison: a roller follower sized for this largest pressure angle (deg), with
-#: arm :data:`~gearlever.synthesis.law.fourbar.SIZE`, pivot at twice the arm and a roller of a tenth of it
-#: (oscillating, for an angle law), or a roller of a fifth of the stroke (translating, for a displacement law).
+#: The default cam of the comparison: a roller follower sized for this largest pressure angle (deg).  Oscillating,
+#: for an angle law: arm :data:`~gearlever.synthesis.law.fourbar.SIZE`, a roller of a quarter of it and the first
+#: pivot distance of :data:`CAM_PIVOT_DISTANCES` (times the arm) at which a base radius meets the pressure angle
+#: with the pivot outside the cam; translating, for a displacement law: a roller of a fifth of the stroke.
 CAM_PRESSURE_ANGLE_DEG = 30.0
+#: Pivot distances (times the arm) the comparison's oscillating roller follower tries, in turn.
+CAM_PIVOT_DISTANCES = (2.0, 2.5, 3.0, 4.0, 6.0, 8.0)
+
+
+def _cam_layout(law, pmax: float):
+    """(follower, dims, base radius) of the comparison's cam, or the last refusal (a GearleverError)."""
+    from gearlever.cams import size_base_radius
+    from gearlever.synthesis.law.fourbar import SIZE
+
+    if law.output != "angle":
+        dims = {"roller_radius": law.scale / 5}
+        return "translating-roller", dims, size_base_radius(law, "translating-roller", max_pressure_angle=pmax, **dims)
+    # the pivot must stay outside the cam (cams.followers.oscillating_roller): sizing only returns such layouts,
+    # and a layout whose pressure angle cannot be met below that bound is refused, so the next distance is tried
+    last = None
+    for k in CAM_PIVOT_DISTANCES:
+        dims = {"roller_radius": SIZE / 4, "arm": SIZE, "pivot_distance": k * SIZE}
+        try:
+            return (
+                "oscillating-roller",
+                dims,
+                size_base_radius(law, "oscillating-roller", max_pressure_angle=pmax, **dims),
+            )
+        except GearleverError as exc:
+            last = exc
+    raise GearleverError(f"{last} (pivot distances tried: {', '.join(f'{k:g}' for k in CAM_PIVOT_DISTANCES)} arms)")
 
 
 def cam_comparison(law) -> dict:
@@ -359,26 +386,32 @@ def cam_comparison(law) -> dict:
     A cam meets its law exactly (its profile is computed from it), so the
     comparison with a linkage is of size, pressure angle (against the
     linkage's transmission angle: ``90 deg - pressure angle``) and curvature.
+    For an angle law the follower is an oscillating roller whose pivot lies
+    outside the cam (the cam's largest radius ``cam_radius_max`` below the
+    pivot distance, ``pivot_clearance`` the difference): the layout is the
+    first of :data:`CAM_PIVOT_DISTANCES` where sizing meets the pressure angle.
     Returns ``{"available": False, "note": ...}`` when the cam cannot be
-    made (a law that does not return to its start, no base radius meeting
-    the pressure angle).
+    made (a law that does not return to its start, no layout meeting the
+    pressure angle).
+
+    Examples
+    --------
+    >>> from gearlever.data import example_path
+    >>> from gearlever.laws import load_law
+    >>> c = cam_comparison(load_law(example_path("law_dwell_rocker.toml")))  # 45 deg swing, 120 deg dwell
+    >>> c["follower"], c["pivot_distance"], round(c["pressure_angle_max_deg"], 6), c["pivot_clearance"] > 0
+    ('oscillating-roller', 250.0, 30.0, True)
     """
-    from gearlever.cams import design_cam, size_base_radius
-    from gearlever.synthesis.law.fourbar import SIZE
+    from gearlever.cams import design_cam
 
     pmax = math.radians(CAM_PRESSURE_ANGLE_DEG)
-    if law.output == "angle":
-        follower = "oscillating-roller"
-        dims = {"roller_radius": SIZE / 10, "arm": SIZE, "pivot_distance": 2 * SIZE}
-    else:
-        follower = "translating-roller"
-        dims = {"roller_radius": law.scale / 5}
+    follower = "oscillating-roller" if law.output == "angle" else "translating-roller"
     try:
-        rb = size_base_radius(law, follower, max_pressure_angle=pmax, **dims)
+        follower, dims, rb = _cam_layout(law, pmax)
         cam = design_cam(law, follower, base_radius=rb, **dims)
     except GearleverError as exc:
         return {"available": False, "follower": follower, "note": str(exc)}
-    return {
+    out = {
         "available": True,
         "follower": follower,
         **{k: float(v) for k, v in dims.items()},
@@ -390,3 +423,11 @@ def cam_comparison(law) -> dict:
         "error_max": 0.0,
         "note": f"sized for a largest pressure angle of {CAM_PRESSURE_ANGLE_DEG:g} deg; a cam meets its law exactly",
     }
+    if follower == "oscillating-roller":
+        from gearlever.cams.followers import FollowerParams
+        from gearlever.cams.followers.oscillating_roller import cam_radius_max
+
+        r_max = cam_radius_max(FollowerParams(**dims), cam.base_radius, cam.stroke)
+        out["cam_radius_max"] = r_max
+        out["pivot_clearance"] = dims["pivot_distance"] - r_max
+    return out
