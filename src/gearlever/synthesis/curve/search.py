@@ -49,6 +49,7 @@ hand-made descriptor in place of a learned one.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
 import time
@@ -60,6 +61,7 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.mechanism.linkage import linkage_from_dict
+from gearlever.synthesis import _dask
 from gearlever.synthesis.curve import library as _library
 from gearlever.synthesis.curve.library import Library, build_library, cached_library, descriptor
 from gearlever.synthesis.curve.score import (
@@ -121,6 +123,10 @@ MIN_BUDGET = 1000
 MAX_BUDGET = 10**7
 MAX_DESIGNS = 1000
 MAX_TIME = 86_400.0
+#: Most local processes by default (:func:`default_workers`).
+MAX_DEFAULT_WORKERS = 2
+#: Most local processes (more ``workers`` share them; the preselection has 50 tasks and the starts 4).
+MAX_PROCESSES = 32
 
 
 def _target_rms(target) -> float:
@@ -147,7 +153,7 @@ def retrieve(library: Library, target, starts: int = STARTS, shortlist: int = 40
     for e in order:
         topo = library.topologies[int(library.entry_topology[e])]
         x0 = library.sketches[e] * (trms / library.rms[e])
-        d, m = evaluate(topo, x0[None], target, keep=None)
+        d, m = evaluate(topo, x0[None], target)
         scored.append((float(d[0]), int(e), topo, x0))
     scored.sort(key=lambda s: (s[0], s[1]))
     out, seen = [], set()
@@ -190,7 +196,28 @@ def _best_alignment(tc, curve) -> tuple[int, float]:
     return a, float(np.angle(z[a]))
 
 
-def _residuals(topo: Topology, tc, a: int, material_weight: float):
+def _gap_weights(tc, curve, a: int, angle: float) -> np.ndarray:
+    """Weights ``1 / sqrt(|g_k|)`` of the point gaps ``g_k`` of a curve at alignment ``a`` and rotation ``angle``.
+
+    Least squares of the weighted gaps ``w_k g_k`` minimises ``sum |g_k|^2 / |g_k| = sum |g_k|`` at the
+    current design: the challenge's distance (a mean of gaps, not of squared gaps), by iteratively
+    reweighted least squares (each round of :func:`refine` weighs again).  Gaps below a thousandth of
+    the mean count as that (no infinite weight).
+    """
+    from gearlever.synthesis.curve.score import _alignment_indices
+
+    n = tc.z.shape[0]
+    c = resample(curve[None], n)[0]
+    z = c[:, 0] + 1j * c[:, 1]
+    z = (z - z.mean()) / tc.scale
+    g = np.abs(np.exp(1j * angle) * z[_alignment_indices(n)[a]] - tc.z)
+    if not np.isfinite(g).all():
+        return np.ones(n)
+    w = 1.0 / np.sqrt(np.maximum(g, 1e-3 * max(float(g.mean()), 1e-300)))
+    return w / math.sqrt(float((w**2).mean()))
+
+
+def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None):
     """Residuals of the distance at alignment ``a`` and their Jacobian; parameters: the sketch, then an angle.
 
     The residuals are the gaps between the target's points and the design's
@@ -209,7 +236,7 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
     perm = _alignment_indices(n)[a]
     s = np.linspace(0.0, 1.0, n)
     lam = math.sqrt(material_weight)
-    norm = 1.0 / math.sqrt(n)
+    norm = (1.0 if weights is None else np.asarray(weights, dtype=float)) / math.sqrt(n)
     extra = 1 if lam else 0
 
     def fun(q):
@@ -255,7 +282,7 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
         dz = dp[:, 0] + 1j * dp[:, 1]
         dz = (dz - dz.mean(0)) / tc.scale
         e = np.exp(1j * q[-1])
-        R = norm * np.column_stack([e * dz[perm], 1j * e * z[perm]])
+        R = np.reshape(norm, (-1, 1)) * np.column_stack([e * dz[perm], 1j * e * z[perm]])
         out = np.concatenate([R.real, R.imag])
         if lam:
             ed = topo.edges
@@ -271,7 +298,14 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
 
 
 def refine(
-    topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material_weight: float = 0.0, walk: bool = True
+    topo: Topology,
+    x0,
+    target,
+    rounds: int = 3,
+    nfev: int = 20,
+    material_weight: float = 0.0,
+    walk: bool = True,
+    l1: bool = True,
 ):
     """Least-squares refinement of the distance of one sketch (analytic Jacobian); returns (x0, d, m, evals).
 
@@ -303,7 +337,7 @@ def refine(
 
     tc = target if isinstance(target, _Target) else _target(target)
     x0 = np.asarray(x0, dtype=float)
-    best_d, best_m = (float(v[0]) for v in evaluate(topo, x0[None], tc.raw, keep=None))
+    best_d, best_m = (float(v[0]) for v in evaluate(topo, x0[None], tc.raw))
     m_start = best_m
     evals = 1
     if not math.isfinite(best_d):
@@ -313,15 +347,16 @@ def refine(
     weight = max(material_weight, MATERIAL_FLOOR)
     n = tc.z.shape[0]
 
-    def solve(a, angle):
-        fun, jac = _residuals(topo, tc, a, weight)
+    def solve(a, angle, curve):
+        gw = _gap_weights(tc, curve, a, angle) if l1 and not material_weight else None
+        fun, jac = _residuals(topo, tc, a, weight, gw)
         q0 = np.append(best.ravel(), angle)
         try:
             res = least_squares(fun, q0, jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
         except (ValueError, np.linalg.LinAlgError):
             return None, math.inf, math.inf, 0
         cand = res.x[:-1].reshape(N, 2)
-        d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw, keep=None))
+        d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw))
         if not material_weight:
             better = d < best_d - 1e-9 and m <= MAX_GROWTH * m_start
         else:
@@ -332,7 +367,7 @@ def refine(
     for _ in range(rounds):
         curve = simulate(best[None], topo.plan)[0, topo.target]
         a, angle = _best_alignment(tc, curve)
-        cand, d, m, e = solve(a, angle)
+        cand, d, m, e = solve(a, angle, curve)
         evals += e
         if cand is None:
             break
@@ -344,7 +379,7 @@ def refine(
                 b = (a + step) % n if a < n else n + (a - n + step) % n
                 curve = simulate(best[None], topo.plan)[0, topo.target]
                 angle = _alignment_angle(tc, curve, b)
-                cand, d, m, e = solve(b, angle)
+                cand, d, m, e = solve(b, angle, curve)
                 evals += e
                 if cand is None:
                     break
@@ -470,7 +505,6 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         cands.append((t2, x2, d2))
     cands.sort(key=lambda c: c[2])
     topo, x0, _ = cands[0]
-    designs = []
     # material-weighted refinement, continued from one weight to the next: a first front
     chain = [x0]
     x = x0
@@ -485,7 +519,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         topo, np.array(chain), target, max(POPULATION, evals - used), int(rng.integers(2**31)), deadline
     )
     Xall = np.concatenate([X, np.array(chain)])
-    d, m = evaluate(topo, Xall, target, keep=None)
+    d, m = evaluate(topo, Xall, target)
     used += len(Xall)
     front = _nondominated(d, m)
     # polish the closest designs: more rounds of the distance-only refinement
@@ -498,7 +532,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         polished.append(xp)
     if polished:
         Xall = np.concatenate([Xall, np.array(polished)])
-        d, m = evaluate(topo, Xall, target, keep=None)
+        d, m = evaluate(topo, Xall, target)
         used += len(Xall)
         front = _nondominated(d, m)
     # members spread over material, refined with a material-weighted objective for a few weights: fill the front
@@ -514,16 +548,15 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
                 extra.append(xw)
     if extra:
         Xall = np.concatenate([Xall, np.array(extra)])
-        d, m = evaluate(topo, Xall, target, keep=None)
+        d, m = evaluate(topo, Xall, target)
         used += len(Xall)
         front = _nondominated(d, m)
-    for i in front:
-        designs.append((float(d[i]), float(m[i]), Xall[i]))
-        for sc in SCALES:
-            xs = Xall[i] * sc
-            ds, ms = evaluate(topo, xs[None], target, keep=None)
-            used += 1
-            designs.append((float(ds[0]), float(ms[0]), xs))
+    # each front member and its scaled copies, evaluated in one batch
+    X = Xall[front][:, None] * np.concatenate([[1.0], SCALES])[None, :, None, None]
+    X = X.reshape(-1, topo.n, 2)
+    ds, ms = evaluate(topo, X, target)
+    used += len(X) - front.size
+    designs = list(zip(ds.tolist(), ms.tolist(), X))
     td = {
         "n": topo.n,
         "edges": topo.edges.tolist(),
@@ -535,16 +568,34 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
 
 
 def _pick_starts(refined, count: int) -> list:
-    """Half the starts by the area a design alone dominates (distance and material), half by distance."""
+    """Half the starts by hypervolume (greedily: the design adding most to the chosen ones'), half by distance.
+
+    Taken in turn; the greedy hypervolume picks spread the starts over
+    material (a low-material design adds area where the closest ones do
+    not), ties (no area added) go by distance, then retrieval order.
+    """
     ok = [r for r in refined if math.isfinite(r[0])]
-    by_area = sorted(ok, key=lambda r: (-max(0.0, MAX_DISTANCE - r[0]) * max(0.0, MAX_MATERIAL - r[1]), r[0], r[2]))
     by_distance = sorted(ok, key=lambda r: (r[0], r[2]))
-    out, seen = [], set()
-    for a, b in zip(by_area, by_distance):
-        for r in (a, b):
-            if r[2] not in seen and len(out) < count:
-                seen.add(r[2])
-                out.append((r[3], r[4]))
+    out, seen, points = [], set(), []
+
+    def take(r):
+        seen.add(r[2])
+        points.append((r[0], r[1]))
+        out.append((r[3], r[4]))
+
+    while len(out) < count and len(seen) < len(ok):
+        base = hypervolume(np.array(points)) if points else 0.0
+        gain = [
+            (hypervolume(np.array([*points, (r[0], r[1])])) - base, -r[0], -r[2], n)
+            for n, r in enumerate(ok)
+            if r[2] not in seen
+        ]
+        take(ok[max(gain)[3]])
+        for r in by_distance:
+            if r[2] not in seen:
+                if len(out) < count:
+                    take(r)
+                break
     return out
 
 
@@ -738,8 +789,11 @@ def synthesize_curve(
         Seconds: the search stops on the clock (not reproducible).
     seed : int
     workers, scheduler
-        Local threads (an int), a map-like, or the address of a dask.distributed scheduler
-        (:func:`gearlever.synthesis.driver.multistart`).
+        Local processes (an int; 1 runs in this process; default :func:`default_workers`, the cores this
+        process may use, at most :data:`MAX_DEFAULT_WORKERS`), a map-like, or the address of a
+        dask.distributed scheduler (:func:`gearlever.synthesis.driver.multistart`).  The designs are the
+        same for any of them.  Processes are started by ``spawn``: a script calling this with more than
+        one worker needs the ``if __name__ == "__main__":`` guard.
     progress : callable, optional
         ``progress(label, done, total)``.
     library_size : int, optional
@@ -804,31 +858,59 @@ def synthesize_curve(
     shortlist = retrieve(lib, target, PRESELECT)
     if not shortlist:
         raise GearleverError("target: no library mechanism traces a curve of this kind")
-    # a short refinement of every retrieved entry; the best refined ones are the starts
-    tc = _target(target)
-    refined = []
-    for n, (topo, x0) in enumerate(shortlist):
-        if refined and time_limit is not None and time.monotonic() > t0 + 0.5 * float(time_limit):
-            break
-        x1, d1, m1, _ = refine(topo, x0, tc, rounds=3, nfev=15)
-        refined.append((d1, m1, n, topo, x1))
+    with _local_pool(workers, scheduler) as pool:
+        return _search(
+            target,
+            user_target,
+            scoring,
+            centre,
+            k,
+            shortlist,
+            lib,
+            t0,
+            time_limit,
+            budget,
+            int(max_joints),
+            int(designs),
+            int(seed),
+            pool if pool is not None else (scheduler or (1 if workers is None else workers)),
+            progress,
+        )
+
+
+def _search(
+    target,
+    user_target,
+    scoring,
+    centre,
+    k,
+    shortlist,
+    lib,
+    t0,
+    time_limit,
+    budget,
+    max_joints,
+    designs,
+    seed,
+    workers,
+    progress,
+) -> CurveSynthesis:
+    """The search of :func:`synthesize_curve` after retrieval: preselection, starts, the front moved and scored."""
+    # a short refinement of every retrieved entry (tasks, like the starts); the best refined ones are the starts
+    entries = {
+        "target": target.tolist(),
+        "entries": [_plain(t, x) for t, x in shortlist],
+        "deadline": None if time_limit is None else t0 + 0.5 * float(time_limit),
+    }
+    pre = _dask.run_tasks(_preselect_chunk, (entries,), len(shortlist), 0, workers=workers)
+    refined = [(d1, m1, n, shortlist[n][0], np.asarray(x1, dtype=float)) for n, d1, m1, x1 in pre if x1 is not None]
     starts = _portfolio(refined, STARTS)
     total = budget if budget is not None else 10**6
     evals = max(POPULATION * 2, total // len(starts))
     spec = {
         "target": target.tolist(),
         "max_joints": int(max_joints),
-        "starts": [
-            {
-                "n": t.n,
-                "edges": t.edges.tolist(),
-                "fixed": t.fixed.tolist(),
-                "motor": list(t.motor),
-                "target": t.target,
-                "x0": x.tolist(),
-            }
-            for t, x in starts
-        ],
+        "starts": [_plain(t, x) for t, x in starts],
         "deadline": None if time_limit is None else t0 + float(time_limit),
     }
     runs = multistart(
@@ -836,7 +918,7 @@ def synthesize_curve(
         len(starts),
         seed,
         budget=evals * len(starts),
-        workers=workers if scheduler is None else scheduler,
+        workers=workers,
         progress=progress,
         method="nsga2",
         start=curve_start,
@@ -895,6 +977,78 @@ def synthesize_curve(
         np.array(transforms, dtype=float).reshape(-1, 4),
         int(sum(r.polish_evaluations for r in runs)),
     )
+
+
+def _plain(topo: Topology, x0) -> dict:
+    """A topology and a sketch as plain data (sent to the workers)."""
+    return {
+        "n": topo.n,
+        "edges": topo.edges.tolist(),
+        "fixed": topo.fixed.tolist(),
+        "motor": list(topo.motor),
+        "target": topo.target,
+        "x0": np.asarray(x0, dtype=float).tolist(),
+    }
+
+
+def _preselect_chunk(spec: dict, ks, evals: int, method: str) -> list:
+    """Short refinements of the retrieved entries ``ks``: ``(k, distance, material, sketch or None)`` each.
+
+    An entry not reached before the spec's deadline (half the time limit) is ``None``; the first entry is
+    always refined, so that a start exists.
+    """
+    tc = _target(np.asarray(spec["target"], dtype=float))
+    out = []
+    for k in ks:
+        if k and spec["deadline"] is not None and time.monotonic() > spec["deadline"]:
+            out.append((k, math.inf, math.inf, None))
+            continue
+        s = spec["entries"][k]
+        topo = _topology(s["n"], s["edges"], s["fixed"], s["motor"], s["target"])
+        x1, d1, m1, _ = refine(topo, np.asarray(s["x0"], dtype=float), tc, rounds=3, nfev=15, walk=False)
+        out.append((k, d1, m1, x1.tolist()))
+    return out
+
+
+@contextlib.contextmanager
+def _local_pool(workers, scheduler):
+    """A pool of ``workers`` local processes (an int from 2; default :func:`default_workers`), else None.
+
+    Python threads share one interpreter lock, and the search's arrays are
+    small (a few hundred points), so threads run it little faster than one;
+    processes run it as many times faster as there are free cores.  Each
+    task is a pure function of plain data, so the designs are the same for
+    any number of processes.
+    """
+    n = default_workers() if workers is None and scheduler is None else workers
+    if scheduler is not None or isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+        yield None
+        return
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    pool = ProcessPoolExecutor(min(int(n), MAX_PROCESSES), mp_context=multiprocessing.get_context("spawn"))
+    try:
+        yield pool
+    except BrokenProcessPool:
+        raise GearleverError(
+            "workers: the worker processes could not start (a script calling synthesize_curve needs "
+            "`if __name__ == '__main__':`; or pass workers=1)"
+        ) from None
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
+
+
+def default_workers() -> int:
+    """Local processes of a search when ``workers`` is not given: the cores this process may use, at most 2."""
+    import os
+
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(MAX_DEFAULT_WORKERS, cores))
 
 
 #: Radii of the crank-tip designs, in RMS radii of the target.
