@@ -115,9 +115,9 @@ MAX_GROWTH = 3.0
 POLISH = 3
 #: Front members (spread over material) refined again with each of the material weights ``SPREAD_WEIGHTS``.
 SPREAD = 6
-SPREAD_WEIGHTS = (0.01, 0.1, 0.3)
+SPREAD_WEIGHTS = (0.0005, 0.005, 0.03, 0.1)
 #: Material weights of the refinement chain.
-LAMBDAS = np.geomspace(1e-3, 0.3, 10)
+LAMBDAS = np.geomspace(3e-4, 0.3, 12)
 #: Caps (and the least budget).
 MIN_BUDGET = 1000
 MAX_BUDGET = 10**7
@@ -196,7 +196,7 @@ def _best_alignment(tc, curve) -> tuple[int, float]:
     return a, float(np.angle(z[a]))
 
 
-def _gap_weights(tc, curve, a: int, angle: float) -> np.ndarray:
+def _gap_weights(tc, curve, a: int, angle: float, normalise: bool = True) -> np.ndarray:
     """Weights ``1 / sqrt(|g_k|)`` of the point gaps ``g_k`` of a curve at alignment ``a`` and rotation ``angle``.
 
     Least squares of the weighted gaps ``w_k g_k`` minimises ``sum |g_k|^2 / |g_k| = sum |g_k|`` at the
@@ -214,10 +214,10 @@ def _gap_weights(tc, curve, a: int, angle: float) -> np.ndarray:
     if not np.isfinite(g).all():
         return np.ones(n)
     w = 1.0 / np.sqrt(np.maximum(g, 1e-3 * max(float(g.mean()), 1e-300)))
-    return w / math.sqrt(float((w**2).mean()))
+    return w / math.sqrt(float((w**2).mean())) if normalise else w
 
 
-def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None):
+def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None, linear: bool = False):
     """Residuals of the distance at alignment ``a`` and their Jacobian; parameters: the sketch, then an angle.
 
     The residuals are the gaps between the target's points and the design's
@@ -250,7 +250,8 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None)
         g = norm * (np.exp(1j * q[-1]) * z[perm] - tc.z)
         out = np.concatenate([g.real, g.imag])
         if lam:
-            out = np.append(out, lam * material(x[None], topo.edges)[0])
+            m = material(x[None], topo.edges)[0]
+            out = np.append(out, lam * (math.sqrt(m) if linear else m))
         return out
 
     def jac(q):
@@ -291,7 +292,10 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None)
             gm = np.zeros((N, 2))
             np.add.at(gm, ed[:, 0], 2 * d / L[:, None])
             np.add.at(gm, ed[:, 1], -2 * d / L[:, None])
-            out = np.vstack([out, lam * np.append(gm.reshape(-1), 0.0)[None]])
+            dm = lam * np.append(gm.reshape(-1), 0.0)[None]
+            if linear:
+                dm = dm / (2.0 * math.sqrt(max(float(material(x[None], topo.edges)[0]), 1e-300)))
+            out = np.vstack([out, dm])
         return out
 
     return fun, jac
@@ -348,8 +352,8 @@ def refine(
     n = tc.z.shape[0]
 
     def solve(a, angle, curve):
-        gw = _gap_weights(tc, curve, a, angle) if l1 and not material_weight else None
-        fun, jac = _residuals(topo, tc, a, weight, gw)
+        gw = _gap_weights(tc, curve, a, angle, normalise=not material_weight) if l1 else None
+        fun, jac = _residuals(topo, tc, a, weight, gw, linear=l1 and bool(material_weight))
         q0 = np.append(best.ravel(), angle)
         try:
             res = least_squares(fun, q0, jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
@@ -570,12 +574,16 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
 def _pick_starts(refined, count: int) -> list:
     """Half the starts by hypervolume (greedily: the design adding most to the chosen ones'), half by distance.
 
+    The distance picks take the designs within the material bound first.
+
     Taken in turn; the greedy hypervolume picks spread the starts over
     material (a low-material design adds area where the closest ones do
     not), ties (no area added) go by distance, then retrieval order.
     """
     ok = [r for r in refined if math.isfinite(r[0])]
-    by_distance = sorted(ok, key=lambda r: (r[0], r[2]))
+    # a start beyond the material bound adds nothing to the front unless its chain brings it back: closest
+    # within the bound first
+    by_distance = sorted(ok, key=lambda r: (r[1] >= MAX_MATERIAL, r[0], r[2]))
     out, seen, points = [], set(), []
 
     def take(r):
@@ -586,11 +594,11 @@ def _pick_starts(refined, count: int) -> list:
     while len(out) < count and len(seen) < len(ok):
         base = hypervolume(np.array(points)) if points else 0.0
         gain = [
-            (hypervolume(np.array([*points, (r[0], r[1])])) - base, -r[0], -r[2], n)
+            (hypervolume(np.array([*points, (r[0], r[1])])) - base, r[1] < MAX_MATERIAL, -r[0], -r[2], n)
             for n, r in enumerate(ok)
             if r[2] not in seen
         ]
-        take(ok[max(gain)[3]])
+        take(ok[max(gain)[4]])
         for r in by_distance:
             if r[2] not in seen:
                 if len(out) < count:
