@@ -118,6 +118,8 @@ SPREAD = 6
 SPREAD_WEIGHTS = (0.0005, 0.005, 0.03, 0.1)
 #: Material weights of the refinement chain.
 LAMBDAS = np.geomspace(3e-4, 0.3, 12)
+#: Material weights of the second chain (squared gaps + weight x squared material).
+LAMBDAS_SQUARED = np.geomspace(1e-3, 0.3, 10)
 #: Caps (and the least budget).
 MIN_BUDGET = 1000
 MAX_BUDGET = 10**7
@@ -509,16 +511,19 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         cands.append((t2, x2, d2))
     cands.sort(key=lambda c: c[2])
     topo, x0, _ = cands[0]
-    # material-weighted refinement, continued from one weight to the next: a first front
+    # material-weighted refinements, continued from one weight to the next: a first front, in two chains (the
+    # mean gap + weight x material: the front's close end; the squared gaps + weight x squared material, which
+    # pushes harder on material: its low end)
     chain = [x0]
-    x = x0
-    for lam in LAMBDAS:
-        if deadline is not None and time.monotonic() > deadline:
-            break
-        x, dl, ml, e = refine(topo, x, tc, rounds=2, material_weight=lam)
-        used += e
-        if math.isfinite(dl):
-            chain.append(x)
+    for weights, l1 in ((LAMBDAS, True), (LAMBDAS_SQUARED, False)):
+        x = x0
+        for lam in weights:
+            if deadline is not None and time.monotonic() > deadline:
+                break
+            x, dl, ml, e = refine(topo, x, tc, rounds=2, material_weight=lam, l1=l1)
+            used += e
+            if math.isfinite(dl):
+                chain.append(x)
     X, F, n_nsga = _nsga(
         topo, np.array(chain), target, max(POPULATION, evals - used), int(rng.integers(2**31)), deadline
     )
@@ -574,16 +579,13 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
 def _pick_starts(refined, count: int) -> list:
     """Half the starts by hypervolume (greedily: the design adding most to the chosen ones'), half by distance.
 
-    The distance picks take the designs within the material bound first.
-
     Taken in turn; the greedy hypervolume picks spread the starts over
     material (a low-material design adds area where the closest ones do
     not), ties (no area added) go by distance, then retrieval order.
     """
     ok = [r for r in refined if math.isfinite(r[0])]
-    # a start beyond the material bound adds nothing to the front unless its chain brings it back: closest
-    # within the bound first
-    by_distance = sorted(ok, key=lambda r: (r[1] >= MAX_MATERIAL, r[0], r[2]))
+    # the closest, whatever their material: the chain of material weights brings them within the bound
+    by_distance = sorted(ok, key=lambda r: (r[0], r[2]))
     out, seen, points = [], set(), []
 
     def take(r):
