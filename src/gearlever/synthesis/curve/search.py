@@ -16,19 +16,24 @@ machine and any number of workers):
 2. **Retrieval** (:func:`retrieve`): the nearest library curves to the
    target's descriptor, re-ranked by the challenge's distance after scaling
    each sketch so its curve has the target's RMS radius; the best
-   :data:`PRESELECT` distinct ones are refined briefly and :data:`STARTS`
-   of them are the starts.
+   :data:`PRESELECT` distinct ones are refined briefly (tasks, like the
+   starts) and :data:`STARTS` of them are the starts, picked in turn by
+   hypervolume gain and by distance (:func:`_pick_starts`).
 3. **Per start** (:func:`run_start`): least-squares refinement of the
    distance (:func:`refine`: trust region of
    :func:`scipy.optimize.least_squares` on the analytic Jacobian of
    :func:`~gearlever.synthesis.curve.simulate.simulate_jacobian` carried through the
    resampling by arc length, the challenge's gaps at the current best
-   cyclic shift with the rotation a free parameter, then the shift walked
+   cyclic shift with the rotation a free parameter, weighted by
+   ``1 / sqrt(|g|)`` so that the sum of squares is the mean gap the
+   challenge scores (iteratively reweighted least squares,
+   :func:`_gap_weights`), then the shift walked
    while the distance falls), topology moves (another
    traced joint, one more dyad on the traced joint), then NSGA-II of pymoo
    (Deb et al. 2002) over the joint positions with distance and material as
    objectives and the challenge's bounds as constraints, seeded with the
-   refined sketch; then the closest front members are refined again, members
+   refined sketch and two chains of material-weighted refinements
+   (:data:`LAMBDAS`, :data:`LAMBDAS_SQUARED`); then the closest front members are refined again, members
    spread over material are refined with a material-weighted objective
    (:data:`SPREAD`, :data:`SPREAD_WEIGHTS`) and, because
    size counts in the distance, each is offered in scaled copies (a smaller
@@ -327,6 +332,13 @@ def refine(
     the crank angle and its time samples are the polyline's corners, so the
     minimum at one shift is not the minimum at the next.
 
+    With ``l1`` (default) each round weighs the gaps by ``1 / sqrt(|g|)``
+    of the current design (:func:`_gap_weights`: iteratively reweighted
+    least squares of the mean gap, which the challenge scores, instead of
+    the mean squared gap), and a ``material_weight`` ``w`` makes the cost the
+    mean gap plus ``w`` x material (a weighted sum of the two objectives);
+    without it, the squared gaps plus ``w`` x squared material.
+
     Examples
     --------
     >>> from gearlever.mechanism.linkage import linkage_from_dict
@@ -404,14 +416,14 @@ def _alignment_angle(tc, curve, a: int) -> float:
     return float(np.angle((tc.z * np.conj(C)).sum()))
 
 
-def _moves(rng, topo: Topology, x0, max_joints: int):
+def _moves(rng, topo: Topology, x0, max_joints: int, add: int = ADD_MOVES):
     """Topology moves of a design: another traced joint, one more dyad on the traced joint (x0 extended)."""
     out = []
     fixed = set(topo.fixed.tolist())
     for k in range(topo.n):
         if k != topo.target and k not in fixed and k != topo.motor[1]:
             out.append((_topology(topo.n, topo.edges, topo.fixed, topo.motor, k), x0))
-    for _ in range(ADD_MOVES if topo.n + 1 <= max_joints else 0):
+    for _ in range(add if topo.n + 1 <= max_joints else 0):
         k = topo.n
         others = [j for j in range(topo.n) if j != topo.target]
         j = int(rng.choice(others))
@@ -426,7 +438,7 @@ def _moves(rng, topo: Topology, x0, max_joints: int):
     return out
 
 
-def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
+def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline, population: int = POPULATION):
     """NSGA-II (pymoo) over the joint positions of one topology, seeded around ``x0``; returns (X, F)."""
     from pymoo.algorithms.moo.nsga2 import NSGA2
     from pymoo.core.problem import Problem
@@ -452,13 +464,13 @@ def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
     x0 = seeds[0].reshape(N, 2)
     size = float(np.ptp(x0, axis=0).max())
     lo, hi = seeds.min(0) - size, seeds.max(0) + size
-    pick = seeds[np.arange(POPULATION) % len(seeds)]
-    pop = pick + rng.normal(0.0, 0.01 * size, (POPULATION, 2 * N))
-    pop[: len(seeds)] = seeds[:POPULATION]
+    pick = seeds[np.arange(population) % len(seeds)]
+    pop = pick + rng.normal(0.0, 0.01 * size, (population, 2 * N))
+    pop[: len(seeds)] = seeds[:population]
     pop = np.clip(pop, lo, hi)
-    gens = max(1, evals // POPULATION)
+    gens = max(1, evals // population)
     algo = NSGA2(
-        pop_size=POPULATION,
+        pop_size=population,
         sampling=pop,
         crossover=SBX(prob=0.9, eta=15),
         mutation=PolynomialMutation(prob=1.0 / (2 * N), eta=20),
@@ -494,6 +506,7 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list[
 def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tuple[list[Design], int, int]:
     """:func:`run_start` and what it spent: (designs, NSGA-II evaluations, the refinements' and scorings' ones)."""
     rng = np.random.default_rng([seed, k])
+    tune = {**_tuning(), **spec.get("tuning", {})}
     target = np.asarray(spec["target"], dtype=float)
     tc = _target(target)
     s = spec["starts"][k]
@@ -503,7 +516,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
     x0, d, m, e = refine(topo, x0, tc, rounds=6, nfev=40)
     used += e
     cands = [(topo, x0, d)]
-    for t2, x2 in _moves(rng, topo, x0, spec["max_joints"]):
+    for t2, x2 in _moves(rng, topo, x0, spec["max_joints"], tune["add_moves"]):
         if deadline is not None and time.monotonic() > deadline:
             break
         x2, d2, m2, e2 = refine(t2, x2, tc, rounds=2)
@@ -515,7 +528,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
     # mean gap + weight x material: the front's close end; the squared gaps + weight x squared material, which
     # pushes harder on material: its low end)
     chain = [x0]
-    for weights, l1 in ((LAMBDAS, True), (LAMBDAS_SQUARED, False)):
+    for weights, l1 in ((tune["lambdas"], True), (tune["lambdas_squared"], False)):
         x = x0
         for lam in weights:
             if deadline is not None and time.monotonic() > deadline:
@@ -525,7 +538,13 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
             if math.isfinite(dl):
                 chain.append(x)
     X, F, n_nsga = _nsga(
-        topo, np.array(chain), target, max(POPULATION, evals - used), int(rng.integers(2**31)), deadline
+        topo,
+        np.array(chain),
+        target,
+        max(tune["population"], evals - used),
+        int(rng.integers(2**31)),
+        deadline,
+        tune["population"],
     )
     Xall = np.concatenate([X, np.array(chain)])
     d, m = evaluate(topo, Xall, target)
@@ -533,7 +552,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
     front = _nondominated(d, m)
     # polish the closest designs: more rounds of the distance-only refinement
     polished = []
-    for i in front[:POLISH]:
+    for i in front[: tune["polish"]]:
         if deadline is not None and time.monotonic() > deadline:
             break
         xp, dp, mp, e = refine(topo, Xall[i], tc, rounds=8, nfev=60)
@@ -545,10 +564,10 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         used += len(Xall)
         front = _nondominated(d, m)
     # members spread over material, refined with a material-weighted objective for a few weights: fill the front
-    spread = front[np.unique(np.round(np.linspace(0, front.size - 1, min(SPREAD, front.size))).astype(int))]
+    spread = front[np.unique(np.round(np.linspace(0, front.size - 1, min(tune["spread"], front.size))).astype(int))]
     extra = []
     for i in spread:
-        for w in SPREAD_WEIGHTS:
+        for w in tune["spread_weights"]:
             if deadline is not None and time.monotonic() > deadline:
                 break
             xw, dw, mw, e = refine(topo, Xall[i], tc, rounds=2, material_weight=w)
@@ -561,7 +580,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         used += len(Xall)
         front = _nondominated(d, m)
     # each front member and its scaled copies, evaluated in one batch
-    X = Xall[front][:, None] * np.concatenate([[1.0], SCALES])[None, :, None, None]
+    X = Xall[front][:, None] * np.concatenate([[1.0], tune["scales"]])[None, :, None, None]
     X = X.reshape(-1, topo.n, 2)
     ds, ms = evaluate(topo, X, target)
     used += len(X) - front.size
@@ -922,6 +941,7 @@ def _search(
         "max_joints": int(max_joints),
         "starts": [_plain(t, x) for t, x in starts],
         "deadline": None if time_limit is None else t0 + float(time_limit),
+        "tuning": _tuning(),
     }
     runs = multistart(
         functools.partial(_spec, spec),
@@ -987,6 +1007,20 @@ def _search(
         np.array(transforms, dtype=float).reshape(-1, 4),
         int(sum(r.polish_evaluations for r in runs)),
     )
+
+
+def _tuning() -> dict:
+    """The per-start settings as plain data: sent with the spec, so every worker process runs the caller's."""
+    return {
+        "lambdas": np.asarray(LAMBDAS, dtype=float).tolist(),
+        "lambdas_squared": np.asarray(LAMBDAS_SQUARED, dtype=float).tolist(),
+        "spread": int(SPREAD),
+        "spread_weights": [float(w) for w in SPREAD_WEIGHTS],
+        "polish": int(POLISH),
+        "scales": np.asarray(SCALES, dtype=float).tolist(),
+        "population": int(POPULATION),
+        "add_moves": int(ADD_MOVES),
+    }
 
 
 def _plain(topo: Topology, x0) -> dict:
