@@ -155,13 +155,3 @@ def test_residual_jacobian_matches_central_finite_differences(weighted, linear):
     h = 1e-6
     fd = np.column_stack([(fun(q + h * e) - fun(q - h * e)) / (2 * h) for e in np.eye(q.size)])
     assert np.abs(J - fd).max() <= 1e-5 * max(1.0, np.abs(fd).max())
-
-
-def test_starts_by_hypervolume_gain_reach_the_low_material_end():
-    """Issue 33 §3: a low-material design adds area the closest ones do not: it is a start, beside the closest."""
-    refined = [(0.05 + 0.001 * i, 6.0, i, "t", np.full((2, 2), float(i))) for i in range(10)]
-    refined += [(0.30, 1.0, 10, "t", np.full((2, 2), 10.0)), (0.01, 40.0, 11, "t", np.full((2, 2), 11.0))]
-    picked = [int(x[0, 0]) for _, x in S._pick_starts(refined, 4)]
-    # in turn: the most area added (the low-material one: 0.45 x 9), the closest (beyond the material bound: the
-    # chain of material weights brings it within), the most area added to those two, the closest left
-    assert picked == [10, 11, 0, 1]

@@ -17,8 +17,7 @@ machine and any number of workers):
    target's descriptor, re-ranked by the challenge's distance after scaling
    each sketch so its curve has the target's RMS radius; the best
    :data:`PRESELECT` distinct ones are refined briefly (tasks, like the
-   starts) and :data:`STARTS` of them are the starts, picked in turn by
-   hypervolume gain and by distance (:func:`_pick_starts`).
+   starts) and :data:`STARTS` of them are the starts (:func:`_portfolio`).
 3. **Per start** (:func:`run_start`): least-squares refinement of the
    distance (:func:`refine`: trust region of
    :func:`scipy.optimize.least_squares` on the analytic Jacobian of
@@ -596,35 +595,16 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
 
 
 def _pick_starts(refined, count: int) -> list:
-    """Half the starts by hypervolume (greedily: the design adding most to the chosen ones'), half by distance.
-
-    Taken in turn; the greedy hypervolume picks spread the starts over
-    material (a low-material design adds area where the closest ones do
-    not), ties (no area added) go by distance, then retrieval order.
-    """
+    """Half the starts by the area a design alone dominates (distance and material), half by distance."""
     ok = [r for r in refined if math.isfinite(r[0])]
-    # the closest, whatever their material: the chain of material weights brings them within the bound
+    by_area = sorted(ok, key=lambda r: (-max(0.0, MAX_DISTANCE - r[0]) * max(0.0, MAX_MATERIAL - r[1]), r[0], r[2]))
     by_distance = sorted(ok, key=lambda r: (r[0], r[2]))
-    out, seen, points = [], set(), []
-
-    def take(r):
-        seen.add(r[2])
-        points.append((r[0], r[1]))
-        out.append((r[3], r[4]))
-
-    while len(out) < count and len(seen) < len(ok):
-        base = hypervolume(np.array(points)) if points else 0.0
-        gain = [
-            (hypervolume(np.array([*points, (r[0], r[1])])) - base, r[1] < MAX_MATERIAL, -r[0], -r[2], n)
-            for n, r in enumerate(ok)
-            if r[2] not in seen
-        ]
-        take(ok[max(gain)[4]])
-        for r in by_distance:
-            if r[2] not in seen:
-                if len(out) < count:
-                    take(r)
-                break
+    out, seen = [], set()
+    for a, b in zip(by_area, by_distance):
+        for r in (a, b):
+            if r[2] not in seen and len(out) < count:
+                seen.add(r[2])
+                out.append((r[3], r[4]))
     return out
 
 
