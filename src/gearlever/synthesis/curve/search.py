@@ -1136,6 +1136,13 @@ def _to_target_frame(lk, target, centre, k: float, rotate: bool = True):
     R = np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
     scale = 1.0 / k
     shift = np.asarray(centre, dtype=float) + scale * (t - R @ c)
+    if theta:
+        # a turned linkage is sampled at other phases of its crank, so its resampled centre moves a little:
+        # translated once more (a translation samples it at the same phases) onto the target's centre
+        turned = simulate((scale * (lk.x0 @ R.T) + shift)[None], solve_plan(lk))[0, lk.target_joint]
+        drift = (np.asarray(centre, dtype=float) + scale * t) - resample(turned[None], RESOLUTION)[0].mean(0)
+        if np.isfinite(drift).all():  # (a linkage that locks once turned is dropped by its score)
+            shift = shift + drift
     x = scale * (lk.x0 @ R.T) + shift
     moved = linkage_from_dict(
         {
