@@ -79,7 +79,12 @@ def register_curve(ss) -> None:
     )
     p.add_argument("--seed", type=capped_int(2**31 - 1, low=0), default=0)
     w = p.add_mutually_exclusive_group()
-    w.add_argument("--workers", type=capped_int(MAX_WORKERS), default=None, help="local dask threads")
+    w.add_argument(
+        "--workers",
+        type=capped_int(MAX_WORKERS),
+        default=None,
+        help="local processes (default: the cores, at most 2; the designs are the same for any number)",
+    )
     w.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a dask.distributed scheduler")
     from gearlever.synthesis.curve.library import LIBRARY_SKETCHES, LIBRARY_TOPOLOGIES, MAX_LIBRARY_SIZE
 

@@ -54,3 +54,4 @@ def small(monkeypatch):
     monkeypatch.setattr(S, "STARTS", 2)
     monkeypatch.setattr(S, "PRESELECT", 4)
     monkeypatch.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
+    monkeypatch.setattr(S, "LAMBDAS_SQUARED", np.geomspace(1e-3, 0.3, 3))

@@ -121,3 +121,37 @@ def test_the_portfolio_alternates_the_wide_and_the_narrow_strategies_and_takes_a
     same = [(0.01 * (i + 1), 2.0, i, "topology", np.full((2, 2), float(i))) for i in range(n)]
     shared = [int(x[0, 0]) for _, x in S._portfolio(same, S.STARTS)]
     assert len(shared) == len(set(shared)) == S.STARTS
+
+
+def _perturbed(n_dyads=4):
+    topo, x_true = _turning(n_dyads)
+    target = simulate(x_true[None], topo.plan)[0, topo.target]
+    x0 = x_true + 0.02 * np.ptp(x_true, axis=0).max() * np.random.default_rng(1).standard_normal(x_true.shape)
+    return topo, x0, S._target(target)
+
+
+def test_reweighted_gaps_sum_to_the_challenges_mean_gap_at_the_current_design():
+    """Issue 33 §3: with weights 1/sqrt|g_k| the least-squares objective is the challenge's distance / 2 pi there."""
+    topo, x0, tc = _perturbed()
+    curve = simulate(x0[None], topo.plan)[0, topo.target]
+    a, angle = S._best_alignment(tc, curve)
+    w = S._gap_weights(tc, curve, a, angle, normalise=False)
+    fun, _ = S._residuals(topo, tc, a, 0.0, w)
+    r = fun(np.append(x0.ravel(), angle))
+    # distance = 2 pi x the mean gap at the best alignment and its least-squares rotation (score.py)
+    assert 2 * np.pi * float((r**2).sum()) == pytest.approx(distance(curve[None], tc.raw)[0], rel=1e-9)
+
+
+@pytest.mark.parametrize("weighted, linear", [(False, False), (True, False), (True, True)])
+def test_residual_jacobian_matches_central_finite_differences(weighted, linear):
+    """The analytic Jacobian of the (weighted) gaps and of the material term, against central differences."""
+    topo, x0, tc = _perturbed()
+    curve = simulate(x0[None], topo.plan)[0, topo.target]
+    a, angle = S._best_alignment(tc, curve)
+    w = S._gap_weights(tc, curve, a, angle, normalise=not linear) if weighted else None
+    fun, jac = S._residuals(topo, tc, a, 0.05, w, linear=linear)
+    q = np.append(x0.ravel(), angle + 0.1)
+    J = jac(q)
+    h = 1e-6
+    fd = np.column_stack([(fun(q + h * e) - fun(q - h * e)) / (2 * h) for e in np.eye(q.size)])
+    assert np.abs(J - fd).max() <= 1e-5 * max(1.0, np.abs(fd).max())

@@ -90,6 +90,7 @@ def d_mm():
         mp.setattr(S, "STARTS", 2)
         mp.setattr(S, "PRESELECT", 4)
         mp.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
+        mp.setattr(S, "LAMBDAS_SQUARED", np.geomspace(1e-3, 0.3, 3))
         target = _d_mm()
         return target, S.synthesize_curve(target, budget=1000, seed=0, workers=1, use_cache=False)
 
@@ -137,6 +138,7 @@ def test_the_same_curve_in_millimetres_under_the_challenges_rules_has_an_empty_f
         mp.setattr(S, "STARTS", 2)
         mp.setattr(S, "PRESELECT", 4)
         mp.setattr(S, "LAMBDAS", np.geomspace(1e-3, 0.3, 3))
+        mp.setattr(S, "LAMBDAS_SQUARED", np.geomspace(1e-3, 0.3, 3))
         r = S.synthesize_curve(target, budget=1000, seed=0, workers=1, use_cache=False, scoring="challenge")
     s = r.summary()
     assert len(r.designs) == 0 and s["empty"] and s["best_distance"] is None and r.hypervolume == 0.0

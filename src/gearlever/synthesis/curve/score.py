@@ -52,6 +52,8 @@ and the material mean:
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from gearlever.errors import GearleverError
@@ -248,11 +250,15 @@ def normalise(curves, target, n: int = RESOLUTION):
     return (c[..., 0] + 1j * c[..., 1]) / scale, (t[:, 0] + 1j * t[:, 1]) / scale
 
 
+@functools.lru_cache(maxsize=8)
 def _alignment_indices(n: int) -> np.ndarray:
+    """Sample indices of the ``2 n`` alignments (cyclic shifts, both directions), ``(2 n, n)``, read-only, cached."""
     k = np.arange(n)
     fwd = (k[None, :] + k[:, None]) % n
     rev = (k[:, None] - k[None, :]) % n
-    return np.concatenate([fwd, rev])  # (2n, n)
+    out = np.concatenate([fwd, rev])  # (2n, n)
+    out.setflags(write=False)
+    return out
 
 
 def _exact(c, t, chunk: int = 16) -> np.ndarray:

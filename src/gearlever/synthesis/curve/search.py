@@ -16,19 +16,23 @@ machine and any number of workers):
 2. **Retrieval** (:func:`retrieve`): the nearest library curves to the
    target's descriptor, re-ranked by the challenge's distance after scaling
    each sketch so its curve has the target's RMS radius; the best
-   :data:`PRESELECT` distinct ones are refined briefly and :data:`STARTS`
-   of them are the starts.
+   :data:`PRESELECT` distinct ones are refined briefly (tasks, like the
+   starts) and :data:`STARTS` of them are the starts (:func:`_portfolio`).
 3. **Per start** (:func:`run_start`): least-squares refinement of the
    distance (:func:`refine`: trust region of
    :func:`scipy.optimize.least_squares` on the analytic Jacobian of
    :func:`~gearlever.synthesis.curve.simulate.simulate_jacobian` carried through the
    resampling by arc length, the challenge's gaps at the current best
-   cyclic shift with the rotation a free parameter, then the shift walked
+   cyclic shift with the rotation a free parameter, weighted by
+   ``1 / sqrt(|g|)`` so that the sum of squares is the mean gap the
+   challenge scores (iteratively reweighted least squares,
+   :func:`_gap_weights`), then the shift walked
    while the distance falls), topology moves (another
    traced joint, one more dyad on the traced joint), then NSGA-II of pymoo
    (Deb et al. 2002) over the joint positions with distance and material as
    objectives and the challenge's bounds as constraints, seeded with the
-   refined sketch; then the closest front members are refined again, members
+   refined sketch and two chains of material-weighted refinements
+   (:data:`LAMBDAS`, :data:`LAMBDAS_SQUARED`); then the closest front members are refined again, members
    spread over material are refined with a material-weighted objective
    (:data:`SPREAD`, :data:`SPREAD_WEIGHTS`) and, because
    size counts in the distance, each is offered in scaled copies (a smaller
@@ -49,6 +53,7 @@ hand-made descriptor in place of a learned one.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
 import time
@@ -60,6 +65,7 @@ import numpy as np
 from gearlever._result import Result
 from gearlever.errors import GearleverError
 from gearlever.mechanism.linkage import linkage_from_dict
+from gearlever.synthesis import _dask
 from gearlever.synthesis.curve import library as _library
 from gearlever.synthesis.curve.library import Library, build_library, cached_library, descriptor
 from gearlever.synthesis.curve.score import (
@@ -113,14 +119,20 @@ MAX_GROWTH = 3.0
 POLISH = 3
 #: Front members (spread over material) refined again with each of the material weights ``SPREAD_WEIGHTS``.
 SPREAD = 6
-SPREAD_WEIGHTS = (0.01, 0.1, 0.3)
+SPREAD_WEIGHTS = (0.0005, 0.005, 0.03, 0.1)
 #: Material weights of the refinement chain.
-LAMBDAS = np.geomspace(1e-3, 0.3, 10)
+LAMBDAS = np.geomspace(3e-4, 0.3, 12)
+#: Material weights of the second chain (squared gaps + weight x squared material).
+LAMBDAS_SQUARED = np.geomspace(1e-3, 0.3, 10)
 #: Caps (and the least budget).
 MIN_BUDGET = 1000
 MAX_BUDGET = 10**7
 MAX_DESIGNS = 1000
 MAX_TIME = 86_400.0
+#: Most local processes by default (:func:`default_workers`).
+MAX_DEFAULT_WORKERS = 2
+#: Most local processes (more ``workers`` share them; the preselection has 50 tasks and the starts 4).
+MAX_PROCESSES = 32
 
 
 def _target_rms(target) -> float:
@@ -147,7 +159,7 @@ def retrieve(library: Library, target, starts: int = STARTS, shortlist: int = 40
     for e in order:
         topo = library.topologies[int(library.entry_topology[e])]
         x0 = library.sketches[e] * (trms / library.rms[e])
-        d, m = evaluate(topo, x0[None], target, keep=None)
+        d, m = evaluate(topo, x0[None], target)
         scored.append((float(d[0]), int(e), topo, x0))
     scored.sort(key=lambda s: (s[0], s[1]))
     out, seen = [], set()
@@ -190,7 +202,28 @@ def _best_alignment(tc, curve) -> tuple[int, float]:
     return a, float(np.angle(z[a]))
 
 
-def _residuals(topo: Topology, tc, a: int, material_weight: float):
+def _gap_weights(tc, curve, a: int, angle: float, normalise: bool = True) -> np.ndarray:
+    """Weights ``1 / sqrt(|g_k|)`` of the point gaps ``g_k`` of a curve at alignment ``a`` and rotation ``angle``.
+
+    Least squares of the weighted gaps ``w_k g_k`` minimises ``sum |g_k|^2 / |g_k| = sum |g_k|`` at the
+    current design: the challenge's distance (a mean of gaps, not of squared gaps), by iteratively
+    reweighted least squares (each round of :func:`refine` weighs again).  Gaps below a thousandth of
+    the mean count as that (no infinite weight).
+    """
+    from gearlever.synthesis.curve.score import _alignment_indices
+
+    n = tc.z.shape[0]
+    c = resample(curve[None], n)[0]
+    z = c[:, 0] + 1j * c[:, 1]
+    z = (z - z.mean()) / tc.scale
+    g = np.abs(np.exp(1j * angle) * z[_alignment_indices(n)[a]] - tc.z)
+    if not np.isfinite(g).all():
+        return np.ones(n)
+    w = 1.0 / np.sqrt(np.maximum(g, 1e-3 * max(float(g.mean()), 1e-300)))
+    return w / math.sqrt(float((w**2).mean())) if normalise else w
+
+
+def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None, linear: bool = False):
     """Residuals of the distance at alignment ``a`` and their Jacobian; parameters: the sketch, then an angle.
 
     The residuals are the gaps between the target's points and the design's
@@ -209,7 +242,7 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
     perm = _alignment_indices(n)[a]
     s = np.linspace(0.0, 1.0, n)
     lam = math.sqrt(material_weight)
-    norm = 1.0 / math.sqrt(n)
+    norm = (1.0 if weights is None else np.asarray(weights, dtype=float)) / math.sqrt(n)
     extra = 1 if lam else 0
 
     def fun(q):
@@ -223,7 +256,8 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
         g = norm * (np.exp(1j * q[-1]) * z[perm] - tc.z)
         out = np.concatenate([g.real, g.imag])
         if lam:
-            out = np.append(out, lam * material(x[None], topo.edges)[0])
+            m = material(x[None], topo.edges)[0]
+            out = np.append(out, lam * (math.sqrt(m) if linear else m))
         return out
 
     def jac(q):
@@ -255,7 +289,7 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
         dz = dp[:, 0] + 1j * dp[:, 1]
         dz = (dz - dz.mean(0)) / tc.scale
         e = np.exp(1j * q[-1])
-        R = norm * np.column_stack([e * dz[perm], 1j * e * z[perm]])
+        R = np.reshape(norm, (-1, 1)) * np.column_stack([e * dz[perm], 1j * e * z[perm]])
         out = np.concatenate([R.real, R.imag])
         if lam:
             ed = topo.edges
@@ -264,14 +298,24 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float):
             gm = np.zeros((N, 2))
             np.add.at(gm, ed[:, 0], 2 * d / L[:, None])
             np.add.at(gm, ed[:, 1], -2 * d / L[:, None])
-            out = np.vstack([out, lam * np.append(gm.reshape(-1), 0.0)[None]])
+            dm = lam * np.append(gm.reshape(-1), 0.0)[None]
+            if linear:
+                dm = dm / (2.0 * math.sqrt(max(float(material(x[None], topo.edges)[0]), 1e-300)))
+            out = np.vstack([out, dm])
         return out
 
     return fun, jac
 
 
 def refine(
-    topo: Topology, x0, target, rounds: int = 3, nfev: int = 20, material_weight: float = 0.0, walk: bool = True
+    topo: Topology,
+    x0,
+    target,
+    rounds: int = 3,
+    nfev: int = 20,
+    material_weight: float = 0.0,
+    walk: bool = True,
+    l1: bool = True,
 ):
     """Least-squares refinement of the distance of one sketch (analytic Jacobian); returns (x0, d, m, evals).
 
@@ -286,6 +330,13 @@ def refine(
     a time, each way, while the distance falls: the curve's start is tied to
     the crank angle and its time samples are the polyline's corners, so the
     minimum at one shift is not the minimum at the next.
+
+    With ``l1`` (default) each round weighs the gaps by ``1 / sqrt(|g|)``
+    of the current design (:func:`_gap_weights`: iteratively reweighted
+    least squares of the mean gap, which the challenge scores, instead of
+    the mean squared gap), and a ``material_weight`` ``w`` makes the cost the
+    mean gap plus ``w`` x material (a weighted sum of the two objectives);
+    without it, the squared gaps plus ``w`` x squared material.
 
     Examples
     --------
@@ -303,7 +354,7 @@ def refine(
 
     tc = target if isinstance(target, _Target) else _target(target)
     x0 = np.asarray(x0, dtype=float)
-    best_d, best_m = (float(v[0]) for v in evaluate(topo, x0[None], tc.raw, keep=None))
+    best_d, best_m = (float(v[0]) for v in evaluate(topo, x0[None], tc.raw))
     m_start = best_m
     evals = 1
     if not math.isfinite(best_d):
@@ -313,15 +364,16 @@ def refine(
     weight = max(material_weight, MATERIAL_FLOOR)
     n = tc.z.shape[0]
 
-    def solve(a, angle):
-        fun, jac = _residuals(topo, tc, a, weight)
+    def solve(a, angle, curve):
+        gw = _gap_weights(tc, curve, a, angle, normalise=not material_weight) if l1 else None
+        fun, jac = _residuals(topo, tc, a, weight, gw, linear=l1 and bool(material_weight))
         q0 = np.append(best.ravel(), angle)
         try:
             res = least_squares(fun, q0, jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
         except (ValueError, np.linalg.LinAlgError):
             return None, math.inf, math.inf, 0
         cand = res.x[:-1].reshape(N, 2)
-        d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw, keep=None))
+        d, m = (float(v[0]) for v in evaluate(topo, cand[None], tc.raw))
         if not material_weight:
             better = d < best_d - 1e-9 and m <= MAX_GROWTH * m_start
         else:
@@ -332,7 +384,7 @@ def refine(
     for _ in range(rounds):
         curve = simulate(best[None], topo.plan)[0, topo.target]
         a, angle = _best_alignment(tc, curve)
-        cand, d, m, e = solve(a, angle)
+        cand, d, m, e = solve(a, angle, curve)
         evals += e
         if cand is None:
             break
@@ -344,7 +396,7 @@ def refine(
                 b = (a + step) % n if a < n else n + (a - n + step) % n
                 curve = simulate(best[None], topo.plan)[0, topo.target]
                 angle = _alignment_angle(tc, curve, b)
-                cand, d, m, e = solve(b, angle)
+                cand, d, m, e = solve(b, angle, curve)
                 evals += e
                 if cand is None:
                     break
@@ -363,14 +415,14 @@ def _alignment_angle(tc, curve, a: int) -> float:
     return float(np.angle((tc.z * np.conj(C)).sum()))
 
 
-def _moves(rng, topo: Topology, x0, max_joints: int):
+def _moves(rng, topo: Topology, x0, max_joints: int, add: int = ADD_MOVES):
     """Topology moves of a design: another traced joint, one more dyad on the traced joint (x0 extended)."""
     out = []
     fixed = set(topo.fixed.tolist())
     for k in range(topo.n):
         if k != topo.target and k not in fixed and k != topo.motor[1]:
             out.append((_topology(topo.n, topo.edges, topo.fixed, topo.motor, k), x0))
-    for _ in range(ADD_MOVES if topo.n + 1 <= max_joints else 0):
+    for _ in range(add if topo.n + 1 <= max_joints else 0):
         k = topo.n
         others = [j for j in range(topo.n) if j != topo.target]
         j = int(rng.choice(others))
@@ -385,7 +437,7 @@ def _moves(rng, topo: Topology, x0, max_joints: int):
     return out
 
 
-def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
+def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline, population: int = POPULATION):
     """NSGA-II (pymoo) over the joint positions of one topology, seeded around ``x0``; returns (X, F)."""
     from pymoo.algorithms.moo.nsga2 import NSGA2
     from pymoo.core.problem import Problem
@@ -411,13 +463,13 @@ def _nsga(topo: Topology, x0, target, evals: int, seed: int, deadline):
     x0 = seeds[0].reshape(N, 2)
     size = float(np.ptp(x0, axis=0).max())
     lo, hi = seeds.min(0) - size, seeds.max(0) + size
-    pick = seeds[np.arange(POPULATION) % len(seeds)]
-    pop = pick + rng.normal(0.0, 0.01 * size, (POPULATION, 2 * N))
-    pop[: len(seeds)] = seeds[:POPULATION]
+    pick = seeds[np.arange(population) % len(seeds)]
+    pop = pick + rng.normal(0.0, 0.01 * size, (population, 2 * N))
+    pop[: len(seeds)] = seeds[:population]
     pop = np.clip(pop, lo, hi)
-    gens = max(1, evals // POPULATION)
+    gens = max(1, evals // population)
     algo = NSGA2(
-        pop_size=POPULATION,
+        pop_size=population,
         sampling=pop,
         crossover=SBX(prob=0.9, eta=15),
         mutation=PolynomialMutation(prob=1.0 / (2 * N), eta=20),
@@ -453,6 +505,7 @@ def run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> list[
 def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tuple[list[Design], int, int]:
     """:func:`run_start` and what it spent: (designs, NSGA-II evaluations, the refinements' and scorings' ones)."""
     rng = np.random.default_rng([seed, k])
+    tune = {**_tuning(), **spec.get("tuning", {})}
     target = np.asarray(spec["target"], dtype=float)
     tc = _target(target)
     s = spec["starts"][k]
@@ -462,7 +515,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
     x0, d, m, e = refine(topo, x0, tc, rounds=6, nfev=40)
     used += e
     cands = [(topo, x0, d)]
-    for t2, x2 in _moves(rng, topo, x0, spec["max_joints"]):
+    for t2, x2 in _moves(rng, topo, x0, spec["max_joints"], tune["add_moves"]):
         if deadline is not None and time.monotonic() > deadline:
             break
         x2, d2, m2, e2 = refine(t2, x2, tc, rounds=2)
@@ -470,27 +523,35 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         cands.append((t2, x2, d2))
     cands.sort(key=lambda c: c[2])
     topo, x0, _ = cands[0]
-    designs = []
-    # material-weighted refinement, continued from one weight to the next: a first front
+    # material-weighted refinements, continued from one weight to the next: a first front, in two chains (the
+    # mean gap + weight x material: the front's close end; the squared gaps + weight x squared material, which
+    # pushes harder on material: its low end)
     chain = [x0]
-    x = x0
-    for lam in LAMBDAS:
-        if deadline is not None and time.monotonic() > deadline:
-            break
-        x, dl, ml, e = refine(topo, x, tc, rounds=2, material_weight=lam)
-        used += e
-        if math.isfinite(dl):
-            chain.append(x)
+    for weights, l1 in ((tune["lambdas"], True), (tune["lambdas_squared"], False)):
+        x = x0
+        for lam in weights:
+            if deadline is not None and time.monotonic() > deadline:
+                break
+            x, dl, ml, e = refine(topo, x, tc, rounds=2, material_weight=lam, l1=l1)
+            used += e
+            if math.isfinite(dl):
+                chain.append(x)
     X, F, n_nsga = _nsga(
-        topo, np.array(chain), target, max(POPULATION, evals - used), int(rng.integers(2**31)), deadline
+        topo,
+        np.array(chain),
+        target,
+        max(tune["population"], evals - used),
+        int(rng.integers(2**31)),
+        deadline,
+        tune["population"],
     )
     Xall = np.concatenate([X, np.array(chain)])
-    d, m = evaluate(topo, Xall, target, keep=None)
+    d, m = evaluate(topo, Xall, target)
     used += len(Xall)
     front = _nondominated(d, m)
     # polish the closest designs: more rounds of the distance-only refinement
     polished = []
-    for i in front[:POLISH]:
+    for i in front[: tune["polish"]]:
         if deadline is not None and time.monotonic() > deadline:
             break
         xp, dp, mp, e = refine(topo, Xall[i], tc, rounds=8, nfev=60)
@@ -498,14 +559,14 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
         polished.append(xp)
     if polished:
         Xall = np.concatenate([Xall, np.array(polished)])
-        d, m = evaluate(topo, Xall, target, keep=None)
+        d, m = evaluate(topo, Xall, target)
         used += len(Xall)
         front = _nondominated(d, m)
     # members spread over material, refined with a material-weighted objective for a few weights: fill the front
-    spread = front[np.unique(np.round(np.linspace(0, front.size - 1, min(SPREAD, front.size))).astype(int))]
+    spread = front[np.unique(np.round(np.linspace(0, front.size - 1, min(tune["spread"], front.size))).astype(int))]
     extra = []
     for i in spread:
-        for w in SPREAD_WEIGHTS:
+        for w in tune["spread_weights"]:
             if deadline is not None and time.monotonic() > deadline:
                 break
             xw, dw, mw, e = refine(topo, Xall[i], tc, rounds=2, material_weight=w)
@@ -514,16 +575,15 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
                 extra.append(xw)
     if extra:
         Xall = np.concatenate([Xall, np.array(extra)])
-        d, m = evaluate(topo, Xall, target, keep=None)
+        d, m = evaluate(topo, Xall, target)
         used += len(Xall)
         front = _nondominated(d, m)
-    for i in front:
-        designs.append((float(d[i]), float(m[i]), Xall[i]))
-        for sc in SCALES:
-            xs = Xall[i] * sc
-            ds, ms = evaluate(topo, xs[None], target, keep=None)
-            used += 1
-            designs.append((float(ds[0]), float(ms[0]), xs))
+    # each front member and its scaled copies, evaluated in one batch
+    X = Xall[front][:, None] * np.concatenate([[1.0], tune["scales"]])[None, :, None, None]
+    X = X.reshape(-1, topo.n, 2)
+    ds, ms = evaluate(topo, X, target)
+    used += len(X) - front.size
+    designs = list(zip(ds.tolist(), ms.tolist(), X))
     td = {
         "n": topo.n,
         "edges": topo.edges.tolist(),
@@ -738,8 +798,11 @@ def synthesize_curve(
         Seconds: the search stops on the clock (not reproducible).
     seed : int
     workers, scheduler
-        Local threads (an int), a map-like, or the address of a dask.distributed scheduler
-        (:func:`gearlever.synthesis.driver.multistart`).
+        Local processes (an int; 1 runs in this process; default :func:`default_workers`, the cores this
+        process may use, at most :data:`MAX_DEFAULT_WORKERS`), a map-like, or the address of a
+        dask.distributed scheduler (:func:`gearlever.synthesis.driver.multistart`).  The designs are the
+        same for any of them.  Processes are started by ``spawn``: a script calling this with more than
+        one worker needs the ``if __name__ == "__main__":`` guard.
     progress : callable, optional
         ``progress(label, done, total)``.
     library_size : int, optional
@@ -804,39 +867,68 @@ def synthesize_curve(
     shortlist = retrieve(lib, target, PRESELECT)
     if not shortlist:
         raise GearleverError("target: no library mechanism traces a curve of this kind")
-    # a short refinement of every retrieved entry; the best refined ones are the starts
-    tc = _target(target)
-    refined = []
-    for n, (topo, x0) in enumerate(shortlist):
-        if refined and time_limit is not None and time.monotonic() > t0 + 0.5 * float(time_limit):
-            break
-        x1, d1, m1, _ = refine(topo, x0, tc, rounds=3, nfev=15)
-        refined.append((d1, m1, n, topo, x1))
+    with _local_pool(workers, scheduler) as pool:
+        return _search(
+            target,
+            user_target,
+            scoring,
+            centre,
+            k,
+            shortlist,
+            lib,
+            t0,
+            time_limit,
+            budget,
+            int(max_joints),
+            int(designs),
+            int(seed),
+            pool if pool is not None else (scheduler or (1 if workers is None else workers)),
+            progress,
+        )
+
+
+def _search(
+    target,
+    user_target,
+    scoring,
+    centre,
+    k,
+    shortlist,
+    lib,
+    t0,
+    time_limit,
+    budget,
+    max_joints,
+    designs,
+    seed,
+    workers,
+    progress,
+) -> CurveSynthesis:
+    """The search of :func:`synthesize_curve` after retrieval: preselection, starts, the front moved and scored."""
+    # a short refinement of every retrieved entry (tasks, like the starts); the best refined ones are the starts
+    entries = {
+        "target": target.tolist(),
+        "entries": [_plain(t, x) for t, x in shortlist],
+        "deadline": None if time_limit is None else t0 + 0.5 * float(time_limit),
+    }
+    pre = _dask.run_tasks(_preselect_chunk, (entries,), len(shortlist), 0, workers=workers)
+    refined = [(d1, m1, n, shortlist[n][0], np.asarray(x1, dtype=float)) for n, d1, m1, x1 in pre if x1 is not None]
     starts = _portfolio(refined, STARTS)
     total = budget if budget is not None else 10**6
     evals = max(POPULATION * 2, total // len(starts))
     spec = {
         "target": target.tolist(),
         "max_joints": int(max_joints),
-        "starts": [
-            {
-                "n": t.n,
-                "edges": t.edges.tolist(),
-                "fixed": t.fixed.tolist(),
-                "motor": list(t.motor),
-                "target": t.target,
-                "x0": x.tolist(),
-            }
-            for t, x in starts
-        ],
+        "starts": [_plain(t, x) for t, x in starts],
         "deadline": None if time_limit is None else t0 + float(time_limit),
+        "tuning": _tuning(),
     }
     runs = multistart(
         functools.partial(_spec, spec),
         len(starts),
         seed,
         budget=evals * len(starts),
-        workers=workers if scheduler is None else scheduler,
+        workers=workers,
         progress=progress,
         method="nsga2",
         start=curve_start,
@@ -895,6 +987,92 @@ def synthesize_curve(
         np.array(transforms, dtype=float).reshape(-1, 4),
         int(sum(r.polish_evaluations for r in runs)),
     )
+
+
+def _tuning() -> dict:
+    """The per-start settings as plain data: sent with the spec, so every worker process runs the caller's."""
+    return {
+        "lambdas": np.asarray(LAMBDAS, dtype=float).tolist(),
+        "lambdas_squared": np.asarray(LAMBDAS_SQUARED, dtype=float).tolist(),
+        "spread": int(SPREAD),
+        "spread_weights": [float(w) for w in SPREAD_WEIGHTS],
+        "polish": int(POLISH),
+        "scales": np.asarray(SCALES, dtype=float).tolist(),
+        "population": int(POPULATION),
+        "add_moves": int(ADD_MOVES),
+    }
+
+
+def _plain(topo: Topology, x0) -> dict:
+    """A topology and a sketch as plain data (sent to the workers)."""
+    return {
+        "n": topo.n,
+        "edges": topo.edges.tolist(),
+        "fixed": topo.fixed.tolist(),
+        "motor": list(topo.motor),
+        "target": topo.target,
+        "x0": np.asarray(x0, dtype=float).tolist(),
+    }
+
+
+def _preselect_chunk(spec: dict, ks, evals: int, method: str) -> list:
+    """Short refinements of the retrieved entries ``ks``: ``(k, distance, material, sketch or None)`` each.
+
+    An entry not reached before the spec's deadline (half the time limit) is ``None``; the first entry is
+    always refined, so that a start exists.
+    """
+    tc = _target(np.asarray(spec["target"], dtype=float))
+    out = []
+    for k in ks:
+        if k and spec["deadline"] is not None and time.monotonic() > spec["deadline"]:
+            out.append((k, math.inf, math.inf, None))
+            continue
+        s = spec["entries"][k]
+        topo = _topology(s["n"], s["edges"], s["fixed"], s["motor"], s["target"])
+        x1, d1, m1, _ = refine(topo, np.asarray(s["x0"], dtype=float), tc, rounds=3, nfev=15, walk=False)
+        out.append((k, d1, m1, x1.tolist()))
+    return out
+
+
+@contextlib.contextmanager
+def _local_pool(workers, scheduler):
+    """A pool of ``workers`` local processes (an int from 2; default :func:`default_workers`), else None.
+
+    Python threads share one interpreter lock, and the search's arrays are
+    small (a few hundred points), so threads run it little faster than one;
+    processes run it as many times faster as there are free cores.  Each
+    task is a pure function of plain data, so the designs are the same for
+    any number of processes.
+    """
+    n = default_workers() if workers is None and scheduler is None else workers
+    if scheduler is not None or isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+        yield None
+        return
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    pool = ProcessPoolExecutor(min(int(n), MAX_PROCESSES), mp_context=multiprocessing.get_context("spawn"))
+    try:
+        yield pool
+    except BrokenProcessPool:
+        raise GearleverError(
+            "workers: the worker processes could not start (a script calling synthesize_curve needs "
+            "`if __name__ == '__main__':`; or pass workers=1)"
+        ) from None
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
+
+
+def default_workers() -> int:
+    """Local processes of a search when ``workers`` is not given: the cores this process may use, at most 2."""
+    import os
+
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(MAX_DEFAULT_WORKERS, cores))
 
 
 #: Radii of the crank-tip designs, in RMS radii of the target.
@@ -958,6 +1136,13 @@ def _to_target_frame(lk, target, centre, k: float, rotate: bool = True):
     R = np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
     scale = 1.0 / k
     shift = np.asarray(centre, dtype=float) + scale * (t - R @ c)
+    if theta:
+        # a turned linkage is sampled at other phases of its crank, so its resampled centre moves a little:
+        # translated once more (a translation samples it at the same phases) onto the target's centre
+        turned = simulate((scale * (lk.x0 @ R.T) + shift)[None], solve_plan(lk))[0, lk.target_joint]
+        drift = (np.asarray(centre, dtype=float) + scale * t) - resample(turned[None], RESOLUTION)[0].mean(0)
+        if np.isfinite(drift).all():  # (a linkage that locks once turned is dropped by its score)
+            shift = shift + drift
     x = scale * (lk.x0 @ R.T) + shift
     moved = linkage_from_dict(
         {
