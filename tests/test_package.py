@@ -15,8 +15,9 @@ def _modules_importing(pattern):
     return sorted(str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if rx.search(p.read_text(encoding="utf-8")))
 
 
-def test_import_gearlever_loads_neither_matplotlib_pandas_nor_scipy():
-    code = "import sys, gearlever; print(sorted(m for m in ('matplotlib', 'pandas', 'scipy') if m in sys.modules))"
+def test_import_gearlever_loads_neither_matplotlib_pandas_scipy_nor_numba():
+    mods = "('matplotlib', 'pandas', 'scipy', 'numba')"
+    code = f"import sys, gearlever; print(sorted(m for m in {mods} if m in sys.modules))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
 
@@ -24,6 +25,11 @@ def test_import_gearlever_loads_neither_matplotlib_pandas_nor_scipy():
 def test_pyplot_is_imported_only_in_plotting():
     users = _modules_importing(r"^\s*(import matplotlib\.pyplot|from matplotlib import pyplot)")
     assert users and all(u.startswith("plotting/") for u in users), users
+
+
+def test_numba_is_imported_only_by_the_compiled_kernels():
+    users = _modules_importing(r"^\s*(import numba|from numba)")
+    assert users == ["loops/compiled.py", "zrdpm/_kernels.py"], users
 
 
 def test_pandas_is_imported_only_in_tables():

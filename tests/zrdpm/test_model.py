@@ -238,6 +238,25 @@ def test_fast_path_gives_the_plain_results(block, size, contour):
             np.testing.assert_allclose(b, a, rtol=1e-12, atol=1e-12)
 
 
+@pytest.mark.parametrize("lever_angle0", [0.3, 1.0e7])
+def test_fast_path_is_exact_for_angles_beyond_the_compiled_reduction(lever_angle0):
+    # input angles (and, with lever_angle0 = 1e7, every lever angle) beyond SINCOS_LIMIT send their block
+    # through the C library's sin and cos.  Self-consistent model: the plain path to 1e-12.  Tables model:
+    # every output is A sin(phi) + B cos(phi) + G (its A, B, G from phi = 0, pi/2, pi), held against numpy's
+    # sin and cos of the far angles themselves (the plain path adds lever_angle0 to phi, whose rounding at
+    # 1e12 rad is already 1e-4 rad)
+    phi = np.random.default_rng(8).uniform(-10, 10, 3000)
+    phi[[10, 1500, 2999]] = [1.0e6, -3.0e12, 2.5e300]
+    p = zrdpm.ZrdpmContour(contour=1, l=7.0, r_a=2.0, r_b=4.0, lever_angle0=lever_angle0)
+    for a, b in zip(zrdpm.analogues(p, phi), zrdpm.analogues(p, phi, block=256)):
+        np.testing.assert_allclose(b, a, rtol=1e-12, atol=1e-12)
+    k = zrdpm.TablesConstants(1, 21.0, -2.24, lever_angle0=lever_angle0)
+    at = np.array(zrdpm.tables_outputs(p, k, np.array([0.0, np.pi / 2, np.pi]), block=256))
+    g = (at[:, 0] + at[:, 2]) / 2
+    linear = np.outer(at[:, 1] - g, np.sin(phi)) + np.outer(at[:, 0] - g, np.cos(phi)) + g[:, None]
+    np.testing.assert_allclose(np.array(zrdpm.tables_outputs(p, k, phi, block=256)), linear, rtol=1e-12, atol=1e-12)
+
+
 @pytest.mark.parametrize("model", ["tables", "self-consistent"])
 def test_fast_path_writes_into_a_given_out_array(model):
     phi = np.linspace(0, 7, 23)

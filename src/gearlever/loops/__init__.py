@@ -8,11 +8,14 @@
 - :mod:`~gearlever.loops.closed`: slider-crank, inverted slider-crank,
   the ZRDPM double slider.
 - :mod:`~gearlever.loops.plan`: velocity and acceleration plans (numbers).
+- :mod:`~gearlever.loops.trig`, :mod:`~gearlever.loops.compiled`: sine and
+  cosine of arrays (one half-angle tangent; a numba kernel, imported on first
+  use by the ZRDPM fast path only).
 
 Within the layering of the guide's architecture page (held by
 ``tests/test_imports.py``) it may import numpy and gearlever's ``_format``,
 ``_io``, ``_progress``, ``_result``, ``_validate``, ``errors``, ``gears`` (no
-scipy, matplotlib or pandas at import).
+scipy, matplotlib or pandas at import; numba in ``compiled`` alone).
 """
 
 from gearlever.loops.closed import (

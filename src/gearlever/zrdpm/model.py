@@ -93,8 +93,9 @@ def analogues(params: ZrdpmContour, phi, *, block: int | None = None, out=None) 
     phi : array_like
         Leading link angle(s) (``phi_9`` or ``phi_6``), radians.
     block : int, optional
-        If given, use the blocked in-place fast path with blocks of this many
-        angles (same results to rounding; see :func:`tables_outputs`).
+        If given, use the fast path, a compiled kernel taking this many
+        angles at a time (same results to rounding; see
+        :func:`gearlever.zrdpm.fast.fast_outputs`).
     out : ndarray, optional
         Fast path only: a C-contiguous float64 array of shape
         ``(6, *phi.shape)`` to write the six outputs into (its rows are
@@ -226,10 +227,10 @@ def tables_outputs(
     phi : array_like
         Radians.
     block : int, optional
-        If given, use the fast path: one sine and one cosine evaluation per
-        angle, then the six outputs as a 6 x 2 matrix product per block of
-        this many angles, written in place; the results equal the plain
-        path's to rounding.
+        If given, use the fast path: a compiled kernel taking this many angles
+        at a time, one sine and one cosine per angle, then the six outputs
+        written in place; the results equal the plain path's to rounding
+        (:func:`gearlever.zrdpm.fast.fast_outputs`).
     out : ndarray, optional
         Fast path only: a C-contiguous float64 array of shape
         ``(6, *phi.shape)`` to write the six outputs into (saves the
