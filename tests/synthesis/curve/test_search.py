@@ -155,3 +155,16 @@ def test_residual_jacobian_matches_central_finite_differences(weighted, linear):
     h = 1e-6
     fd = np.column_stack([(fun(q + h * e) - fun(q - h * e)) / (2 * h) for e in np.eye(q.size)])
     assert np.abs(J - fd).max() <= 1e-5 * max(1.0, np.abs(fd).max())
+
+
+def test_worker_processes_run_their_linear_algebra_on_one_thread_and_the_callers_environment_is_restored(monkeypatch):
+    """Two processes each threading OpenBLAS over two cores ran challenge curve 5 in 75 s instead of 45 s."""
+    import os
+
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    monkeypatch.setenv("OMP_NUM_THREADS", "3")  # the user's own setting is kept
+    with S._local_pool(2, None) as pool:
+        seen = pool.submit(os.getenv, "OPENBLAS_NUM_THREADS").result()
+        kept = pool.submit(os.getenv, "OMP_NUM_THREADS").result()
+    assert (seen, kept) == ("1", "3")
+    assert "OPENBLAS_NUM_THREADS" not in os.environ and os.environ["OMP_NUM_THREADS"] == "3"
