@@ -155,3 +155,40 @@ def test_residual_jacobian_matches_central_finite_differences(weighted, linear):
     h = 1e-6
     fd = np.column_stack([(fun(q + h * e) - fun(q - h * e)) / (2 * h) for e in np.eye(q.size)])
     assert np.abs(J - fd).max() <= 1e-5 * max(1.0, np.abs(fd).max())
+
+
+def test_worker_processes_run_their_linear_algebra_on_one_thread_and_the_callers_environment_is_restored(monkeypatch):
+    """Two processes each threading OpenBLAS over two cores ran challenge curve 5 in 75 s instead of 45 s."""
+    import os
+
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    monkeypatch.setenv("OMP_NUM_THREADS", "3")  # the user's own setting is kept
+    with S._local_pool(2, None) as pool:
+        seen = pool.submit(os.getenv, "OPENBLAS_NUM_THREADS").result()
+        kept = pool.submit(os.getenv, "OMP_NUM_THREADS").result()
+    assert (seen, kept) == ("1", "3")
+    assert "OPENBLAS_NUM_THREADS" not in os.environ and os.environ["OMP_NUM_THREADS"] == "3"
+
+
+def test_low_end_entries_are_the_closest_non_dominated_small_linkages_within_the_material_bound():
+    """Issue 33 §3: the library's low-material linkages (challenge curve 1's front jumped from 0.38 to 1.5)."""
+    lib = L.build_library(0, size=3000)
+    t = np.linspace(0, 2 * np.pi, 120)
+    egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
+    picked = S._low_end(lib, egg, count=3)
+    assert 1 <= len(picked) <= 3
+    rms = S._target_rms(egg)
+    scored = [S.evaluate(topo, x[None], egg) for topo, x in picked]
+    d = np.array([float(a[0]) for a, _ in scored])
+    m = np.array([float(b[0]) for _, b in scored])
+    assert all(5 <= topo.n <= S.LOW_END_JOINTS for topo, _ in picked)
+    assert np.all(d < 0.75) and np.all(m <= S.LOW_END_MATERIAL * rms)
+    assert np.all(np.diff(d) > 0) and np.all(np.diff(m) < 0)  # closest first, each with less material
+    # no scanned entry within the bound is closer than the first pick
+    for k, topo in enumerate(lib.topologies):
+        ents = np.flatnonzero(lib.entry_topology == k)
+        if not 5 <= topo.n <= S.LOW_END_JOINTS or not ents.size:
+            continue
+        x0 = np.stack([lib.sketches[int(e)] for e in ents]) * (rms / lib.rms[ents])[:, None, None]
+        dd, mm = S.evaluate(topo, x0, egg)
+        assert not np.any((dd < d[0] - 1e-9) & (mm <= S.LOW_END_MATERIAL * rms))

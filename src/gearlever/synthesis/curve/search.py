@@ -57,6 +57,7 @@ import contextlib
 import functools
 import math
 import time
+from concurrent.futures import ProcessPoolExecutor as _Pool
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -116,7 +117,15 @@ SCALES = np.linspace(0.9, 0.99, 10)
 MATERIAL_FLOOR = 1e-11
 MAX_GROWTH = 3.0
 #: Front members (closest first) polished by a longer refinement.
-POLISH = 3
+POLISH = 5
+#: Most function evaluations of each least-squares solve of a polish (eight rounds at most).
+POLISH_NFEV = 60
+#: Low-material library entries (five to :data:`LOW_END_JOINTS` joints, material at most :data:`LOW_END_MATERIAL`
+#: RMS radii of the target) refined with each material weight of :data:`LOW_END_WEIGHTS` (:func:`_low_end`).
+LOW_END = 3
+LOW_END_JOINTS = 6
+LOW_END_MATERIAL = 6.3
+LOW_END_WEIGHTS = (0.003, 0.01, 0.03, 0.1, 0.3)
 #: Front members (spread over material) refined again with each of the material weights ``SPREAD_WEIGHTS``.
 SPREAD = 6
 SPREAD_WEIGHTS = (0.0005, 0.005, 0.03, 0.1)
@@ -131,6 +140,9 @@ MAX_DESIGNS = 1000
 MAX_TIME = 86_400.0
 #: Most local processes by default (:func:`default_workers`).
 MAX_DEFAULT_WORKERS = 2
+#: Environment variables of the linear algebra libraries' thread counts, 1 in the worker processes
+#: (:func:`_local_pool`).
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 #: Most local processes (more ``workers`` share them; the preselection has 50 tasks and the starts 4).
 MAX_PROCESSES = 32
 
@@ -554,7 +566,7 @@ def _run_start(spec: dict, seed: int, k: int, evals: int, deadline=None) -> tupl
     for i in front[: tune["polish"]]:
         if deadline is not None and time.monotonic() > deadline:
             break
-        xp, dp, mp, e = refine(topo, Xall[i], tc, rounds=8, nfev=60)
+        xp, dp, mp, e = refine(topo, Xall[i], tc, rounds=8, nfev=tune["polish_nfev"])
         used += e
         polished.append(xp)
     if polished:
@@ -865,46 +877,69 @@ def synthesize_curve(
     else:
         lib = build_library(int(library_seed), max_joints=int(max_joints), size=int(size))
     shortlist = retrieve(lib, target, PRESELECT)
+    low_end = _low_end(lib, target)
     if not shortlist:
         raise GearleverError("target: no library mechanism traces a curve of this kind")
+    settings = _Settings(
+        target,
+        user_target,
+        scoring,
+        centre,
+        float(k),
+        tuple(shortlist),
+        tuple(low_end),
+        int(lib.descriptors.shape[0]),
+        t0,
+        time_limit,
+        budget,
+        int(max_joints),
+        int(designs),
+        int(seed),
+    )
     with _local_pool(workers, scheduler) as pool:
         return _search(
-            target,
-            user_target,
-            scoring,
-            centre,
-            k,
-            shortlist,
-            lib,
-            t0,
-            time_limit,
-            budget,
-            int(max_joints),
-            int(designs),
-            int(seed),
-            pool if pool is not None else (scheduler or (1 if workers is None else workers)),
-            progress,
+            settings, pool if pool is not None else (scheduler or (1 if workers is None else workers)), progress
         )
 
 
-def _search(
-    target,
-    user_target,
-    scoring,
-    centre,
-    k,
-    shortlist,
-    lib,
-    t0,
-    time_limit,
-    budget,
-    max_joints,
-    designs,
-    seed,
-    workers,
-    progress,
-) -> CurveSynthesis:
+@dataclass(frozen=True, eq=False)
+class _Settings:
+    """What :func:`_search` needs of :func:`synthesize_curve`'s checked arguments and retrieval, as one record.
+
+    ``target`` is the search's target (the user's, in the relative scoring,
+    moved by ``-centre`` and scaled by ``k``), ``user_target`` the polyline
+    the user's scoring measures; ``shortlist`` the retrieved
+    ``(topology, sketch)`` pairs and ``low_end`` those of :func:`_low_end`;
+    ``t0`` the clock's start (``time.monotonic``).
+    """
+
+    target: np.ndarray
+    user_target: np.ndarray
+    scoring: str
+    centre: np.ndarray
+    k: float
+    shortlist: tuple
+    low_end: tuple
+    library_size: int
+    t0: float
+    time_limit: float | None
+    budget: int | None
+    max_joints: int
+    designs: int
+    seed: int
+
+
+def _search(settings: _Settings, workers, progress) -> CurveSynthesis:
     """The search of :func:`synthesize_curve` after retrieval: preselection, starts, the front moved and scored."""
+    target, user_target, scoring, centre, k = (
+        settings.target,
+        settings.user_target,
+        settings.scoring,
+        settings.centre,
+        settings.k,
+    )
+    shortlist, t0, time_limit, budget = settings.shortlist, settings.t0, settings.time_limit, settings.budget
+    max_joints, designs, seed = settings.max_joints, settings.designs, settings.seed
     # a short refinement of every retrieved entry (tasks, like the starts); the best refined ones are the starts
     entries = {
         "target": target.tolist(),
@@ -928,7 +963,7 @@ def _search(
         len(starts),
         seed,
         budget=evals * len(starts),
-        workers=workers,
+        workers=_PerStart(workers, [t.n for t, _ in starts]) if isinstance(workers, _Pool) else workers,
         progress=progress,
         method="nsga2",
         start=curve_start,
@@ -937,6 +972,15 @@ def _search(
     runs = sorted(runs, key=lambda r: r.index)
     res = order([(d, r.index) for r in runs for d in r.info["designs"]], lambda t: t[0].distance, lambda t: t[1])
     res = [d for d, _ in res] + _crank_tips(target)
+    if settings.low_end:
+        low = {
+            "target": target.tolist(),
+            "entries": [_plain(t, x) for t, x in settings.low_end],
+            "deadline": None if time_limit is None else t0 + float(time_limit),
+            "weights": [float(w) for w in LOW_END_WEIGHTS],
+        }
+        tasks = len(settings.low_end) * len(LOW_END_WEIGHTS)
+        res += [d for pair in _dask.run_tasks(_low_end_chunk, (low,), tasks, 0, workers=workers) for d in pair]
     # the non-dominated feasible ones, moved onto the target's frame (where they are scored again: the crank's
     # angles are absolute, so a moved linkage is sampled at other phases of its motion), evenly thinned to `designs`
     dd = np.array([r.distance for r in res])
@@ -980,7 +1024,7 @@ def _search(
         int(sum(r.evaluations for r in runs)),
         int(seed),
         len(starts),
-        int(lib.descriptors.shape[0]),
+        settings.library_size,
         time.monotonic() - t0,
         scoring,
         float(k),
@@ -997,6 +1041,7 @@ def _tuning() -> dict:
         "spread": int(SPREAD),
         "spread_weights": [float(w) for w in SPREAD_WEIGHTS],
         "polish": int(POLISH),
+        "polish_nfev": int(POLISH_NFEV),
         "scales": np.asarray(SCALES, dtype=float).tolist(),
         "population": int(POPULATION),
         "add_moves": int(ADD_MOVES),
@@ -1013,6 +1058,59 @@ def _plain(topo: Topology, x0) -> dict:
         "target": topo.target,
         "x0": np.asarray(x0, dtype=float).tolist(),
     }
+
+
+def _low_end(library: Library, target, count: int = LOW_END) -> list:
+    """The ``count`` closest library entries at the front's low end: (topology, sketch scaled to the target's size).
+
+    Retrieval ranks entries by shape, whatever their material, and the
+    refinements from there rarely come down to the least material a linkage
+    can have: on challenge curve 1 the front jumped from the crank tip
+    (distance 0.587, material 0.38) to four-bars of material 1.5.  Here
+    every entry of five to :data:`LOW_END_JOINTS` joints is scaled to the
+    target's RMS radius and scored (fast distance); of those with material
+    at most :data:`LOW_END_MATERIAL` RMS radii, the non-dominated ones, the
+    ``count`` closest.  Deterministic: no draw.
+    """
+    rms = _target_rms(target)
+    rows = []
+    for t, topo in enumerate(library.topologies):
+        ents = np.flatnonzero(library.entry_topology == t)
+        if not 5 <= topo.n <= LOW_END_JOINTS or not ents.size:  # (a crank tip is a circle: see _crank_tips)
+            continue
+        x0 = np.stack([library.sketches[int(e)] for e in ents]) * (rms / library.rms[ents])[:, None, None]
+        d, m = evaluate(topo, x0, target)
+        ok = np.isfinite(d) & (d < MAX_DISTANCE) & (m <= LOW_END_MATERIAL * rms)
+        rows += [(float(d[i]), float(m[i]), int(ents[i]), topo, x0[i]) for i in np.flatnonzero(ok)]
+    if not rows:
+        return []
+    keep = _nondominated(np.array([r[0] for r in rows]), np.array([r[1] for r in rows]))
+    return [(rows[i][3], rows[i][4]) for i in keep[:count]]
+
+
+def _low_end_chunk(spec: dict, ks, evals: int, method: str) -> list:
+    """Refinements of the low-end entries (:func:`_low_end`), task ``k`` = entry ``k // W``, weight ``k % W``.
+
+    Each is a material-weighted refinement (the mean gap + weight x material,
+    the spec's ``W`` weights, :data:`LOW_END_WEIGHTS`) from the entry, then a
+    distance-only one from there; both results are designs.  A task not
+    reached before the spec's deadline gives none.
+    """
+    tc = _target(np.asarray(spec["target"], dtype=float))
+    out = []
+    for k in ks:
+        designs = []
+        if spec["deadline"] is None or time.monotonic() <= spec["deadline"]:
+            weights = spec["weights"]
+            s = spec["entries"][k // len(weights)]
+            topo = _topology(s["n"], s["edges"], s["fixed"], s["motor"], s["target"])
+            td = {key: s[key] for key in ("n", "edges", "fixed", "motor", "target")}
+            w = weights[k % len(weights)]
+            x, d, m, _ = refine(topo, np.asarray(s["x0"], dtype=float), tc, rounds=4, nfev=30, material_weight=w)
+            x2, d2, m2, _ = refine(topo, x, tc, rounds=3, nfev=30, walk=False)
+            designs = [Design(float(a), float(b), td, np.asarray(c).tolist()) for a, b, c in ((d, m, x), (d2, m2, x2))]
+        out.append([dd for dd in designs if math.isfinite(dd.distance)])
+    return out
 
 
 def _preselect_chunk(spec: dict, ks, evals: int, method: str) -> list:
@@ -1043,16 +1141,24 @@ def _local_pool(workers, scheduler):
     processes run it as many times faster as there are free cores.  Each
     task is a pure function of plain data, so the designs are the same for
     any number of processes.
+
+    Each process runs its linear algebra on one thread (:data:`THREAD_VARIABLES`
+    set to 1 while the pool lives, so the processes it starts inherit them;
+    a value the user set is kept): the least-squares steps are small, and
+    two processes each threading OpenBLAS over two cores ran curve 5 of the
+    challenge in 75 s instead of 45 s.
     """
     n = default_workers() if workers is None and scheduler is None else workers
     if scheduler is not None or isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
         yield None
         return
     import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
+    import os
     from concurrent.futures.process import BrokenProcessPool
 
-    pool = ProcessPoolExecutor(min(int(n), MAX_PROCESSES), mp_context=multiprocessing.get_context("spawn"))
+    saved = {v: os.environ.get(v) for v in THREAD_VARIABLES}
+    os.environ.update({v: "1" for v, old in saved.items() if old is None})
+    pool = _Pool(min(int(n), MAX_PROCESSES), mp_context=multiprocessing.get_context("spawn"))
     try:
         yield pool
     except BrokenProcessPool:
@@ -1062,6 +1168,31 @@ def _local_pool(workers, scheduler):
         ) from None
     finally:
         pool.shutdown(wait=False, cancel_futures=True)
+        for v, old in saved.items():
+            if old is None:
+                os.environ.pop(v, None)
+
+
+class _PerStart:
+    """A pool whose ``map`` runs each start of a chunk as its own task, the largest linkages first.
+
+    The driver hands chunks of two starts; a chunk's result is the list of
+    its starts' results, so running the starts one by one and joining them
+    gives the same lists (the same designs).  Taken one at a time, largest
+    first (``cost``: the start's joints), the processes share the work as
+    it comes: challenge curve 1's starts took 6 to 22 CPU seconds, and fixed
+    pairs kept one process busy 51 s against 45 s balanced.
+    """
+
+    def __init__(self, pool, cost):
+        self.pool, self.cost = pool, list(cost)
+
+    def map(self, fn, chunks):
+        chunks = [list(c) for c in chunks]
+        flat = [k for c in chunks for k in c]
+        futures = {k: self.pool.submit(fn, [k]) for k in sorted(flat, key=lambda k: (-self.cost[k], k))}
+        for c in chunks:
+            yield [x for k in c for x in futures[k].result()]
 
 
 def default_workers() -> int:
