@@ -192,3 +192,25 @@ def test_low_end_entries_are_the_closest_non_dominated_small_linkages_within_the
         x0 = np.stack([lib.sketches[int(e)] for e in ents]) * (rms / lib.rms[ents])[:, None, None]
         dd, mm = S.evaluate(topo, x0, egg)
         assert not np.any((dd < d[0] - 1e-9) & (mm <= S.LOW_END_MATERIAL * rms))
+
+
+def test_gap_tasks_refine_both_ends_of_the_largest_gaps_at_the_gaps_own_weight_and_the_foot_of_each_cliff():
+    """The merged front's undominated rectangles, largest first; a crank tip (two joints) is never an end."""
+    four = {"n": 5, "edges": [], "fixed": [], "motor": [0, 1], "target": 4}
+    tip = {"n": 2, "edges": [[0, 1]], "fixed": [0], "motor": [0, 1], "target": 1}
+    res = [
+        S.Design(0.1, 9.0, four, [[0.0, 0.0]]),
+        S.Design(0.2, 2.0, four, [[1.0, 0.0]]),
+        S.Design(0.3, 1.5, four, [[2.0, 0.0]]),
+        S.Design(0.6, 0.4, tip, [[3.0, 0.0]]),
+        S.Design(0.25, 5.0, four, [[4.0, 0.0]]),  # dominated
+        S.Design(0.8, 0.1, four, [[5.0, 0.0]]),  # infeasible (distance at least 0.75)
+    ]
+    tasks = S._gap_tasks(res, count=2)
+    w1 = 0.1 / (2 * np.pi * 7.0)  # the gap (0.1, 9) - (0.2, 2): area 0.7, the largest
+    w2 = 0.3 / (2 * np.pi * 1.1)  # (0.3, 1.5) - (0.6, 0.4): area 0.33; (0.2, 2) - (0.3, 1.5) is 0.05
+    want = [(0, w1 * f) for f in S.GAP_FACTORS] + [(1, w1 * min(S.GAP_FACTORS))]
+    want += [(2, w2 * f) for f in S.GAP_FACTORS]  # the crank tip at its other end is left alone
+    want += [(1, 0.0), (2, 0.0)]  # the cliffs 9 -> 2 and 2 -> 1.5 (the crank tip's 1.5 -> 0.4 left alone)
+    assert [(int(d.x0[0][0]), pytest.approx(w)) for d, w in tasks] == [(i, pytest.approx(w)) for i, w in want]
+    assert S._gap_tasks(res[4:], count=2) == []  # one feasible design: no gap

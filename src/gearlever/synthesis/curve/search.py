@@ -19,7 +19,7 @@ machine and any number of workers):
    :data:`PRESELECT` distinct ones are refined briefly (tasks, like the
    starts) and :data:`STARTS` of them are the starts (:func:`_portfolio`).
 3. **Per start** (:func:`run_start`): least-squares refinement of the
-   distance (:func:`refine`: trust region of
+   distance (:func:`refine`: Levenberg-Marquardt of
    :func:`scipy.optimize.least_squares` on the analytic Jacobian of
    :func:`~gearlever.synthesis.curve.simulate.simulate_jacobian` carried through the
    resampling by arc length, the challenge's gaps at the current best
@@ -37,14 +37,25 @@ machine and any number of workers):
    (:data:`SPREAD`, :data:`SPREAD_WEIGHTS`) and, because
    size counts in the distance, each is offered in scaled copies (a smaller
    copy has less material and more distance).
-4. **Front**: the non-dominated feasible designs of every start, at most
-   ``designs`` of them (chosen evenly along the front when there are more).
+4. **Front**: the non-dominated feasible designs of every start, with
+   crank tips (:func:`_crank_tips`) and refined low-material library entries
+   (:func:`_low_end`); its largest gaps and highest cliffs are filled by
+   refinements of their ends (:func:`_gap_tasks`, :data:`GAP_ROUNDS` rounds,
+   tasks like the starts); at most ``designs`` of them (chosen evenly along
+   the front when there are more).
+
+The residuals and their Jacobian are compiled kernels
+(:mod:`gearlever.synthesis.curve._kernels`), the same arithmetic as
+:func:`~gearlever.synthesis.curve.simulate.simulate_jacobian` and
+:func:`~gearlever.synthesis.curve.score.resample` for one sketch.
 
 Notes
 -----
 Scores as :mod:`gearlever.synthesis.curve.score`.  NSGA-II: K. Deb, A. Pratap,
 S. Agarwal, T. Meyarivan, "A fast and elitist multiobjective genetic
-algorithm: NSGA-II", IEEE Trans. Evol. Comput. 6(2), 2002; pymoo: J. Blank,
+algorithm: NSGA-II", IEEE Trans. Evol. Comput. 6(2), 2002; Levenberg-Marquardt: J. J. Moré, "The
+Levenberg-Marquardt algorithm: implementation and theory", Numerical Analysis, Lecture Notes in Mathematics
+630, 1978 (MINPACK, as :func:`scipy.optimize.least_squares` calls it); pymoo: J. Blank,
 K. Deb, "pymoo: Multi-objective optimization in Python", IEEE Access 8, 2020.
 Retrieval over pre-simulated mechanisms follows the idea of LInK (A. H.
 Nobari, A. Srivastava, D. Gutfreund, K. Xu, F. Ahmed, 2024) with a
@@ -83,7 +94,7 @@ from gearlever.synthesis.curve.score import (
     rms_radius,
     scoring_target,
 )
-from gearlever.synthesis.curve.simulate import simulate, simulate_jacobian
+from gearlever.synthesis.curve.simulate import simulate
 from gearlever.synthesis.curve.targets import check_target
 from gearlever.synthesis.curve.topology import Topology, _topology
 from gearlever.synthesis.driver import Start, check_budget, multistart, order
@@ -100,7 +111,7 @@ __all__ = [
 
 #: Retrieved entries refined briefly, and the best of them kept as starts.
 PRESELECT = 100
-STARTS = 8
+STARTS = 16
 #: The portfolio's narrow strategy: starts picked among the first ``NARROW`` retrieved entries only (the
 #: earlier search refined 24), alternating with starts picked among all ``PRESELECT`` (see :func:`_portfolio`).
 NARROW = 24
@@ -116,6 +127,10 @@ SCALES = np.linspace(0.9, 0.99, 10)
 #: distance-only refinement may multiply the material by.
 MATERIAL_FLOOR = 1e-11
 MAX_GROWTH = 3.0
+#: Least-squares method of the refinements (:func:`scipy.optimize.least_squares`): MINPACK's Levenberg-Marquardt,
+#: whose loop runs in compiled code (the trust region reflective method's Python loop took two thirds of a
+#: refinement's time once the residuals were compiled).
+LSQ_METHOD = "lm"
 #: Front members (closest first) polished by a longer refinement.
 POLISH = 5
 #: Most function evaluations of each least-squares solve of a polish (eight rounds at most).
@@ -126,6 +141,13 @@ LOW_END = 3
 LOW_END_JOINTS = 6
 LOW_END_MATERIAL = 6.3
 LOW_END_WEIGHTS = (0.003, 0.01, 0.03, 0.1, 0.3)
+#: The merged front's largest gaps (by the area they leave undominated) filled by refinements of their two ends
+#: (:func:`_gap_tasks`), for :data:`GAP_ROUNDS` rounds, with the gap's own material weight times each of
+#: :data:`GAP_FACTORS`.
+GAPS = 8
+GAP_ROUNDS = 3
+GAP_FACTORS = (0.5, 1.0, 2.0)
+CLIFFS = 4
 #: Front members (spread over material) refined again with each of the material weights ``SPREAD_WEIGHTS``.
 SPREAD = 6
 SPREAD_WEIGHTS = (0.0005, 0.005, 0.03, 0.1)
@@ -245,64 +267,42 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None,
     the resampling: a resampled point ``p_lo + w (p_hi - p_lo)`` with
     ``w = (s L - c_lo) / l_lo`` (``L`` the curve's length, ``c_lo`` the
     length up to sample ``lo``, ``l_lo`` the segment's) moves with the
-    samples and with the lengths.
+    samples and with the lengths.  Both are compiled kernels
+    (:mod:`gearlever.synthesis.curve._kernels`: one sketch a call, where the
+    batched numpy simulator spends its time in overhead); a sketch that
+    locks gives residuals of 10 and a zero Jacobian.
     """
+    from gearlever.synthesis.curve import _kernels
     from gearlever.synthesis.curve.score import _alignment_indices
 
     N = topo.n
     n = tc.z.shape[0]
-    perm = _alignment_indices(n)[a]
+    perm = np.ascontiguousarray(_alignment_indices(n)[a], dtype=np.int64)
     s = np.linspace(0.0, 1.0, n)
     lam = math.sqrt(material_weight)
-    norm = (1.0 if weights is None else np.asarray(weights, dtype=float)) / math.sqrt(n)
+    norm = np.broadcast_to((1.0 if weights is None else np.asarray(weights, dtype=float)) / math.sqrt(n), (n,))
+    norm = np.ascontiguousarray(norm, dtype=float)
     extra = 1 if lam else 0
+    plan = topo.plan
+    dyads = np.ascontiguousarray(plan.dyads, dtype=np.int64).reshape(-1, 4)
+    fixed = (dyads, int(plan.pivot), int(plan.tip), int(topo.target), _crank_cs(), s, perm)
+    tz = np.ascontiguousarray(np.column_stack([tc.z.real, tc.z.imag]))
 
     def fun(q):
-        x = q[:-1].reshape(N, 2)
-        c = simulate(x[None], topo.plan)[0, topo.target]
-        r = resample(c[None], n)[0]
-        if not np.isfinite(r).all():
+        x = np.ascontiguousarray(q[:-1].reshape(N, 2))
+        g = _kernels.gaps(x, *fixed, tz, tc.scale, float(q[-1]), norm)
+        if g is None:
             return np.full(2 * n + extra, 10.0)
-        z = r[:, 0] + 1j * r[:, 1]
-        z = (z - z.mean()) / tc.scale
-        g = norm * (np.exp(1j * q[-1]) * z[perm] - tc.z)
-        out = np.concatenate([g.real, g.imag])
         if lam:
             m = material(x[None], topo.edges)[0]
-            out = np.append(out, lam * (math.sqrt(m) if linear else m))
-        return out
+            g = np.append(g, lam * (math.sqrt(m) if linear else m))
+        return g
 
     def jac(q):
-        x = q[:-1].reshape(N, 2)
-        c, J = simulate_jacobian(x[None], topo.plan, joints=[topo.target])
-        c, J = c[0, topo.target], J[0, 0]  # (T, 2), (T, 2, 2N)
-        T = c.shape[0]
-        dv = np.diff(c, axis=0)
-        seg = np.hypot(dv[:, 0], dv[:, 1])
-        if not (np.isfinite(J).all() and np.isfinite(seg).all()) or seg.sum() <= 0:
+        x = np.ascontiguousarray(q[:-1].reshape(N, 2))
+        out = _kernels.gaps_jacobian(x, *fixed, tc.scale, float(q[-1]), norm)
+        if out is None:
             return np.zeros((2 * n + extra, 2 * N + 1))
-        with np.errstate(invalid="ignore", divide="ignore"):
-            u = np.where(seg[:, None] > 0, dv / seg[:, None], 0.0)
-        dseg = np.einsum("tc,tcp->tp", u, J[1:] - J[:-1])
-        cum = np.concatenate([[0.0], np.cumsum(seg)])
-        dcum = np.concatenate([np.zeros((1, 2 * N)), np.cumsum(dseg, 0)])
-        total, dtotal = cum[-1], dcum[-1]
-        hi = np.clip(np.searchsorted(cum / total, s, side="right"), 1, T - 1)
-        lo = hi - 1
-        sl = seg[lo]
-        pos = sl > 0
-        safe = np.where(pos, sl, 1.0)
-        w = np.where(pos, np.clip((s * total - cum[lo]) / safe, 0.0, 1.0), 0.0)
-        dw = np.where(pos[:, None], (s[:, None] * dtotal - dcum[lo] - w[:, None] * dseg[lo]) / safe[:, None], 0.0)
-        p = c[lo] + w[:, None] * (c[hi] - c[lo])
-        dp = (1 - w)[:, None, None] * J[lo] + w[:, None, None] * J[hi] + (c[hi] - c[lo])[:, :, None] * dw[:, None, :]
-        z = p[:, 0] + 1j * p[:, 1]
-        z = (z - z.mean()) / tc.scale
-        dz = dp[:, 0] + 1j * dp[:, 1]
-        dz = (dz - dz.mean(0)) / tc.scale
-        e = np.exp(1j * q[-1])
-        R = np.reshape(norm, (-1, 1)) * np.column_stack([e * dz[perm], 1j * e * z[perm]])
-        out = np.concatenate([R.real, R.imag])
         if lam:
             ed = topo.edges
             d = x[ed[:, 0]] - x[ed[:, 1]]
@@ -317,6 +317,17 @@ def _residuals(topo: Topology, tc, a: int, material_weight: float, weights=None,
         return out
 
     return fun, jac
+
+
+@functools.lru_cache(maxsize=1)
+def _crank_cs() -> np.ndarray:
+    """Cosines and sines of the simulator's crank angles, (T, 2), read-only (computed once, as numpy does)."""
+    from gearlever.synthesis.curve.simulate import crank_angles
+
+    th = crank_angles()
+    out = np.ascontiguousarray(np.stack([np.cos(th), np.sin(th)], -1))
+    out.setflags(write=False)
+    return out
 
 
 def refine(
@@ -381,7 +392,7 @@ def refine(
         fun, jac = _residuals(topo, tc, a, weight, gw, linear=l1 and bool(material_weight))
         q0 = np.append(best.ravel(), angle)
         try:
-            res = least_squares(fun, q0, jac=jac, method="trf", max_nfev=nfev, x_scale="jac")
+            res = least_squares(fun, q0, jac=jac, method=LSQ_METHOD, max_nfev=nfev, x_scale="jac")
         except (ValueError, np.linalg.LinAlgError):
             return None, math.inf, math.inf, 0
         cand = res.x[:-1].reshape(N, 2)
@@ -972,15 +983,23 @@ def _search(settings: _Settings, workers, progress) -> CurveSynthesis:
     runs = sorted(runs, key=lambda r: r.index)
     res = order([(d, r.index) for r in runs for d in r.info["designs"]], lambda t: t[0].distance, lambda t: t[1])
     res = [d for d, _ in res] + _crank_tips(target)
-    if settings.low_end:
-        low = {
+
+    def weighted(pairs) -> list:
+        """Designs of :func:`_weighted_chunk` for ``(sketch as plain data, material weight)`` pairs, as tasks."""
+        spec = {
             "target": target.tolist(),
-            "entries": [_plain(t, x) for t, x in settings.low_end],
+            "entries": [{**p, "weight": float(w)} for p, w in pairs],
             "deadline": None if time_limit is None else t0 + float(time_limit),
-            "weights": [float(w) for w in LOW_END_WEIGHTS],
         }
-        tasks = len(settings.low_end) * len(LOW_END_WEIGHTS)
-        res += [d for pair in _dask.run_tasks(_low_end_chunk, (low,), tasks, 0, workers=workers) for d in pair]
+        chunks = _dask.run_tasks(_weighted_chunk, (spec,), len(pairs), 0, workers=workers) if pairs else []
+        return [d for pair in chunks for d in pair]
+
+    res += weighted([(_plain(t, x), w) for t, x in settings.low_end for w in LOW_END_WEIGHTS])
+    for _ in range(GAP_ROUNDS):
+        gaps = _gap_tasks(res, GAPS)
+        if not gaps:
+            break
+        res += weighted([({**d.topology, "x0": d.x0}, w) for d, w in gaps])
     # the non-dominated feasible ones, moved onto the target's frame (where they are scored again: the crank's
     # angles are absolute, so a moved linkage is sampled at other phases of its motion), evenly thinned to `designs`
     dd = np.array([r.distance for r in res])
@@ -1088,25 +1107,61 @@ def _low_end(library: Library, target, count: int = LOW_END) -> list:
     return [(rows[i][3], rows[i][4]) for i in keep[:count]]
 
 
-def _low_end_chunk(spec: dict, ks, evals: int, method: str) -> list:
-    """Refinements of the low-end entries (:func:`_low_end`), task ``k`` = entry ``k // W``, weight ``k % W``.
+def _gap_tasks(res: list, count: int = GAPS) -> list:
+    """Refinements that fill the ``count`` largest gaps of the front of ``res``: ``(design, material weight)`` each.
 
-    Each is a material-weighted refinement (the mean gap + weight x material,
-    the spec's ``W`` weights, :data:`LOW_END_WEIGHTS`) from the entry, then a
-    distance-only one from there; both results are designs.  A task not
-    reached before the spec's deadline gives none.
+    Between neighbours ``(d1, m1)`` and ``(d2, m2)`` of the front (``d1 <
+    d2``, ``m1 > m2``) the rectangle ``(d2 - d1) (m1 - m2)`` is left
+    undominated; the weight that makes the two equally good in the
+    refinement's cost (mean gap, the distance over ``2 pi``, plus weight x
+    material) is ``w = (d2 - d1) / (2 pi (m1 - m2))``.  The closer end is
+    refined with ``w`` times :data:`GAP_FACTORS` (it gives material for
+    distance), the other end with the least of them (it takes distance back).
+    A crank tip (two joints) is no end: it has no shape to trade.
+    Deterministic: no draw.
+    """
+    d = np.array([r.distance for r in res])
+    m = np.array([r.material for r in res])
+    ok = np.flatnonzero((d < MAX_DISTANCE) & (m < MAX_MATERIAL))
+    if ok.size < 2:
+        return []
+    front = ok[_nondominated(d[ok], m[ok])]
+    rows = []
+    for a, b in zip(front[:-1], front[1:]):
+        area = (d[b] - d[a]) * (m[a] - m[b])
+        if area > 0:
+            rows.append((-area, int(a), int(b), (d[b] - d[a]) / (2.0 * math.pi * (m[a] - m[b]))))
+    out = []
+    for _, a, b, w in sorted(rows)[:count]:
+        if res[a].topology["n"] > 2:
+            out += [(res[a], w * f) for f in GAP_FACTORS]
+        if res[b].topology["n"] > 2:
+            out.append((res[b], w * min(GAP_FACTORS)))
+    # the foot of each of the highest cliffs (a drop in material over a small step in distance), on distance alone
+    cliffs = sorted((-(m[a] - m[b]), int(b)) for a, b in zip(front[:-1], front[1:]) if res[int(b)].topology["n"] > 2)
+    out += [(res[b], 0.0) for _, b in cliffs[:CLIFFS]]
+    return out
+
+
+def _weighted_chunk(spec: dict, ks, evals: int, method: str) -> list:
+    """Refinements of the spec's entries ``ks`` (a sketch and a material weight each): two designs a task.
+
+    A material-weighted refinement (the mean gap + the entry's weight x
+    material) from the entry's sketch, then one on distance alone from
+    there; both results are designs (the low-end entries of :func:`_low_end`
+    with each of :data:`LOW_END_WEIGHTS`, the ends of :func:`_gap_tasks`).
+    A task not reached before the spec's deadline gives none.
     """
     tc = _target(np.asarray(spec["target"], dtype=float))
     out = []
     for k in ks:
         designs = []
         if spec["deadline"] is None or time.monotonic() <= spec["deadline"]:
-            weights = spec["weights"]
-            s = spec["entries"][k // len(weights)]
+            s = spec["entries"][k]
             topo = _topology(s["n"], s["edges"], s["fixed"], s["motor"], s["target"])
             td = {key: s[key] for key in ("n", "edges", "fixed", "motor", "target")}
-            w = weights[k % len(weights)]
-            x, d, m, _ = refine(topo, np.asarray(s["x0"], dtype=float), tc, rounds=4, nfev=30, material_weight=w)
+            x0 = np.asarray(s["x0"], dtype=float)
+            x, d, m, _ = refine(topo, x0, tc, rounds=4, nfev=30, material_weight=s["weight"])
             x2, d2, m2, _ = refine(topo, x, tc, rounds=3, nfev=30, walk=False)
             designs = [Design(float(a), float(b), td, np.asarray(c).tolist()) for a, b, c in ((d, m, x), (d2, m2, x2))]
         out.append([dd for dd in designs if math.isfinite(dd.distance)])
