@@ -32,6 +32,45 @@ __all__ = ["gaps", "gaps_jacobian"]
 
 
 @jit
+def _crank(x0, pivot, tip):  # pragma: no cover - compiled
+    """The crank's sketch vector and length."""
+    vx = x0[tip, 0] - x0[pivot, 0]
+    vy = x0[tip, 1] - x0[pivot, 1]
+    return vx, vy, math.sqrt(vx * vx + vy * vy)
+
+
+@jit
+def _dyad(x0, k, i, j):  # pragma: no cover - compiled
+    """A dyad's sketch vectors ``k - i``, ``k - j``, their squared lengths and the branch sign."""
+    a0, a1 = x0[k, 0] - x0[i, 0], x0[k, 1] - x0[i, 1]
+    b0, b1 = x0[k, 0] - x0[j, 0], x0[k, 1] - x0[j, 1]
+    u0, u1 = x0[j, 0] - x0[i, 0], x0[j, 1] - x0[i, 1]
+    s = -1.0 if u0 * a1 - u1 * a0 < 0.0 else 1.0
+    return a0, a1, b0, b1, a0 * a0 + a1 * a1, b0 * b0 + b1 * b1, s
+
+
+@jit
+def _closure(X, i, j, t, A, B, s):  # pragma: no cover - compiled
+    """A dyad at step ``t``: ``d = x_j - x_i``, ``L = |d|^2``, ``alpha`` and ``beta`` (the simulator's Notes)."""
+    d0 = X[j, t, 0] - X[i, t, 0]
+    d1 = X[j, t, 1] - X[i, t, 1]
+    L = d0 * d0 + d1 * d1
+    alpha = 0.5 + (A - B) / (2.0 * L)
+    return d0, d1, L, alpha, s * math.sqrt(A / L - alpha * alpha)
+
+
+@jit
+def _mean(P):  # pragma: no cover - compiled
+    """Mean of the rows of ``P`` (n, 2), summed in order."""
+    m0 = 0.0
+    m1 = 0.0
+    for q in range(P.shape[0]):
+        m0 += P[q, 0]
+        m1 += P[q, 1]
+    return m0 / P.shape[0], m1 / P.shape[0]
+
+
+@jit
 def _positions(x0, dyads, pivot, tip, cs, X):  # pragma: no cover - compiled (tested through gaps)
     """Every joint over the crank turn into ``X`` (N, T, 2): the closed forms of the simulator."""
     N = x0.shape[0]
@@ -40,26 +79,15 @@ def _positions(x0, dyads, pivot, tip, cs, X):  # pragma: no cover - compiled (te
         for t in range(T):
             X[q, t, 0] = x0[q, 0]
             X[q, t, 1] = x0[q, 1]
-    vx = x0[tip, 0] - x0[pivot, 0]
-    vy = x0[tip, 1] - x0[pivot, 1]
-    r = math.sqrt(vx * vx + vy * vy)
+    vx, vy, r = _crank(x0, pivot, tip)
     for t in range(T):
         X[tip, t, 0] = x0[pivot, 0] + r * cs[t, 0]
         X[tip, t, 1] = x0[pivot, 1] + r * cs[t, 1]
     for n in range(dyads.shape[0]):
         k, i, j = dyads[n, 0], dyads[n, 1], dyads[n, 2]
-        a0, a1 = x0[k, 0] - x0[i, 0], x0[k, 1] - x0[i, 1]
-        b0, b1 = x0[k, 0] - x0[j, 0], x0[k, 1] - x0[j, 1]
-        A = a0 * a0 + a1 * a1
-        B = b0 * b0 + b1 * b1
-        u0, u1 = x0[j, 0] - x0[i, 0], x0[j, 1] - x0[i, 1]
-        s = -1.0 if u0 * a1 - u1 * a0 < 0.0 else 1.0
+        a0, a1, b0, b1, A, B, s = _dyad(x0, k, i, j)
         for t in range(T):
-            d0 = X[j, t, 0] - X[i, t, 0]
-            d1 = X[j, t, 1] - X[i, t, 1]
-            L = d0 * d0 + d1 * d1
-            alpha = 0.5 + (A - B) / (2.0 * L)
-            beta = s * math.sqrt(A / L - alpha * alpha)
+            d0, d1, L, alpha, beta = _closure(X, i, j, t, A, B, s)
             X[k, t, 0] = X[i, t, 0] + alpha * d0 - beta * d1
             X[k, t, 1] = X[i, t, 1] + alpha * d1 + beta * d0
 
@@ -75,9 +103,7 @@ def _derivatives(x0, dyads, pivot, tip, cs, X, J):  # pragma: no cover - compile
         for t in range(T):
             J[q, t, 0, 2 * q] = 1.0
             J[q, t, 1, 2 * q + 1] = 1.0
-    vx = x0[tip, 0] - x0[pivot, 0]
-    vy = x0[tip, 1] - x0[pivot, 1]
-    r = math.sqrt(vx * vx + vy * vy)
+    vx, vy, r = _crank(x0, pivot, tip)
     dr = np.zeros(P)
     dr[2 * tip] += vx / r
     dr[2 * tip + 1] += vy / r
@@ -93,12 +119,7 @@ def _derivatives(x0, dyads, pivot, tip, cs, X, J):  # pragma: no cover - compile
     dal = np.empty(P)
     for n in range(dyads.shape[0]):
         k, i, j = dyads[n, 0], dyads[n, 1], dyads[n, 2]
-        a0, a1 = x0[k, 0] - x0[i, 0], x0[k, 1] - x0[i, 1]
-        b0, b1 = x0[k, 0] - x0[j, 0], x0[k, 1] - x0[j, 1]
-        A = a0 * a0 + a1 * a1
-        B = b0 * b0 + b1 * b1
-        u0, u1 = x0[j, 0] - x0[i, 0], x0[j, 1] - x0[i, 1]
-        s = -1.0 if u0 * a1 - u1 * a0 < 0.0 else 1.0
+        a0, a1, b0, b1, A, B, s = _dyad(x0, k, i, j)
         dA[:] = 0.0
         dB[:] = 0.0
         dA[2 * k] += 2.0 * a0
@@ -110,11 +131,7 @@ def _derivatives(x0, dyads, pivot, tip, cs, X, J):  # pragma: no cover - compile
         dB[2 * j] -= 2.0 * b0
         dB[2 * j + 1] -= 2.0 * b1
         for t in range(T):
-            d0 = X[j, t, 0] - X[i, t, 0]
-            d1 = X[j, t, 1] - X[i, t, 1]
-            L = d0 * d0 + d1 * d1
-            alpha = 0.5 + (A - B) / (2.0 * L)
-            beta = s * math.sqrt(A / L - alpha * alpha)
+            d0, d1, L, alpha, beta = _closure(X, i, j, t, A, B, s)
             for p in range(P):
                 dL[p] = 2.0 * (d0 * (J[j, t, 0, p] - J[i, t, 0, p]) + d1 * (J[j, t, 1, p] - J[i, t, 1, p]))
             for p in range(P):
@@ -176,13 +193,7 @@ def _gaps(x0, dyads, pivot, tip, target, cs, s, perm, tz, scale, rot, norm, out)
     lo = np.empty(n, dtype=np.int64)
     w = np.empty(n)
     _resample(c, cum, seg, s, Pz, lo, w)
-    m0 = 0.0
-    m1 = 0.0
-    for q in range(n):
-        m0 += Pz[q, 0]
-        m1 += Pz[q, 1]
-    m0 /= n
-    m1 /= n
+    m0, m1 = _mean(Pz)
     for q in range(n):
         zr = (Pz[perm[q], 0] - m0) / scale
         zi = (Pz[perm[q], 1] - m1) / scale
@@ -247,13 +258,7 @@ def _gaps_jacobian(x0, dyads, pivot, tip, target, cs, s, perm, scale, rot, norm,
     for e in range(2):
         for p in range(P):
             mean[e, p] /= n
-    m0 = 0.0
-    m1 = 0.0
-    for q in range(n):
-        m0 += Pz[q, 0]
-        m1 += Pz[q, 1]
-    m0 /= n
-    m1 /= n
+    m0, m1 = _mean(Pz)
     for q in range(n):
         g = perm[q]
         for p in range(P):
