@@ -19,8 +19,9 @@ empty folder) receives, per design on the distance-material front (at most
 (the MIT 2.156 challenge's form), then ``pareto.csv`` (design, distance,
 material, joints, links).  Scores and search: :mod:`gearlever.synthesis.curve`.
 ``--budget`` (default 20000 evaluations) gives the same designs on any
-machine and any number of workers; ``--time`` stops on the clock and is not
-reproducible.  The retrieval library (``--library-size`` mechanisms, seed
+machine and any number of workers; ``--time`` searches while the clock
+allows (passes at the default budget, merged) and is not reproducible.
+The retrieval library (``--library-size`` mechanisms, seed
 ``--library-seed``) is loaded from the cache folder when ``gearlever curve
 library build`` stored it there, else built in memory: the same designs
 either way.  An empty front (no design within distance 0.75 and material 10)
@@ -75,7 +76,7 @@ def register_curve(ss) -> None:
         type=capped_float(86_400.0),
         default=None,
         metavar="SECONDS",
-        help="stop on the clock (not reproducible)",
+        help="search while the clock allows: passes at the default budget, merged (not reproducible)",
     )
     p.add_argument("--seed", type=capped_int(2**31 - 1, low=0), default=0)
     w = p.add_mutually_exclusive_group()

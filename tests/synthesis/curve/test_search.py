@@ -214,3 +214,54 @@ def test_gap_tasks_refine_both_ends_of_the_largest_gaps_at_the_gaps_own_weight_a
     want += [(1, 0.0), (2, 0.0)]  # the cliffs 9 -> 2 and 2 -> 1.5 (the crank tip's 1.5 -> 0.4 left alone)
     assert [(int(d.x0[0][0]), pytest.approx(w)) for d, w in tasks] == [(i, pytest.approx(w)) for i, w in want]
     assert S._gap_tasks(res[4:], count=2) == []  # one feasible design: no gap
+
+
+def test_first_ranks_peel_the_non_dominated_fronts_in_turn():
+    """Moved onto the target's frame: the first ``ranks`` fronts, so a design a later one displaced stays."""
+    d = np.array([0.1, 0.2, 0.3, 0.15, 0.25, 0.35, 0.5])
+    m = np.array([5.0, 3.0, 1.0, 6.0, 4.0, 2.0, 7.0])
+    idx = np.arange(d.size)
+    assert S._first_ranks(d, m, idx, 1).tolist() == [0, 1, 2]
+    assert S._first_ranks(d, m, idx, 2).tolist() == [0, 1, 2, 3, 4, 5]
+    assert S._first_ranks(d, m, idx, 9).tolist() == list(range(7))
+    assert S._first_ranks(d, m, idx[3:], 1).tolist() == [3, 4, 5]
+    assert S._first_ranks(d, m, idx[:0], 3).tolist() == []
+
+
+def test_second_opinion_takes_the_other_methods_best_entries_that_were_not_started():
+    """Entries ranked by the second method's brief refinements, by area and by distance in turn, none taken before."""
+    rows = [(0.05 * (i + 1), 9.0 - i, i, f"topology {i}", np.full((2, 2), float(i))) for i in range(8)]
+    picked = S._second_opinion(rows, {0, 7}, 2)
+    # by distance: entry 1 (0.10) once 0 is taken; by area (0.75 - d) (10 - m): entry 6 (0.4 x 7.0 = 2.8) once 7 is
+    areas = {i: (0.75 - 0.05 * (i + 1)) * (10 - (9.0 - i)) for i in range(8)}
+    assert max((a, i) for i, a in areas.items() if i not in (0, 7))[1] == 6
+    assert [n for n, _, _ in picked] == [6, 1]
+    assert [t for _, t, _ in picked] == ["topology 6", "topology 1"] and picked[0][2] is rows[6][4]
+    assert S._second_opinion(rows, set(range(8)), 2) == []
+
+
+def test_preselection_refines_every_entry_by_each_method_named_in_the_spec():
+    topo, x, tc = _perturbed()
+    entry = S._plain(topo, x)
+    spec = {"target": tc.raw.tolist(), "entries": [entry], "deadline": None, "methods": ["lm", "trf"]}
+    (row,) = S._preselect_chunk(spec, [0], 0, "")
+    assert row[0] == 0 and len(row) == 7
+    for j, method in ((1, "lm"), (4, "trf")):
+        x1, d1, m1, _ = S.refine(topo, x, tc, rounds=3, nfev=15, walk=False, method=method)
+        assert (row[j], row[j + 1]) == (d1, m1) and row[j + 2] == x1.tolist()
+    (late,) = S._preselect_chunk({**spec, "deadline": 0.0}, [0], 0, "")  # the first entry: always refined
+    assert late == row
+
+
+def test_on_the_clock_passes_run_while_time_remains_and_only_add_to_the_first(small, monkeypatch):
+    """``time_limit`` without a budget: the first pass is the search at the default budget, later passes add starts."""
+    monkeypatch.setattr(S, "DEFAULT_BUDGET", 1000)
+    t = np.linspace(0, 2 * np.pi, 120)
+    egg = np.stack([0.3 * np.cos(t) * (1 + 0.2 * np.sin(t)), 0.24 * np.sin(t)], -1)
+    once = S.synthesize_curve(egg, budget=1000, seed=3, workers=1, scoring="challenge")
+    limit = once.seconds * 2 + 1
+    clocked = S.synthesize_curve(egg, budget=None, time_limit=limit, seed=3, workers=1, scoring="challenge")
+    assert once.starts == S.STARTS and clocked.starts > S.STARTS  # more than one pass
+    assert clocked.evaluations > once.evaluations
+    assert clocked.hypervolume >= once.hypervolume - 1e-12  # the challenge's scoring does not move a design's score
+    assert clocked.seconds < limit + 2 * once.seconds  # a pass starts only with half a pass left

@@ -41,8 +41,18 @@ machine and any number of workers):
    crank tips (:func:`_crank_tips`) and refined low-material library entries
    (:func:`_low_end`); its largest gaps and highest cliffs are filled by
    refinements of their ends (:func:`_gap_tasks`, :data:`GAP_ROUNDS` rounds,
-   tasks like the starts); at most ``designs`` of them (chosen evenly along
-   the front when there are more).
+   tasks like the starts); a second opinion (:func:`_second_opinion`: the
+   entries that step 2's brief refinements by :data:`SECOND_METHOD` rank
+   first, not started, refined with :data:`SECOND_WEIGHTS`, then a round of
+   gaps); the first :data:`MOVE_RANKS` non-dominated ranks moved onto the
+   target's frame and scored again; at most ``designs`` of them (chosen
+   evenly along the front when there are more).
+5. **On the clock** (``time_limit`` without a budget): passes while time
+   remains, the first the search at :data:`DEFAULT_BUDGET`, each further one
+   from the next :data:`STARTS` entries of the portfolio (then the first
+   again, on the next seed), its gaps and the next second opinion, merged
+   (at most :data:`MAX_PASSES`; a pass begins only while half the last
+   one's time is left).
 
 The residuals and their Jacobian are compiled kernels
 (:mod:`gearlever.synthesis.curve._kernels`), the same arithmetic as
@@ -131,6 +141,20 @@ MAX_GROWTH = 3.0
 #: whose loop runs in compiled code (the trust region reflective method's Python loop took two thirds of a
 #: refinement's time once the residuals were compiled).
 LSQ_METHOD = "lm"
+#: the second opinion's method: the retrieved entries briefly refined by it too
+SECOND_METHOD = "trf"
+#: entries the second opinion adds (those the first did not start from)
+SECOND = 2
+#: material weights of their refinements (0: distance alone)
+SECOND_WEIGHTS = (0.0, 0.003, 0.01, 0.03, 0.1, 0.3)
+#: non-dominated ranks moved onto the target's frame and scored again there
+MOVE_RANKS = 5
+#: evaluations of each pass on the clock (``time_limit`` without a budget): the default budget
+DEFAULT_BUDGET = 20_000
+#: most passes on the clock
+MAX_PASSES = 64
+#: gap rounds after the second opinion
+SECOND_GAP_ROUNDS = 1
 #: Front members (closest first) polished by a longer refinement.
 POLISH = 5
 #: Most function evaluations of each least-squares solve of a polish (eight rounds at most).
@@ -339,6 +363,7 @@ def refine(
     material_weight: float = 0.0,
     walk: bool = True,
     l1: bool = True,
+    method: str | None = None,
 ):
     """Least-squares refinement of the distance of one sketch (analytic Jacobian); returns (x0, d, m, evals).
 
@@ -392,7 +417,7 @@ def refine(
         fun, jac = _residuals(topo, tc, a, weight, gw, linear=l1 and bool(material_weight))
         q0 = np.append(best.ravel(), angle)
         try:
-            res = least_squares(fun, q0, jac=jac, method=LSQ_METHOD, max_nfev=nfev, x_scale="jac")
+            res = least_squares(fun, q0, jac=jac, method=method or LSQ_METHOD, max_nfev=nfev, x_scale="jac")
         except (ValueError, np.linalg.LinAlgError):
             return None, math.inf, math.inf, 0
         cand = res.x[:-1].reshape(N, 2)
@@ -656,6 +681,20 @@ def _portfolio(refined, count: int) -> list:
     return out
 
 
+def _second_opinion(second, taken: set, count: int) -> list:
+    """``(entry, topology, sketch)`` of ``count`` entries of ``second`` not in ``taken``, as :func:`_pick_starts` picks.
+
+    ``second`` holds the retrieved entries briefly refined by
+    :data:`SECOND_METHOD` (rows ``(distance, material, entry, topology,
+    sketch)``, like the starts'); the two methods land in different local
+    minima, so an entry the first ranks low can be the best of the second
+    (the own suite's kidney: entry 37 at distance 0.217 by Levenberg-Marquardt,
+    0.085 by the trust region method).
+    """
+    rows = {id(r[4]): r for r in second if r[2] not in taken}
+    return [(rows[id(x)][2], t, x) for t, x in _pick_starts(list(rows.values()), count)]
+
+
 def _nondominated(d, m) -> np.ndarray:
     order = np.lexsort((m, d))
     out, best = [], math.inf
@@ -664,6 +703,19 @@ def _nondominated(d, m) -> np.ndarray:
             out.append(int(i))
             best = m[i]
     return np.array(out, dtype=int)
+
+
+def _first_ranks(d, m, idx, ranks: int) -> np.ndarray:
+    """The indices ``idx`` on the first ``ranks`` non-dominated fronts of ``(d, m)`` (sorted)."""
+    out = []
+    idx = np.asarray(idx, dtype=int)
+    for _ in range(ranks):
+        if not idx.size:
+            break
+        f = idx[_nondominated(d[idx], m[idx])]
+        out.append(f)
+        idx = np.setdiff1d(idx, f)
+    return np.sort(np.concatenate(out)) if out else idx
 
 
 def _spec(spec: dict) -> dict:
@@ -793,7 +845,7 @@ def synthesize_curve(
     *,
     max_joints: int = 20,
     designs: int = MAX_DESIGNS,
-    budget: int | None = 20_000,
+    budget: int | None = DEFAULT_BUDGET,
     time_limit: float | None = None,
     seed: int = 0,
     workers: int | None = None,
@@ -818,7 +870,8 @@ def synthesize_curve(
         Evaluations of the search after retrieval (reproducible), :data:`MIN_BUDGET` to
         :data:`MAX_BUDGET` (:func:`gearlever.synthesis.driver.check_budget`).
     time_limit : float, optional
-        Seconds: the search stops on the clock (not reproducible).
+        Seconds: the search stops on the clock (not reproducible); without a ``budget``, passes at
+        :data:`DEFAULT_BUDGET` run while time remains and their designs are merged.
     seed : int
     workers, scheduler
         Local processes (an int; 1 runs in this process; default :func:`default_workers`, the cores this
@@ -957,56 +1010,77 @@ def _search(settings: _Settings, workers, progress) -> CurveSynthesis:
         "entries": [_plain(t, x) for t, x in shortlist],
         "deadline": None if time_limit is None else t0 + 0.5 * float(time_limit),
     }
+    entries["methods"] = [LSQ_METHOD, SECOND_METHOD]
     pre = _dask.run_tasks(_preselect_chunk, (entries,), len(shortlist), 0, workers=workers)
-    refined = [(d1, m1, n, shortlist[n][0], np.asarray(x1, dtype=float)) for n, d1, m1, x1 in pre if x1 is not None]
-    starts = _portfolio(refined, STARTS)
-    total = budget if budget is not None else 10**6
-    evals = max(POPULATION * 2, total // len(starts))
-    spec = {
-        "target": target.tolist(),
-        "max_joints": int(max_joints),
-        "starts": [_plain(t, x) for t, x in starts],
-        "deadline": None if time_limit is None else t0 + float(time_limit),
-        "tuning": _tuning(),
-    }
-    runs = multistart(
-        functools.partial(_spec, spec),
-        len(starts),
-        seed,
-        budget=evals * len(starts),
-        workers=_PerStart(workers, [t.n for t, _ in starts]) if isinstance(workers, _Pool) else workers,
-        progress=progress,
-        method="nsga2",
-        start=curve_start,
+    refined, second = (
+        [
+            (r[j], r[j + 1], r[0], shortlist[r[0]][0], np.asarray(r[j + 2], dtype=float))
+            for r in pre
+            if r[j + 2] is not None
+        ]
+        for j in (1, 4)
     )
-    # every design of every start (in start order), by exact distance then start
-    runs = sorted(runs, key=lambda r: r.index)
-    res = order([(d, r.index) for r in runs for d in r.info["designs"]], lambda t: t[0].distance, lambda t: t[1])
-    res = [d for d, _ in res] + _crank_tips(target)
-
-    def weighted(pairs) -> list:
-        """Designs of :func:`_weighted_chunk` for ``(sketch as plain data, material weight)`` pairs, as tasks."""
+    deadline = None if time_limit is None else t0 + float(time_limit)
+    # on the clock without a budget: passes at the default budget while time remains (the first is the default
+    # search), each from the next starts of the portfolio (then the first again, on the next seed), merged
+    clocked = time_limit is not None and budget is None
+    total = budget if budget is not None else (DEFAULT_BUDGET if clocked else 10**6)
+    queue = _portfolio(refined, len(refined))
+    started: set = set()
+    seconded: set = set()
+    res: list = []
+    runs: list = []
+    for p in range(MAX_PASSES if clocked else 1):
+        began = time.monotonic()
+        starts = _portfolio(refined, STARTS) if p == 0 else [s for s in queue if id(s[1]) not in started][:STARTS]
+        if not starts:
+            started = set()
+            starts = queue[:STARTS]
+        started |= {id(x) for _, x in starts}
         spec = {
             "target": target.tolist(),
-            "entries": [{**p, "weight": float(w)} for p, w in pairs],
-            "deadline": None if time_limit is None else t0 + float(time_limit),
+            "max_joints": int(max_joints),
+            "starts": [_plain(t, x) for t, x in starts],
+            "deadline": deadline,
+            "tuning": _tuning(),
         }
-        chunks = _dask.run_tasks(_weighted_chunk, (spec,), len(pairs), 0, workers=workers) if pairs else []
-        return [d for pair in chunks for d in pair]
-
-    res += weighted([(_plain(t, x), w) for t, x in settings.low_end for w in LOW_END_WEIGHTS])
-    for _ in range(GAP_ROUNDS):
-        gaps = _gap_tasks(res, GAPS)
-        if not gaps:
+        evals = max(POPULATION * 2, total // len(starts))
+        done = multistart(
+            functools.partial(_spec, spec),
+            len(starts),
+            seed + p,
+            budget=evals * len(starts),
+            workers=_PerStart(workers, [t.n for t, _ in starts]) if isinstance(workers, _Pool) else workers,
+            progress=progress,
+            method="nsga2",
+            start=curve_start,
+        )
+        # every design of every start (in start order), by exact distance then start
+        done = sorted(done, key=lambda r: r.index)
+        runs += done
+        got = order([(d, r.index) for r in done for d in r.info["designs"]], lambda t: t[0].distance, lambda t: t[1])
+        res += [d for d, _ in got]
+        if p == 0:
+            res += _crank_tips(target)
+            res += _weighted(
+                target, deadline, workers, [(_plain(t, x), w) for t, x in settings.low_end for w in LOW_END_WEIGHTS]
+            )
+        res = _fill_gaps(res, target, deadline, workers, GAP_ROUNDS)
+        extra = _second_opinion(second, {r[2] for r in refined if id(r[4]) in started} | seconded, SECOND)
+        seconded |= {n for n, _, _ in extra}
+        if extra:
+            pairs = [(_plain(t, x), w) for _, t, x in extra for w in SECOND_WEIGHTS]
+            res = _fill_gaps(
+                res + _weighted(target, deadline, workers, pairs), target, deadline, workers, SECOND_GAP_ROUNDS
+            )
+        if deadline is None or deadline - time.monotonic() < 0.5 * (time.monotonic() - began):
             break
-        res += weighted([({**d.topology, "x0": d.x0}, w) for d, w in gaps])
     # the non-dominated feasible ones, moved onto the target's frame (where they are scored again: the crank's
     # angles are absolute, so a moved linkage is sampled at other phases of its motion), evenly thinned to `designs`
     dd = np.array([r.distance for r in res])
     mm = np.array([r.material for r in res])
     feas = (dd < MAX_DISTANCE) & (mm < MAX_MATERIAL)
-    idx = np.flatnonzero(feas)
-    front = idx[_nondominated(dd[idx], mm[idx])] if idx.size else idx
+    front = _first_ranks(dd, mm, np.flatnonzero(feas), MOVE_RANKS)
     moved, transforms, dist, mat = [], [], [], []
     for i in front:
         td, xx = res[i].topology, res[i].x0
@@ -1042,7 +1116,7 @@ def _search(settings: _Settings, workers, progress) -> CurveSynthesis:
         hv,
         int(sum(r.evaluations for r in runs)),
         int(seed),
-        len(starts),
+        len(runs),
         settings.library_size,
         time.monotonic() - t0,
         scoring,
@@ -1050,6 +1124,25 @@ def _search(settings: _Settings, workers, progress) -> CurveSynthesis:
         np.array(transforms, dtype=float).reshape(-1, 4),
         int(sum(r.polish_evaluations for r in runs)),
     )
+
+
+def _weighted(target, deadline, workers, pairs) -> list:
+    """Designs of :func:`_weighted_chunk` for ``(sketch as plain data, material weight)`` pairs, as tasks."""
+    if not pairs:
+        return []
+    spec = {"target": target.tolist(), "entries": [{**p, "weight": float(w)} for p, w in pairs], "deadline": deadline}
+    chunks = _dask.run_tasks(_weighted_chunk, (spec,), len(pairs), 0, workers=workers)
+    return [d for pair in chunks for d in pair]
+
+
+def _fill_gaps(res: list, target, deadline, workers, rounds: int) -> list:
+    """``res`` and the refinements of :func:`_gap_tasks`, ``rounds`` times (fewer when the front has no gap)."""
+    for _ in range(rounds):
+        gaps = _gap_tasks(res, GAPS)
+        if not gaps:
+            break
+        res = res + _weighted(target, deadline, workers, [({**d.topology, "x0": d.x0}, w) for d, w in gaps])
+    return res
 
 
 def _tuning() -> dict:
@@ -1178,12 +1271,16 @@ def _preselect_chunk(spec: dict, ks, evals: int, method: str) -> list:
     out = []
     for k in ks:
         if k and spec["deadline"] is not None and time.monotonic() > spec["deadline"]:
-            out.append((k, math.inf, math.inf, None))
+            out.append((k,) + (math.inf, math.inf, None) * len(spec.get("methods", [LSQ_METHOD])))
             continue
         s = spec["entries"][k]
         topo = _topology(s["n"], s["edges"], s["fixed"], s["motor"], s["target"])
-        x1, d1, m1, _ = refine(topo, np.asarray(s["x0"], dtype=float), tc, rounds=3, nfev=15, walk=False)
-        out.append((k, d1, m1, x1.tolist()))
+        x = np.asarray(s["x0"], dtype=float)
+        row = [k]
+        for meth in spec.get("methods", [LSQ_METHOD]):
+            x1, d1, m1, _ = refine(topo, x, tc, rounds=3, nfev=15, walk=False, method=meth)
+            row += [d1, m1, x1.tolist()]
+        out.append(tuple(row))
     return out
 
 
