@@ -384,7 +384,8 @@ def refine(
     least squares of the mean gap, which the challenge scores, instead of
     the mean squared gap), and a ``material_weight`` ``w`` makes the cost the
     mean gap plus ``w`` x material (a weighted sum of the two objectives);
-    without it, the squared gaps plus ``w`` x squared material.
+    without it, the squared gaps plus ``w`` x squared material.  ``method``
+    is :func:`scipy.optimize.least_squares`'s (default :data:`LSQ_METHOD`).
 
     Examples
     --------
@@ -1262,10 +1263,12 @@ def _weighted_chunk(spec: dict, ks, evals: int, method: str) -> list:
 
 
 def _preselect_chunk(spec: dict, ks, evals: int, method: str) -> list:
-    """Short refinements of the retrieved entries ``ks``: ``(k, distance, material, sketch or None)`` each.
+    """Short refinements of the retrieved entries ``ks``: ``(k, distance, material, sketch or None, ...)`` each.
 
-    An entry not reached before the spec's deadline (half the time limit) is ``None``; the first entry is
-    always refined, so that a start exists.
+    One ``(distance, material, sketch)`` per method of the spec's ``methods``
+    (default :data:`LSQ_METHOD`), in that order.  An entry not reached before
+    the spec's deadline (half the time limit) has ``None`` sketches; the
+    first entry is always refined, so that a start exists.
     """
     tc = _target(np.asarray(spec["target"], dtype=float))
     out = []
