@@ -1005,13 +1005,14 @@ def _search(settings: _Settings, workers, progress) -> CurveSynthesis:
     )
     shortlist, t0, time_limit, budget = settings.shortlist, settings.t0, settings.time_limit, settings.budget
     max_joints, designs, seed = settings.max_joints, settings.designs, settings.seed
-    # a short refinement of every retrieved entry (tasks, like the starts); the best refined ones are the starts
+    # a short refinement of every retrieved entry by each method (tasks, like the starts): by the first, the best
+    # refined ones are the starts; by the second, the second opinion
     entries = {
         "target": target.tolist(),
         "entries": [_plain(t, x) for t, x in shortlist],
         "deadline": None if time_limit is None else t0 + 0.5 * float(time_limit),
+        "methods": [LSQ_METHOD, SECOND_METHOD],
     }
-    entries["methods"] = [LSQ_METHOD, SECOND_METHOD]
     pre = _dask.run_tasks(_preselect_chunk, (entries,), len(shortlist), 0, workers=workers)
     refined, second = (
         [
